@@ -1,0 +1,315 @@
+//! Built-in scenes that need no files. Each has a default camera and environment; all are in
+//! metres, +Y up, materials rough diffuse.
+//!
+//! | name | what |
+//! |---|---|
+//! | `cornell` | open-top Cornell box (white floor and back wall, red left wall, green right wall, a tall and a short box), lit by the sky through the open top; the default scene |
+//! | `boxes` | three boxes on a plane, a pink point light on the left and a turquoise one on the right (S3HO Fig. 5) |
+//! | `city` | box skyscrapers on a ground plane under the sky with sun (S3HO Fig. 6) |
+//! | `plane` | one 400 m × 400 m plane: nothing occludes anything |
+//! | `wall` | a 400 m floor meeting a 200 m wall at 90° along the line y = 0, z = 0 |
+//! | `closed-box` | a closed 4 × 3 × 4 m room with a point light; the camera is inside |
+
+use crate::{
+    Camera, EnvSource, Light, LightKind, Material, Mesh, Scene, SceneError,
+};
+use glam::{Quat, Vec2, Vec3};
+
+/// Names of the built-in scenes, in the order shown to users.
+pub const NAMES: &[&str] = &["cornell", "boxes", "city", "plane", "wall", "closed-box"];
+
+/// Builds the named built-in scene.
+pub fn scene(name: &str) -> Result<Scene, SceneError> {
+    let s = match name {
+        "cornell" => cornell(),
+        "boxes" => boxes(),
+        "city" => city(),
+        "plane" => plane(),
+        "wall" => wall(),
+        "closed-box" => closed_box(),
+        _ => {
+            return Err(SceneError::UnknownBuiltin {
+                name: name.into(),
+                known: NAMES.join(", "),
+            });
+        }
+    };
+    Ok(s)
+}
+
+/// Accumulates quads into one mesh per material.
+struct Builder {
+    scene: Scene,
+}
+
+impl Builder {
+    fn new(name: &str) -> Self {
+        Builder {
+            scene: Scene {
+                name: format!("builtin:{name}"),
+                ..Default::default()
+            },
+        }
+    }
+
+    fn material(&mut self, m: Material) -> u32 {
+        self.scene.materials.push(m);
+        self.scene.meshes.push(Mesh {
+            name: self.scene.materials.last().unwrap().name.clone(),
+            material: (self.scene.materials.len() - 1) as u32,
+            ..Default::default()
+        });
+        (self.scene.materials.len() - 1) as u32
+    }
+
+    /// A planar quad with corners in counter-clockwise order seen from the front.
+    fn quad(&mut self, material: u32, corners: [Vec3; 4]) {
+        let m = &mut self.scene.meshes[material as usize];
+        let n = (corners[1] - corners[0])
+            .cross(corners[2] - corners[0])
+            .normalize();
+        let base = m.positions.len() as u32;
+        let uv = [Vec2::new(0.0, 1.0), Vec2::new(1.0, 1.0), Vec2::new(1.0, 0.0), Vec2::ZERO];
+        for (c, t) in corners.iter().zip(uv) {
+            m.positions.push(*c);
+            m.normals.push(n);
+            m.uvs.push(t);
+        }
+        m.indices.push([base, base + 1, base + 2]);
+        m.indices.push([base, base + 2, base + 3]);
+    }
+
+    /// A horizontal rectangle at height y facing +Y (or −Y when `down`).
+    fn floor(&mut self, material: u32, min: Vec2, max: Vec2, y: f32, down: bool) {
+        let mut c = [
+            Vec3::new(min.x, y, max.y),
+            Vec3::new(max.x, y, max.y),
+            Vec3::new(max.x, y, min.y),
+            Vec3::new(min.x, y, min.y),
+        ];
+        if down {
+            c.reverse();
+        }
+        self.quad(material, c);
+    }
+
+    /// A closed box standing on y = base, rotated by `yaw` degrees about +Y, faces outward. The
+    /// bottom face is omitted (it rests on a floor).
+    fn block(&mut self, material: u32, center_xz: Vec2, size: Vec3, base: f32, yaw_deg: f32) {
+        let rot = Quat::from_rotation_y(yaw_deg.to_radians());
+        let c = Vec3::new(center_xz.x, base, center_xz.y);
+        let h = size * 0.5;
+        let p = |x: f32, y: f32, z: f32| c + rot * Vec3::new(x * h.x, y * size.y, z * h.z);
+        // Top
+        self.quad(material, [p(-1., 1., 1.), p(1., 1., 1.), p(1., 1., -1.), p(-1., 1., -1.)]);
+        // +Z, −Z, +X, −X
+        self.quad(material, [p(-1., 0., 1.), p(1., 0., 1.), p(1., 1., 1.), p(-1., 1., 1.)]);
+        self.quad(material, [p(1., 0., -1.), p(-1., 0., -1.), p(-1., 1., -1.), p(1., 1., -1.)]);
+        self.quad(material, [p(1., 0., 1.), p(1., 0., -1.), p(1., 1., -1.), p(1., 1., 1.)]);
+        self.quad(material, [p(-1., 0., -1.), p(-1., 0., 1.), p(-1., 1., 1.), p(-1., 1., -1.)]);
+    }
+
+    fn finish(mut self, camera: Camera, env: EnvSource) -> Scene {
+        self.scene.meshes.retain(|m| !m.indices.is_empty());
+        self.scene.cameras = vec![camera];
+        self.scene.default_env = env;
+        self.scene
+    }
+}
+
+const WHITE: Vec3 = Vec3::new(0.73, 0.73, 0.73);
+
+/// The open-top Cornell box: 2 m cube without ceiling and front wall, reflectances of the
+/// classic Cornell box measurements (white 0.73, red (0.63, 0.065, 0.05), green (0.14, 0.45, 0.091)).
+fn cornell() -> Scene {
+    let mut b = Builder::new("cornell");
+    let white = b.material(Material::diffuse("white", WHITE));
+    let red = b.material(Material::diffuse("red", Vec3::new(0.63, 0.065, 0.05)));
+    let green = b.material(Material::diffuse("green", Vec3::new(0.14, 0.45, 0.091)));
+    b.floor(white, Vec2::splat(-1.0), Vec2::splat(1.0), 0.0, false);
+    // Back wall z = −1 facing +Z.
+    b.quad(
+        white,
+        [
+            Vec3::new(-1.0, 0.0, -1.0),
+            Vec3::new(1.0, 0.0, -1.0),
+            Vec3::new(1.0, 2.0, -1.0),
+            Vec3::new(-1.0, 2.0, -1.0),
+        ],
+    );
+    // Left wall x = −1 facing +X (red), right wall x = +1 facing −X (green).
+    b.quad(
+        red,
+        [
+            Vec3::new(-1.0, 0.0, 1.0),
+            Vec3::new(-1.0, 0.0, -1.0),
+            Vec3::new(-1.0, 2.0, -1.0),
+            Vec3::new(-1.0, 2.0, 1.0),
+        ],
+    );
+    b.quad(
+        green,
+        [
+            Vec3::new(1.0, 0.0, -1.0),
+            Vec3::new(1.0, 0.0, 1.0),
+            Vec3::new(1.0, 2.0, 1.0),
+            Vec3::new(1.0, 2.0, -1.0),
+        ],
+    );
+    b.block(white, Vec2::new(-0.33, -0.3), Vec3::new(0.6, 1.2, 0.6), 0.0, 17.0);
+    b.block(white, Vec2::new(0.35, 0.35), Vec3::new(0.6, 0.6, 0.6), 0.0, -18.0);
+    b.finish(
+        Camera::new(Vec3::new(0.0, 1.0, 3.9), Vec3::new(0.0, 0.9, 0.0), 38.0),
+        EnvSource::Sky,
+    )
+}
+
+fn boxes() -> Scene {
+    let mut b = Builder::new("boxes");
+    let ground = b.material(Material::diffuse("ground", Vec3::splat(0.7)));
+    let boxes = b.material(Material::diffuse("boxes", Vec3::splat(0.75)));
+    b.floor(ground, Vec2::splat(-10.0), Vec2::splat(10.0), 0.0, false);
+    b.block(boxes, Vec2::new(-1.6, 0.2), Vec3::new(1.0, 1.0, 1.0), 0.0, 20.0);
+    b.block(boxes, Vec2::new(0.0, -0.4), Vec3::new(0.8, 1.8, 0.8), 0.0, -10.0);
+    b.block(boxes, Vec2::new(1.6, 0.3), Vec3::new(1.2, 0.6, 1.2), 0.0, 35.0);
+    let point = |position: Vec3, color: Vec3| Light {
+        kind: LightKind::Point { position },
+        color,
+        intensity: 40.0,
+        range: None,
+    };
+    b.scene.lights = vec![
+        point(Vec3::new(-4.5, 2.5, 1.0), Vec3::new(1.0, 0.35, 0.7)),
+        point(Vec3::new(4.5, 2.5, 1.0), Vec3::new(0.2, 0.9, 0.85)),
+    ];
+    b.finish(
+        Camera::new(Vec3::new(0.0, 3.2, 6.5), Vec3::new(0.0, 0.6, 0.0), 45.0),
+        EnvSource::Constant(Vec3::splat(0.15)),
+    )
+}
+
+fn city() -> Scene {
+    let mut b = Builder::new("city");
+    let ground = b.material(Material::diffuse("ground", Vec3::splat(0.5)));
+    let towers = b.material(Material::diffuse("towers", Vec3::new(0.7, 0.68, 0.64)));
+    b.floor(ground, Vec2::splat(-60.0), Vec2::splat(60.0), 0.0, false);
+    // A 7×7 grid on a 9 m pitch with heights from a fixed linear congruential sequence, so the
+    // city is the same on every machine.
+    let mut state: u32 = 12345;
+    let mut rand = || {
+        state = state.wrapping_mul(1_664_525).wrapping_add(1_013_904_223);
+        (state >> 8) as f32 / (1u32 << 24) as f32
+    };
+    for i in -3..=3 {
+        for j in -3..=3 {
+            let w = 4.0 + 2.5 * rand();
+            let d = 4.0 + 2.5 * rand();
+            let h = 5.0 + 25.0 * rand() * rand();
+            b.block(towers, Vec2::new(i as f32 * 9.0, j as f32 * 9.0), Vec3::new(w, h, d), 0.0, 0.0);
+        }
+    }
+    b.finish(
+        Camera::new(Vec3::new(38.0, 32.0, 52.0), Vec3::new(0.0, 3.0, 0.0), 45.0),
+        EnvSource::Sky,
+    )
+}
+
+fn plane() -> Scene {
+    let mut b = Builder::new("plane");
+    let ground = b.material(Material::diffuse("ground", Vec3::splat(0.8)));
+    b.floor(ground, Vec2::splat(-200.0), Vec2::splat(200.0), 0.0, false);
+    b.finish(
+        Camera::new(Vec3::new(0.0, 2.0, 5.0), Vec3::new(0.0, 0.0, -1.0), 60.0),
+        EnvSource::Sky,
+    )
+}
+
+fn wall() -> Scene {
+    let mut b = Builder::new("wall");
+    let floor = b.material(Material::diffuse("floor", Vec3::splat(0.8)));
+    let wall = b.material(Material::diffuse("wall", Vec3::splat(0.8)));
+    b.floor(floor, Vec2::new(-200.0, 0.0), Vec2::new(200.0, 400.0), 0.0, false);
+    b.quad(
+        wall,
+        [
+            Vec3::new(-200.0, 0.0, 0.0),
+            Vec3::new(200.0, 0.0, 0.0),
+            Vec3::new(200.0, 200.0, 0.0),
+            Vec3::new(-200.0, 200.0, 0.0),
+        ],
+    );
+    b.finish(
+        Camera::new(Vec3::new(2.5, 2.0, 5.0), Vec3::new(0.0, 0.6, 0.0), 60.0),
+        EnvSource::Sky,
+    )
+}
+
+fn closed_box() -> Scene {
+    let mut b = Builder::new("closed-box");
+    let walls = b.material(Material::diffuse("walls", Vec3::splat(0.7)));
+    let floor = b.material(Material::diffuse("floor", Vec3::new(0.6, 0.55, 0.5)));
+    let (x, y, z) = (2.0, 3.0, 2.0);
+    b.floor(floor, Vec2::new(-x, -z), Vec2::new(x, z), 0.0, false);
+    b.floor(walls, Vec2::new(-x, -z), Vec2::new(x, z), y, true);
+    let v = Vec3::new;
+    // Inward-facing walls: −Z wall faces +Z, +Z wall faces −Z, −X faces +X, +X faces −X.
+    b.quad(walls, [v(-x, 0., -z), v(x, 0., -z), v(x, y, -z), v(-x, y, -z)]);
+    b.quad(walls, [v(x, 0., z), v(-x, 0., z), v(-x, y, z), v(x, y, z)]);
+    b.quad(walls, [v(-x, 0., z), v(-x, 0., -z), v(-x, y, -z), v(-x, y, z)]);
+    b.quad(walls, [v(x, 0., -z), v(x, 0., z), v(x, y, z), v(x, y, -z)]);
+    let blocks = b.material(Material::diffuse("block", Vec3::splat(0.75)));
+    b.block(blocks, Vec2::new(0.4, -0.8), Vec3::new(0.8, 0.8, 0.8), 0.0, 25.0);
+    b.scene.lights = vec![Light {
+        kind: LightKind::Point {
+            position: Vec3::new(0.0, 2.6, 0.0),
+        },
+        color: Vec3::ONE,
+        intensity: 12.0,
+        range: None,
+    }];
+    b.finish(
+        Camera::new(Vec3::new(-1.0, 1.6, 1.8), Vec3::new(0.3, 0.8, -1.5), 70.0),
+        EnvSource::Sky,
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_builtin_is_valid_and_faces_the_camera() {
+        for name in NAMES {
+            let s = scene(name).unwrap();
+            s.validate(std::path::Path::new(name)).unwrap();
+            assert!(s.triangle_count() >= 2, "{name}");
+            // Winding agrees with the stored normals.
+            for m in &s.meshes {
+                for t in &m.indices {
+                    let [a, bb, c] = t.map(|i| m.positions[i as usize]);
+                    let g = (bb - a).cross(c - a).normalize();
+                    assert!(g.dot(m.normals[t[0] as usize]) > 0.999, "{name}");
+                }
+            }
+            s.default_camera().validate().unwrap();
+        }
+        assert!(scene("nope").is_err());
+    }
+
+    #[test]
+    fn closed_box_is_closed() {
+        // Every edge of the room's shell is shared by exactly two triangles.
+        let s = scene("closed-box").unwrap();
+        let mut edges = std::collections::HashMap::new();
+        let key = |p: Vec3| (p * 1000.0).round().as_ivec3().to_array();
+        for m in s.meshes.iter().take(2) {
+            for t in &m.indices {
+                for k in 0..3 {
+                    let (a, c) = (key(m.positions[t[k] as usize]), key(m.positions[t[(k + 1) % 3] as usize]));
+                    *edges.entry(if a < c { (a, c) } else { (c, a) }).or_insert(0) += 1;
+                }
+            }
+        }
+        assert!(edges.values().all(|&n| n == 2), "{edges:?}");
+    }
+}

@@ -1,0 +1,316 @@
+//! Environment lighting: equirectangular (lat-long) radiance maps.
+//!
+//! The convention (DESIGN.md; other tools depend on this exact formula): for a world direction d,
+//! `v = acos(d.y) / π` (row 0 = zenith) and `u = atan2(d.x, −d.z) / (2π)` wrapped to [0, 1), so
+//! u = 0 is −Z, u = 0.25 is +X and the image centre (u = 0.5) is +Z. `--env-rotation DEG` turns
+//! the map about +Y: a feature seen in direction d₀ of the unrotated map is seen in direction
+//! R_y(DEG)·d₀. Lookups are bilinear between texel centres, wrapping in u and clamping in v; the
+//! GPU sampler (repeat in u, clamp-to-edge in v) does the same.
+
+use crate::{SceneError, sky};
+use glam::{Vec2, Vec3};
+use std::f32::consts::PI;
+use std::path::{Path, PathBuf};
+
+/// Where the environment comes from, as written after `--env`.
+#[derive(Clone, Debug, PartialEq, Default)]
+pub enum EnvSource {
+    /// A Radiance `.hdr` or OpenEXR `.exr` lat-long map.
+    File(PathBuf),
+    /// The built-in analytic sky with a sun ([`crate::sky`]).
+    #[default]
+    Sky,
+    /// Uniform radiance (linear RGB).
+    Constant(Vec3),
+}
+
+impl EnvSource {
+    /// Parses `sky`, `constant:R,G,B` (or `constant:L`) or a file path.
+    pub fn parse(s: &str) -> Result<Self, SceneError> {
+        if s == "sky" {
+            return Ok(EnvSource::Sky);
+        }
+        if let Some(rest) = s.strip_prefix("constant:") {
+            let vals: Result<Vec<f32>, _> = rest.split(',').map(|v| v.trim().parse()).collect();
+            let bad = || {
+                SceneError::Argument(format!(
+                    "--env {s}: expected constant:R,G,B (or constant:L) with finite, non-negative numbers"
+                ))
+            };
+            let vals = vals.map_err(|_| bad())?;
+            let rgb = match vals.as_slice() {
+                [l] => Vec3::splat(*l),
+                [r, g, b] => Vec3::new(*r, *g, *b),
+                _ => return Err(bad()),
+            };
+            if !rgb.is_finite() || rgb.min_element() < 0.0 {
+                return Err(bad());
+            }
+            return Ok(EnvSource::Constant(rgb));
+        }
+        Ok(EnvSource::File(PathBuf::from(s)))
+    }
+
+    /// Builds the environment map.
+    pub fn load(&self) -> Result<Environment, SceneError> {
+        match self {
+            EnvSource::File(p) => Environment::load(p),
+            EnvSource::Sky => Ok(sky::Sky::default().to_environment()),
+            EnvSource::Constant(c) => Ok(Environment::constant(*c)),
+        }
+    }
+}
+
+impl std::fmt::Display for EnvSource {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            EnvSource::File(p) => write!(f, "{}", p.display()),
+            EnvSource::Sky => write!(f, "sky"),
+            EnvSource::Constant(c) => write!(f, "constant:{},{},{}", c.x, c.y, c.z),
+        }
+    }
+}
+
+/// An equirectangular radiance map (linear RGB), with its rotation about +Y and intensity.
+#[derive(Clone, Debug)]
+pub struct Environment {
+    pub name: String,
+    pub width: u32,
+    pub height: u32,
+    /// Row-major, row 0 = zenith, in file units (before `intensity`).
+    pub texels: Vec<Vec3>,
+    /// Rotation of the map about +Y (radians).
+    pub rotation: f32,
+    /// Radiance scale applied on lookup.
+    pub intensity: f32,
+}
+
+impl Environment {
+    /// A uniform environment. Every lookup returns `radiance` exactly; the map is 256×128 so that
+    /// its discrete SH projection is within 1e-4 of the exact one.
+    pub fn constant(radiance: Vec3) -> Self {
+        Environment {
+            name: format!("constant:{},{},{}", radiance.x, radiance.y, radiance.z),
+            width: 256,
+            height: 128,
+            texels: vec![radiance; 256 * 128],
+            rotation: 0.0,
+            intensity: 1.0,
+        }
+    }
+
+    /// Builds a map by evaluating `f` at every texel centre's direction (unrotated).
+    pub fn from_fn(name: &str, width: u32, height: u32, f: impl Fn(Vec3) -> Vec3) -> Self {
+        let mut texels = Vec::with_capacity((width * height) as usize);
+        for y in 0..height {
+            for x in 0..width {
+                let uv = Vec2::new(
+                    (x as f32 + 0.5) / width as f32,
+                    (y as f32 + 0.5) / height as f32,
+                );
+                texels.push(f(uv_to_dir(uv)));
+            }
+        }
+        Environment {
+            name: name.into(),
+            width,
+            height,
+            texels,
+            rotation: 0.0,
+            intensity: 1.0,
+        }
+    }
+
+    /// Loads a Radiance `.hdr` or OpenEXR `.exr` lat-long map. Rejects empty maps and maps with
+    /// NaN, infinite or negative texels; warns when the aspect ratio is not 2:1.
+    pub fn load(path: &Path) -> Result<Self, SceneError> {
+        let err = |msg: String| SceneError::Environment {
+            path: path.to_path_buf(),
+            msg,
+        };
+        let ext = path
+            .extension()
+            .and_then(|e| e.to_str())
+            .map(|e| e.to_ascii_lowercase())
+            .unwrap_or_default();
+        if ext != "hdr" && ext != "exr" {
+            return Err(err(
+                "unknown format (expected .hdr or .exr, or sky, or constant:R,G,B)".into(),
+            ));
+        }
+        if !path.is_file() {
+            return Err(SceneError::Missing {
+                path: path.to_path_buf(),
+            });
+        }
+        let img = image::ImageReader::open(path)
+            .and_then(|r| r.with_guessed_format())
+            .map_err(|e| err(e.to_string()))?
+            .decode()
+            .map_err(|e| err(e.to_string()))?
+            .into_rgb32f();
+        let (width, height) = img.dimensions();
+        if width == 0 || height == 0 {
+            return Err(err("the image is empty".into()));
+        }
+        let mut texels = Vec::with_capacity((width * height) as usize);
+        for (x, y, p) in img.enumerate_pixels() {
+            let c = Vec3::from(p.0);
+            if !c.is_finite() {
+                return Err(err(format!(
+                    "texel ({x}, {y}) is not finite ({}, {}, {})",
+                    c.x, c.y, c.z
+                )));
+            }
+            if c.min_element() < 0.0 {
+                return Err(err(format!("texel ({x}, {y}) is negative")));
+            }
+            texels.push(c);
+        }
+        if width != 2 * height {
+            log::warn!(
+                "{}: {width}×{height} is not 2:1; reading it as a lat-long map anyway",
+                path.display()
+            );
+        }
+        Ok(Environment {
+            name: path
+                .file_name()
+                .map(|n| n.to_string_lossy().into_owned())
+                .unwrap_or_default(),
+            width,
+            height,
+            texels,
+            rotation: 0.0,
+            intensity: 1.0,
+        })
+    }
+
+    /// Texture coordinates of a world direction, including the map's rotation.
+    pub fn uv(&self, d: Vec3) -> Vec2 {
+        dir_to_uv(rotate_y(d, -self.rotation))
+    }
+
+    /// World direction of a texture coordinate, including the map's rotation.
+    pub fn direction(&self, uv: Vec2) -> Vec3 {
+        rotate_y(uv_to_dir(uv), self.rotation)
+    }
+
+    /// Radiance arriving from world direction `d` (bilinear, scaled by `intensity`).
+    pub fn radiance(&self, d: Vec3) -> Vec3 {
+        let uv = self.uv(d);
+        let x = uv.x * self.width as f32 - 0.5;
+        let y = (uv.y * self.height as f32 - 0.5).clamp(0.0, (self.height - 1) as f32);
+        let x0 = x.floor();
+        let y0 = y.floor().min((self.height - 1) as f32);
+        let (fx, fy) = (x - x0, y - y0);
+        let w = self.width as i64;
+        let xi0 = (x0 as i64).rem_euclid(w) as u32;
+        let xi1 = (x0 as i64 + 1).rem_euclid(w) as u32;
+        let yi0 = y0 as u32;
+        let yi1 = (yi0 + 1).min(self.height - 1);
+        let t = |x: u32, y: u32| self.texels[(y * self.width + x) as usize];
+        let top = t(xi0, yi0).lerp(t(xi1, yi0), fx);
+        let bottom = t(xi0, yi1).lerp(t(xi1, yi1), fx);
+        top.lerp(bottom, fy) * self.intensity
+    }
+
+    /// Solid angle (sr) of a texel in row `y`.
+    pub fn texel_solid_angle(&self, y: u32) -> f32 {
+        let theta0 = PI * y as f32 / self.height as f32;
+        let theta1 = PI * (y + 1) as f32 / self.height as f32;
+        2.0 * PI / self.width as f32 * (theta0.cos() - theta1.cos())
+    }
+
+    /// World direction of texel (x, y)'s centre, including rotation.
+    pub fn texel_direction(&self, x: u32, y: u32) -> Vec3 {
+        self.direction(Vec2::new(
+            (x as f32 + 0.5) / self.width as f32,
+            (y as f32 + 0.5) / self.height as f32,
+        ))
+    }
+}
+
+/// The DESIGN.md convention, unrotated: direction → (u, v).
+pub fn dir_to_uv(d: Vec3) -> Vec2 {
+    let d = d.normalize();
+    let v = d.y.clamp(-1.0, 1.0).acos() / PI;
+    let mut u = d.x.atan2(-d.z) / (2.0 * PI);
+    if u < 0.0 {
+        u += 1.0;
+    }
+    if u >= 1.0 {
+        u -= 1.0;
+    }
+    Vec2::new(u, v)
+}
+
+/// The inverse of [`dir_to_uv`].
+pub fn uv_to_dir(uv: Vec2) -> Vec3 {
+    let theta = uv.y * PI;
+    let phi = uv.x * 2.0 * PI;
+    let s = theta.sin();
+    Vec3::new(s * phi.sin(), theta.cos(), -s * phi.cos())
+}
+
+/// Rotates `d` by `angle` radians about +Y (counter-clockwise seen from above, +X towards −Z).
+pub fn rotate_y(d: Vec3, angle: f32) -> Vec3 {
+    let (s, c) = angle.sin_cos();
+    Vec3::new(c * d.x + s * d.z, d.y, -s * d.x + c * d.z)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn convention_axes() {
+        let cases = [
+            (Vec3::NEG_Z, 0.0, 0.5),
+            (Vec3::X, 0.25, 0.5),
+            (Vec3::Z, 0.5, 0.5),
+            (Vec3::NEG_X, 0.75, 0.5),
+            (Vec3::Y, None.unwrap_or(0.0), 0.0),
+            (Vec3::NEG_Y, 0.0, 1.0),
+        ];
+        for (d, u, v) in cases {
+            let uv = dir_to_uv(d);
+            assert!((uv.y - v).abs() < 1e-6, "{d}: v {}", uv.y);
+            if v > 0.0 && v < 1.0 {
+                assert!((uv.x - u).abs() < 1e-6, "{d}: u {}", uv.x);
+                assert!((uv_to_dir(uv) - d).length() < 1e-6);
+            }
+        }
+    }
+
+    #[test]
+    fn rotation_moves_features() {
+        // A map bright only near +X, rotated by 90°: +X turns to −Z, so the feature is seen there.
+        let mut env = Environment::from_fn("x", 64, 32, |d| Vec3::splat(d.x.max(0.0)));
+        env.rotation = 90f32.to_radians();
+        let feature = rotate_y(Vec3::X, env.rotation);
+        assert!((feature - Vec3::NEG_Z).length() < 1e-6);
+        assert!(env.radiance(Vec3::NEG_Z).x > 0.95);
+        assert!(env.radiance(Vec3::X).x < 0.05);
+    }
+
+    #[test]
+    fn solid_angles_sum_to_sphere() {
+        let env = Environment::constant(Vec3::ONE);
+        let total: f32 = (0..env.height)
+            .map(|y| env.texel_solid_angle(y) * env.width as f32)
+            .sum();
+        assert!((total - 4.0 * PI).abs() < 1e-4);
+    }
+
+    #[test]
+    fn constant_parse() {
+        assert_eq!(
+            EnvSource::parse("constant:1,2,3").unwrap(),
+            EnvSource::Constant(Vec3::new(1.0, 2.0, 3.0))
+        );
+        assert!(EnvSource::parse("constant:1,2").is_err());
+        assert!(EnvSource::parse("constant:-1").is_err());
+        assert!(EnvSource::parse("constant:nan").is_err());
+    }
+}

@@ -1,0 +1,97 @@
+//! Wavefront OBJ (+ MTL diffuse colour `Kd`, emission `Ke`) through `tobj`. Polygons are
+//! triangulated; missing normals are generated. A missing MTL file is a warning, and the
+//! affected meshes get the default material.
+
+use super::{finish_mesh, io_error};
+use crate::{Material, Mesh, Scene, SceneError};
+use glam::{Vec2, Vec3};
+use std::path::Path;
+
+pub fn load(path: &Path) -> Result<Scene, SceneError> {
+    let opts = tobj::LoadOptions {
+        triangulate: true,
+        single_index: true,
+        ignore_points: true,
+        ignore_lines: true,
+    };
+    let (models, materials) = tobj::load_obj(path, &opts).map_err(|e| match e {
+        tobj::LoadError::OpenFileFailed => io_error(
+            path,
+            std::io::Error::new(std::io::ErrorKind::NotFound, "open failed"),
+        ),
+        e => SceneError::Obj {
+            path: path.to_path_buf(),
+            msg: e.to_string(),
+        },
+    })?;
+    let mtl = materials.unwrap_or_else(|e| {
+        log::warn!("{}: material library not loaded ({e}); using the default material", path.display());
+        Vec::new()
+    });
+    let mut scene = Scene {
+        name: path
+            .file_stem()
+            .map(|s| s.to_string_lossy().into_owned())
+            .unwrap_or_default(),
+        ..Default::default()
+    };
+    scene.materials.push(Material::default());
+    for m in &mtl {
+        let mut mat = Material::default();
+        mat.name = m.name.clone();
+        if let Some(kd) = m.diffuse {
+            mat.base_color = Vec3::from(kd).extend(1.0);
+        }
+        if let Some(ke) = m.unknown_param.get("Ke") {
+            let v: Vec<f32> = ke.split_whitespace().filter_map(|s| s.parse().ok()).collect();
+            if v.len() == 3 {
+                mat.emissive = Vec3::new(v[0], v[1], v[2]);
+            }
+        }
+        scene.materials.push(mat);
+    }
+    for model in models {
+        let m = &model.mesh;
+        if m.indices.is_empty() {
+            continue;
+        }
+        let n = m.positions.len() / 3;
+        let mut mesh = Mesh {
+            name: model.name.clone(),
+            positions: m
+                .positions
+                .chunks_exact(3)
+                .map(|p| Vec3::new(p[0], p[1], p[2]))
+                .collect(),
+            normals: m
+                .normals
+                .chunks_exact(3)
+                .map(|p| Vec3::new(p[0], p[1], p[2]))
+                .collect(),
+            // OBJ's v points up; glTF's (and our textures') v points down.
+            uvs: m
+                .texcoords
+                .chunks_exact(2)
+                .map(|t| Vec2::new(t[0], 1.0 - t[1]))
+                .collect(),
+            indices: m
+                .indices
+                .chunks_exact(3)
+                .map(|t| [t[0], t[1], t[2]])
+                .collect(),
+            material: m.material_id.map(|i| i as u32 + 1).unwrap_or(0),
+        };
+        if mesh.indices.iter().flatten().any(|&i| i as usize >= n) {
+            return Err(SceneError::Obj {
+                path: path.to_path_buf(),
+                msg: format!("object '{}' has a face index out of range", model.name),
+            });
+        }
+        if mesh.material as usize >= scene.materials.len() {
+            mesh.material = 0;
+        }
+        finish_mesh(&mut mesh, path);
+        scene.meshes.push(mesh);
+    }
+    Ok(scene)
+}
