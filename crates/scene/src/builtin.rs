@@ -10,9 +10,7 @@
 //! | `wall` | a 400 m floor meeting a 200 m wall at 90° along the line y = 0, z = 0 |
 //! | `closed-box` | a closed 4 × 3 × 4 m room with a point light; the camera is inside |
 
-use crate::{
-    Camera, EnvSource, Light, LightKind, Material, Mesh, Scene, SceneError,
-};
+use crate::{Camera, EnvSource, Light, LightKind, Material, Mesh, Scene, SceneError};
 use glam::{Quat, Vec2, Vec3};
 
 /// Names of the built-in scenes, in the order shown to users.
@@ -69,7 +67,12 @@ impl Builder {
             .cross(corners[2] - corners[0])
             .normalize();
         let base = m.positions.len() as u32;
-        let uv = [Vec2::new(0.0, 1.0), Vec2::new(1.0, 1.0), Vec2::new(1.0, 0.0), Vec2::ZERO];
+        let uv = [
+            Vec2::new(0.0, 1.0),
+            Vec2::new(1.0, 1.0),
+            Vec2::new(1.0, 0.0),
+            Vec2::ZERO,
+        ];
         for (c, t) in corners.iter().zip(uv) {
             m.positions.push(*c);
             m.normals.push(n);
@@ -101,12 +104,42 @@ impl Builder {
         let h = size * 0.5;
         let p = |x: f32, y: f32, z: f32| c + rot * Vec3::new(x * h.x, y * size.y, z * h.z);
         // Top
-        self.quad(material, [p(-1., 1., 1.), p(1., 1., 1.), p(1., 1., -1.), p(-1., 1., -1.)]);
+        self.quad(
+            material,
+            [
+                p(-1., 1., 1.),
+                p(1., 1., 1.),
+                p(1., 1., -1.),
+                p(-1., 1., -1.),
+            ],
+        );
         // +Z, −Z, +X, −X
-        self.quad(material, [p(-1., 0., 1.), p(1., 0., 1.), p(1., 1., 1.), p(-1., 1., 1.)]);
-        self.quad(material, [p(1., 0., -1.), p(-1., 0., -1.), p(-1., 1., -1.), p(1., 1., -1.)]);
-        self.quad(material, [p(1., 0., 1.), p(1., 0., -1.), p(1., 1., -1.), p(1., 1., 1.)]);
-        self.quad(material, [p(-1., 0., -1.), p(-1., 0., 1.), p(-1., 1., 1.), p(-1., 1., -1.)]);
+        self.quad(
+            material,
+            [p(-1., 0., 1.), p(1., 0., 1.), p(1., 1., 1.), p(-1., 1., 1.)],
+        );
+        self.quad(
+            material,
+            [
+                p(1., 0., -1.),
+                p(-1., 0., -1.),
+                p(-1., 1., -1.),
+                p(1., 1., -1.),
+            ],
+        );
+        self.quad(
+            material,
+            [p(1., 0., 1.), p(1., 0., -1.), p(1., 1., -1.), p(1., 1., 1.)],
+        );
+        self.quad(
+            material,
+            [
+                p(-1., 0., -1.),
+                p(-1., 0., 1.),
+                p(-1., 1., 1.),
+                p(-1., 1., -1.),
+            ],
+        );
     }
 
     fn finish(mut self, camera: Camera, env: EnvSource) -> Scene {
@@ -156,8 +189,20 @@ fn cornell() -> Scene {
             Vec3::new(1.0, 2.0, -1.0),
         ],
     );
-    b.block(white, Vec2::new(-0.33, -0.3), Vec3::new(0.6, 1.2, 0.6), 0.0, 17.0);
-    b.block(white, Vec2::new(0.35, 0.35), Vec3::new(0.6, 0.6, 0.6), 0.0, -18.0);
+    b.block(
+        white,
+        Vec2::new(-0.33, -0.3),
+        Vec3::new(0.6, 1.2, 0.6),
+        0.0,
+        17.0,
+    );
+    b.block(
+        white,
+        Vec2::new(0.35, 0.35),
+        Vec3::new(0.6, 0.6, 0.6),
+        0.0,
+        -18.0,
+    );
     b.finish(
         Camera::new(Vec3::new(0.0, 1.0, 3.9), Vec3::new(0.0, 0.9, 0.0), 38.0),
         EnvSource::Sky,
@@ -169,9 +214,27 @@ fn boxes() -> Scene {
     let ground = b.material(Material::diffuse("ground", Vec3::splat(0.7)));
     let boxes = b.material(Material::diffuse("boxes", Vec3::splat(0.75)));
     b.floor(ground, Vec2::splat(-10.0), Vec2::splat(10.0), 0.0, false);
-    b.block(boxes, Vec2::new(-1.6, 0.2), Vec3::new(1.0, 1.0, 1.0), 0.0, 20.0);
-    b.block(boxes, Vec2::new(0.0, -0.4), Vec3::new(0.8, 1.8, 0.8), 0.0, -10.0);
-    b.block(boxes, Vec2::new(1.6, 0.3), Vec3::new(1.2, 0.6, 1.2), 0.0, 35.0);
+    b.block(
+        boxes,
+        Vec2::new(-1.6, 0.2),
+        Vec3::new(1.0, 1.0, 1.0),
+        0.0,
+        20.0,
+    );
+    b.block(
+        boxes,
+        Vec2::new(0.0, -0.4),
+        Vec3::new(0.8, 1.8, 0.8),
+        0.0,
+        -10.0,
+    );
+    b.block(
+        boxes,
+        Vec2::new(1.6, 0.3),
+        Vec3::new(1.2, 0.6, 1.2),
+        0.0,
+        35.0,
+    );
     let point = |position: Vec3, color: Vec3| Light {
         kind: LightKind::Point { position },
         color,
@@ -205,7 +268,13 @@ fn city() -> Scene {
             let w = 4.0 + 2.5 * rand();
             let d = 4.0 + 2.5 * rand();
             let h = 5.0 + 25.0 * rand() * rand();
-            b.block(towers, Vec2::new(i as f32 * 9.0, j as f32 * 9.0), Vec3::new(w, h, d), 0.0, 0.0);
+            b.block(
+                towers,
+                Vec2::new(i as f32 * 9.0, j as f32 * 9.0),
+                Vec3::new(w, h, d),
+                0.0,
+                0.0,
+            );
         }
     }
     b.finish(
@@ -228,7 +297,13 @@ fn wall() -> Scene {
     let mut b = Builder::new("wall");
     let floor = b.material(Material::diffuse("floor", Vec3::splat(0.8)));
     let wall = b.material(Material::diffuse("wall", Vec3::splat(0.8)));
-    b.floor(floor, Vec2::new(-200.0, 0.0), Vec2::new(200.0, 400.0), 0.0, false);
+    b.floor(
+        floor,
+        Vec2::new(-200.0, 0.0),
+        Vec2::new(200.0, 400.0),
+        0.0,
+        false,
+    );
     b.quad(
         wall,
         [
@@ -253,12 +328,24 @@ fn closed_box() -> Scene {
     b.floor(walls, Vec2::new(-x, -z), Vec2::new(x, z), y, true);
     let v = Vec3::new;
     // Inward-facing walls: −Z wall faces +Z, +Z wall faces −Z, −X faces +X, +X faces −X.
-    b.quad(walls, [v(-x, 0., -z), v(x, 0., -z), v(x, y, -z), v(-x, y, -z)]);
+    b.quad(
+        walls,
+        [v(-x, 0., -z), v(x, 0., -z), v(x, y, -z), v(-x, y, -z)],
+    );
     b.quad(walls, [v(x, 0., z), v(-x, 0., z), v(-x, y, z), v(x, y, z)]);
-    b.quad(walls, [v(-x, 0., z), v(-x, 0., -z), v(-x, y, -z), v(-x, y, z)]);
+    b.quad(
+        walls,
+        [v(-x, 0., z), v(-x, 0., -z), v(-x, y, -z), v(-x, y, z)],
+    );
     b.quad(walls, [v(x, 0., -z), v(x, 0., z), v(x, y, z), v(x, y, -z)]);
     let blocks = b.material(Material::diffuse("block", Vec3::splat(0.75)));
-    b.block(blocks, Vec2::new(0.4, -0.8), Vec3::new(0.8, 0.8, 0.8), 0.0, 25.0);
+    b.block(
+        blocks,
+        Vec2::new(0.4, -0.8),
+        Vec3::new(0.8, 0.8, 0.8),
+        0.0,
+        25.0,
+    );
     b.scene.lights = vec![Light {
         kind: LightKind::Point {
             position: Vec3::new(0.0, 2.6, 0.0),
@@ -305,8 +392,13 @@ mod tests {
         for m in s.meshes.iter().take(2) {
             for t in &m.indices {
                 for k in 0..3 {
-                    let (a, c) = (key(m.positions[t[k] as usize]), key(m.positions[t[(k + 1) % 3] as usize]));
-                    *edges.entry(if a < c { (a, c) } else { (c, a) }).or_insert(0) += 1;
+                    let (a, c) = (
+                        key(m.positions[t[k] as usize]),
+                        key(m.positions[t[(k + 1) % 3] as usize]),
+                    );
+                    *edges
+                        .entry(if a < c { (a, c) } else { (c, a) })
+                        .or_insert(0) += 1;
                 }
             }
         }

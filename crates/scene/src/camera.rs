@@ -201,7 +201,10 @@ mod tests {
         let p = clip_from_world.project_point3(c.eye + 3.0 * d);
         let px = (p.x * 0.5 + 0.5) * size.0 as f32;
         let py = (0.5 - p.y * 0.5) * size.1 as f32;
-        assert!((px - 10.5).abs() < 1e-3 && (py - 20.5).abs() < 1e-3, "{px} {py}");
+        assert!(
+            (px - 10.5).abs() < 1e-3 && (py - 20.5).abs() < 1e-3,
+            "{px} {py}"
+        );
         assert!(p.z > 0.0 && p.z < 1.0);
     }
 

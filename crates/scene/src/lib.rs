@@ -102,9 +102,13 @@ impl Scene {
             }
         }
         for (i, mat) in self.materials.iter().enumerate() {
-            for t in [mat.base_color_texture, mat.metallic_roughness_texture, mat.emissive_texture]
-                .into_iter()
-                .flatten()
+            for t in [
+                mat.base_color_texture,
+                mat.metallic_roughness_texture,
+                mat.emissive_texture,
+            ]
+            .into_iter()
+            .flatten()
             {
                 if t >= self.textures.len() {
                     return Err(bad(format!("material {i} references a missing texture")));

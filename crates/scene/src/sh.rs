@@ -88,7 +88,9 @@ pub fn evaluate(coeffs: &[Vec3], d: Vec3) -> Vec3 {
 
 /// The exact solid-angle integral of a basis product, for tests: ∫ Y_i Y_j dω ≈ δ_ij.
 pub fn orthonormality_error(samples_per_axis: u32) -> f32 {
-    let env = Environment::from_fn("unit", 2 * samples_per_axis, samples_per_axis, |_| Vec3::ONE);
+    let env = Environment::from_fn("unit", 2 * samples_per_axis, samples_per_axis, |_| {
+        Vec3::ONE
+    });
     let mut worst: f32 = 0.0;
     for i in 0..16 {
         for j in 0..16 {
@@ -141,7 +143,10 @@ mod tests {
         let c = project_environment(&env, 16);
         for n in [Vec3::Y, Vec3::X, Vec3::new(0.3, -0.8, 0.52).normalize()] {
             let e = irradiance_over_pi(&c, n);
-            assert!((e - Vec3::new(1.0, 2.0, 0.5)).abs().max_element() < 1e-4, "{e}");
+            assert!(
+                (e - Vec3::new(1.0, 2.0, 0.5)).abs().max_element() < 1e-4,
+                "{e}"
+            );
         }
     }
 }

@@ -13,7 +13,7 @@
 //!   env-irradiance (E/π) = 1 from sky and sun together; exposure 0 shows it at a pleasant level.
 
 use crate::Environment;
-use glam::{Vec3, Mat3};
+use glam::{Mat3, Vec3};
 use std::f32::consts::PI;
 
 /// Parameters of the analytic sky.
@@ -23,7 +23,7 @@ pub struct Sky {
     pub turbidity: f32,
     /// Sun elevation above the horizon (degrees), 1..=90. Default 35.
     pub sun_elevation_deg: f32,
-    /// Sun azimuth (degrees) measured like the map's u: 0 = −Z, 90 = +X. Default 300 (left, front).
+    /// Sun azimuth (degrees) measured like the map's u: 0 = −Z, 90 = +X. Default 150 (behind a camera on +Z looking at the origin, to its right).
     pub sun_azimuth_deg: f32,
     /// Apparent sun radius (degrees). Default 1.
     pub sun_radius_deg: f32,
@@ -38,7 +38,7 @@ impl Default for Sky {
         Sky {
             turbidity: 3.0,
             sun_elevation_deg: 35.0,
-            sun_azimuth_deg: 300.0,
+            sun_azimuth_deg: 150.0,
             sun_radius_deg: 1.0,
             sun_to_sky_ratio: 4.0,
             width: 1024,

@@ -30,8 +30,8 @@ pub fn load(path: &Path) -> Result<Scene, SceneError> {
         msg,
     };
     let bytes = std::fs::read(path).map_err(|e| io_error(path, e))?;
-    let unvalidated = ::gltf::Gltf::from_slice_without_validation(&bytes)
-        .map_err(|e| err(e.to_string()))?;
+    let unvalidated =
+        ::gltf::Gltf::from_slice_without_validation(&bytes).map_err(|e| err(e.to_string()))?;
     for ext in unvalidated.document.extensions_required() {
         if !SUPPORTED.contains(&ext) {
             return Err(SceneError::UnsupportedExtension {
@@ -64,26 +64,32 @@ pub fn load(path: &Path) -> Result<Scene, SceneError> {
 
     // Textures are decoded per (image, colour space): the same image may serve two roles.
     let mut texture_of: HashMap<(usize, bool), usize> = HashMap::new();
-    let mut texture = |scene: &mut Scene, tex: ::gltf::Texture, srgb: bool| -> Result<usize, SceneError> {
-        let image = tex.source().index();
-        if let Some(&i) = texture_of.get(&(image, srgb)) {
-            return Ok(i);
-        }
-        let data = &images[image];
-        let rgba8 = to_rgba8(data).ok_or_else(|| err(format!("image {image} has an unsupported pixel format {:?}", data.format)))?;
-        scene.textures.push(Texture {
-            width: data.width,
-            height: data.height,
-            rgba8,
-            color_space: if srgb {
-                TextureColorSpace::Srgb
-            } else {
-                TextureColorSpace::Linear
-            },
-        });
-        texture_of.insert((image, srgb), scene.textures.len() - 1);
-        Ok(scene.textures.len() - 1)
-    };
+    let mut texture =
+        |scene: &mut Scene, tex: ::gltf::Texture, srgb: bool| -> Result<usize, SceneError> {
+            let image = tex.source().index();
+            if let Some(&i) = texture_of.get(&(image, srgb)) {
+                return Ok(i);
+            }
+            let data = &images[image];
+            let rgba8 = to_rgba8(data).ok_or_else(|| {
+                err(format!(
+                    "image {image} has an unsupported pixel format {:?}",
+                    data.format
+                ))
+            })?;
+            scene.textures.push(Texture {
+                width: data.width,
+                height: data.height,
+                rgba8,
+                color_space: if srgb {
+                    TextureColorSpace::Srgb
+                } else {
+                    TextureColorSpace::Linear
+                },
+            });
+            texture_of.insert((image, srgb), scene.textures.len() - 1);
+            Ok(scene.textures.len() - 1)
+        };
 
     let mut warned_transmission = false;
     let mut warned_blend = false;
@@ -159,7 +165,12 @@ pub fn load(path: &Path) -> Result<Scene, SceneError> {
                 let reader = prim.reader(|b| buffers.get(b.index()).map(|d| &d.0[..]));
                 let positions: Vec<Vec3> = reader
                     .read_positions()
-                    .ok_or_else(|| err(format!("mesh '{}' has a primitive without positions", mesh.name().unwrap_or(""))))?
+                    .ok_or_else(|| {
+                        err(format!(
+                            "mesh '{}' has a primitive without positions",
+                            mesh.name().unwrap_or("")
+                        ))
+                    })?
                     .map(Vec3::from)
                     .collect();
                 let normals: Vec<Vec3> = reader
@@ -205,7 +216,9 @@ pub fn load(path: &Path) -> Result<Scene, SceneError> {
                 .try_normalize()
                 .unwrap_or(Vec3::NEG_Z);
             let kind = match light.kind() {
-                ::gltf::khr_lights_punctual::Kind::Directional => LightKind::Directional { direction },
+                ::gltf::khr_lights_punctual::Kind::Directional => {
+                    LightKind::Directional { direction }
+                }
                 ::gltf::khr_lights_punctual::Kind::Point => LightKind::Point { position },
                 ::gltf::khr_lights_punctual::Kind::Spot {
                     inner_cone_angle,
@@ -243,7 +256,11 @@ pub fn load(path: &Path) -> Result<Scene, SceneError> {
                     }
                 }
                 ::gltf::camera::Projection::Orthographic(_) => {
-                    log::warn!("{}: ignoring orthographic camera {}", path.display(), cam.index());
+                    log::warn!(
+                        "{}: ignoring orthographic camera {}",
+                        path.display(),
+                        cam.index()
+                    );
                 }
             }
         }
@@ -259,16 +276,28 @@ fn to_rgba8(data: &::gltf::image::Data) -> Option<Vec<u8>> {
     let n = (data.width * data.height) as usize;
     let out: Vec<u8> = match data.format {
         F::R8G8B8A8 => p.clone(),
-        F::R8G8B8 => p.chunks_exact(3).flat_map(|c| [c[0], c[1], c[2], 255]).collect(),
-        F::R8G8 => p.chunks_exact(2).flat_map(|c| [c[0], c[1], 0, 255]).collect(),
+        F::R8G8B8 => p
+            .chunks_exact(3)
+            .flat_map(|c| [c[0], c[1], c[2], 255])
+            .collect(),
+        F::R8G8 => p
+            .chunks_exact(2)
+            .flat_map(|c| [c[0], c[1], 0, 255])
+            .collect(),
         F::R8 => p.iter().flat_map(|&c| [c, c, c, 255]).collect(),
         F::R16G16B16A16 => p.chunks_exact(2).map(|c| c[1]).collect(),
         F::R16G16B16 => p
             .chunks_exact(6)
             .flat_map(|c| [c[1], c[3], c[5], 255])
             .collect(),
-        F::R16G16 => p.chunks_exact(4).flat_map(|c| [c[1], c[3], 0, 255]).collect(),
-        F::R16 => p.chunks_exact(2).flat_map(|c| [c[1], c[1], c[1], 255]).collect(),
+        F::R16G16 => p
+            .chunks_exact(4)
+            .flat_map(|c| [c[1], c[3], 0, 255])
+            .collect(),
+        F::R16 => p
+            .chunks_exact(2)
+            .flat_map(|c| [c[1], c[1], c[1], 255])
+            .collect(),
         _ => return None,
     };
     (out.len() == 4 * n).then_some(out)

@@ -25,7 +25,10 @@ pub fn load(path: &Path) -> Result<Scene, SceneError> {
         },
     })?;
     let mtl = materials.unwrap_or_else(|e| {
-        log::warn!("{}: material library not loaded ({e}); using the default material", path.display());
+        log::warn!(
+            "{}: material library not loaded ({e}); using the default material",
+            path.display()
+        );
         Vec::new()
     });
     let mut scene = Scene {
@@ -43,7 +46,10 @@ pub fn load(path: &Path) -> Result<Scene, SceneError> {
             mat.base_color = Vec3::from(kd).extend(1.0);
         }
         if let Some(ke) = m.unknown_param.get("Ke") {
-            let v: Vec<f32> = ke.split_whitespace().filter_map(|s| s.parse().ok()).collect();
+            let v: Vec<f32> = ke
+                .split_whitespace()
+                .filter_map(|s| s.parse().ok())
+                .collect();
             if v.len() == 3 {
                 mat.emissive = Vec3::new(v[0], v[1], v[2]);
             }

@@ -66,11 +66,17 @@ pub fn load(path: &Path) -> Result<Scene, SceneError> {
                 .and_then(scalar)
                 .ok_or_else(|| err(format!("vertex {i} has no numeric '{k}'")))
         };
-        mesh.positions
-            .push(Vec3::new(get("x")? as f32, get("y")? as f32, get("z")? as f32));
+        mesh.positions.push(Vec3::new(
+            get("x")? as f32,
+            get("y")? as f32,
+            get("z")? as f32,
+        ));
         if has_normals {
-            mesh.normals
-                .push(Vec3::new(get("nx")? as f32, get("ny")? as f32, get("nz")? as f32));
+            mesh.normals.push(Vec3::new(
+                get("nx")? as f32,
+                get("ny")? as f32,
+                get("nz")? as f32,
+            ));
         }
     }
     let n = mesh.positions.len() as i64;

@@ -1,0 +1,253 @@
+//! `nearfield bench`: per-pass GPU timings (timestamp queries) of one or more techniques.
+
+use crate::BadInput;
+use crate::options::{SceneOpts, TechniqueOpts};
+use anyhow::Result;
+use clap::Args;
+use nearfield_render::{GpuContext, Renderer};
+use serde::Serialize;
+use std::collections::BTreeMap;
+use std::path::PathBuf;
+use std::time::Instant;
+
+#[derive(Args, Debug)]
+pub struct BenchArgs {
+    #[command(flatten)]
+    pub scene: SceneOpts,
+    #[command(flatten)]
+    pub technique: TechniqueOpts,
+    /// Techniques to time, comma-separated (default: every registered one).
+    #[arg(long)]
+    pub methods: Option<String>,
+    /// Timed frames per technique (1..=100000).
+    #[arg(long, default_value_t = 30)]
+    pub frames: u32,
+    /// Untimed frames first (shader compilation, caches).
+    #[arg(long, default_value_t = 5)]
+    pub warmup: u32,
+    /// Also write the results as JSON.
+    #[arg(long)]
+    pub json: Option<PathBuf>,
+}
+
+/// Median and 90th percentile (nearest rank) of a sample, in ms.
+#[derive(Serialize, Clone, Copy, Debug)]
+pub struct Stat {
+    pub median_ms: f64,
+    pub p90_ms: f64,
+}
+
+pub fn stat(values: &mut [f64]) -> Stat {
+    values.sort_by(|a, b| a.total_cmp(b));
+    let rank = |q: f64| {
+        let i = ((q * values.len() as f64).ceil() as usize).clamp(1, values.len()) - 1;
+        values[i]
+    };
+    let n = values.len();
+    let median = if n % 2 == 1 {
+        values[n / 2]
+    } else {
+        0.5 * (values[n / 2 - 1] + values[n / 2])
+    };
+    Stat {
+        median_ms: median,
+        p90_ms: rank(0.9),
+    }
+}
+
+#[derive(Serialize)]
+struct MethodResult {
+    /// Pass name → timing, in frame order.
+    passes: BTreeMap<String, Stat>,
+    pass_order: Vec<String>,
+    /// Sum of the passes per frame.
+    gpu_total: Option<Stat>,
+    /// CPU wall time per frame: encode, submit and wait.
+    wall: Stat,
+}
+
+#[derive(Serialize)]
+struct Adapter {
+    name: String,
+    backend: String,
+    device_type: String,
+    timestamps: bool,
+}
+
+#[derive(Serialize)]
+struct Settings {
+    scene: String,
+    triangles: usize,
+    size: [u32; 2],
+    env: String,
+    frames: u32,
+    warmup: u32,
+    shadow_size: u32,
+}
+
+#[derive(Serialize)]
+struct Report {
+    adapter: Adapter,
+    settings: Settings,
+    methods: BTreeMap<String, MethodResult>,
+}
+
+pub fn run(args: BenchArgs) -> Result<()> {
+    let methods: Vec<String> = match &args.methods {
+        Some(m) => m.split(',').map(|s| s.trim().to_string()).collect(),
+        None => nearfield_render::technique::names()
+            .iter()
+            .map(|s| s.to_string())
+            .collect(),
+    };
+    for m in &methods {
+        nearfield_render::technique::find(m)?;
+    }
+    if args.frames == 0 || args.frames > 100_000 {
+        return Err(BadInput(format!("--frames {}: must be in 1..=100000", args.frames)).into());
+    }
+    if let Some(p) = &args.json
+        && let Some(dir) = p.parent().filter(|d| !d.as_os_str().is_empty())
+        && !dir.is_dir()
+    {
+        return Err(BadInput(format!(
+            "{}: directory {} does not exist",
+            p.display(),
+            dir.display()
+        ))
+        .into());
+    }
+    let params = args.technique.params()?;
+    let size = crate::options::parse_size(&args.scene.size)?;
+    let settings = args.technique.settings(size)?;
+    let loaded = args.scene.load()?;
+    let ctx = GpuContext::new(args.scene.adapter.as_deref())?;
+    let info = ctx.adapter_info();
+    let mut results = BTreeMap::new();
+    for method in &methods {
+        let mut r = Renderer::new(
+            &ctx,
+            &loaded.scene,
+            &loaded.env,
+            loaded.camera,
+            method,
+            &params,
+            settings,
+        )?;
+        for _ in 0..args.warmup {
+            r.render_frame();
+        }
+        r.wait();
+        let mut per_pass: BTreeMap<String, Vec<f64>> = BTreeMap::new();
+        let mut order: Vec<String> = Vec::new();
+        let mut totals = Vec::new();
+        let mut walls = Vec::new();
+        for _ in 0..args.frames {
+            let t0 = Instant::now();
+            r.render_frame();
+            r.wait();
+            walls.push(t0.elapsed().as_secs_f64() * 1e3);
+            let timings = r.timings();
+            let mut total = 0.0;
+            for (pass, ms) in timings {
+                if !order.iter().any(|o| o == pass) {
+                    order.push(pass.to_string());
+                }
+                per_pass.entry(pass.to_string()).or_default().push(ms);
+                total += ms;
+            }
+            totals.push(total);
+        }
+        let passes: BTreeMap<String, Stat> = per_pass
+            .into_iter()
+            .map(|(k, mut v)| (k, stat(&mut v)))
+            .collect();
+        results.insert(
+            method.clone(),
+            MethodResult {
+                gpu_total: ctx.timestamps.then(|| stat(&mut totals)),
+                passes,
+                pass_order: order,
+                wall: stat(&mut walls),
+            },
+        );
+    }
+    let report = Report {
+        adapter: Adapter {
+            name: info.name.clone(),
+            backend: format!("{:?}", info.backend),
+            device_type: format!("{:?}", info.device_type),
+            timestamps: ctx.timestamps,
+        },
+        settings: Settings {
+            scene: args.scene.scene.clone(),
+            triangles: loaded.scene.triangle_count(),
+            size: [size.0, size.1],
+            env: loaded.env_source.to_string(),
+            frames: args.frames,
+            warmup: args.warmup,
+            shadow_size: settings.shadows.size,
+        },
+        methods: results,
+    };
+    print_table(&report);
+    if let Some(p) = &args.json {
+        let text = serde_json::to_string_pretty(&report)?;
+        crate::render::save_atomically(p, |tmp| std::fs::write(tmp, &text).map_err(Into::into))?;
+        eprintln!("nearfield: wrote {}", p.display());
+    }
+    Ok(())
+}
+
+fn print_table(r: &Report) {
+    println!(
+        "adapter: {} ({}, {})  scene: {} ({} triangles)  size: {}x{}  frames: {} after {} warm-up",
+        r.adapter.name,
+        r.adapter.backend,
+        r.adapter.device_type,
+        r.settings.scene,
+        r.settings.triangles,
+        r.settings.size[0],
+        r.settings.size[1],
+        r.settings.frames,
+        r.settings.warmup
+    );
+    println!(
+        "{:<10} {:<12} {:>11} {:>11}",
+        "method", "pass", "median ms", "p90 ms"
+    );
+    for (name, m) in &r.methods {
+        for pass in &m.pass_order {
+            let s = m.passes[pass];
+            println!(
+                "{:<10} {:<12} {:>11.3} {:>11.3}",
+                name, pass, s.median_ms, s.p90_ms
+            );
+        }
+        if let Some(t) = m.gpu_total {
+            println!(
+                "{:<10} {:<12} {:>11.3} {:>11.3}",
+                name, "gpu total", t.median_ms, t.p90_ms
+            );
+        }
+        println!(
+            "{:<10} {:<12} {:>11.3} {:>11.3}",
+            name, "wall", m.wall.median_ms, m.wall.p90_ms
+        );
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn median_and_p90() {
+        let mut v: Vec<f64> = (1..=10).map(|x| x as f64).collect();
+        let s = stat(&mut v);
+        assert_eq!(s.median_ms, 5.5);
+        assert_eq!(s.p90_ms, 9.0);
+        let mut v = vec![3.0, 1.0, 2.0];
+        assert_eq!(stat(&mut v).median_ms, 2.0);
+    }
+}

@@ -1,0 +1,242 @@
+//! Options shared by every command: the scene, its environment, the camera, the image size and
+//! the adapter (DESIGN.md, "scene opts").
+
+use crate::BadInput;
+use anyhow::Result;
+use clap::Args;
+use glam::Vec3;
+use nearfield_scene::{Camera, CameraFile, EnvSource, Environment, Scene, SceneSource};
+
+#[derive(Args, Clone, Debug)]
+pub struct SceneOpts {
+    /// Scene: a .gltf/.glb/.obj/.ply file or builtin:NAME (cornell, boxes, city, plane, wall,
+    /// closed-box).
+    #[arg(default_value = "builtin:cornell")]
+    pub scene: String,
+    /// Image size in pixels, WIDTHxHEIGHT (each 1..=8192).
+    #[arg(long, default_value = "1280x720")]
+    pub size: String,
+    /// Environment: FILE.hdr, FILE.exr (lat-long), sky, or constant:R,G,B. Default: the scene's
+    /// own (sky for files and most built-ins).
+    #[arg(long)]
+    pub env: Option<String>,
+    /// Multiplies the environment's radiance (≥ 0).
+    #[arg(long, default_value_t = 1.0)]
+    pub env_intensity: f32,
+    /// Turns the environment about +Y (degrees).
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+    pub env_rotation: f32,
+    /// Camera: a camera JSON file, or N for the scene's glTF camera N.
+    #[arg(long)]
+    pub camera: Option<String>,
+    /// Camera position x,y,z (m); overrides the camera's.
+    #[arg(long, allow_hyphen_values = true)]
+    pub eye: Option<String>,
+    /// Camera target x,y,z (m); overrides the camera's.
+    #[arg(long, allow_hyphen_values = true)]
+    pub target: Option<String>,
+    /// Vertical field of view (degrees, 0..180); overrides the camera's.
+    #[arg(long)]
+    pub fov: Option<f32>,
+    /// Use the GPU adapter whose name contains this text (case-insensitive).
+    #[arg(long)]
+    pub adapter: Option<String>,
+}
+
+/// Everything loaded from [`SceneOpts`].
+pub struct Loaded {
+    pub scene: Scene,
+    pub env: Environment,
+    pub env_source: EnvSource,
+    pub camera: Camera,
+}
+
+pub fn parse_size(s: &str) -> Result<(u32, u32)> {
+    let bad = || BadInput(format!("--size {s}: expected WIDTHxHEIGHT, e.g. 1280x720"));
+    let (w, h) = s.split_once(['x', 'X']).ok_or_else(bad)?;
+    let w: u32 = w.trim().parse().map_err(|_| bad())?;
+    let h: u32 = h.trim().parse().map_err(|_| bad())?;
+    if w == 0 || h == 0 {
+        return Err(BadInput(format!("--size {s}: width and height must be at least 1")).into());
+    }
+    let max = nearfield_render::targets::MAX_SIZE;
+    if w > max || h > max {
+        return Err(BadInput(format!("--size {s}: the largest side supported is {max}")).into());
+    }
+    Ok((w, h))
+}
+
+fn parse_vec3(flag: &str, s: &str) -> Result<Vec3> {
+    let v: Vec<f32> = s
+        .split(',')
+        .map(|x| x.trim().parse::<f32>())
+        .collect::<Result<_, _>>()
+        .map_err(|_| BadInput(format!("{flag} {s}: expected three numbers x,y,z")))?;
+    if v.len() != 3 || v.iter().any(|x| !x.is_finite()) {
+        return Err(BadInput(format!("{flag} {s}: expected three finite numbers x,y,z")).into());
+    }
+    Ok(Vec3::new(v[0], v[1], v[2]))
+}
+
+impl SceneOpts {
+    /// Parses and checks the cheap options first (so that a typo fails before a long load), then
+    /// loads the scene and environment and resolves the camera.
+    pub fn load(&self) -> Result<Loaded> {
+        parse_size(&self.size)?;
+        if !(self.env_intensity.is_finite() && self.env_intensity >= 0.0) {
+            return Err(BadInput(format!(
+                "--env-intensity {}: must be a finite number ≥ 0",
+                self.env_intensity
+            ))
+            .into());
+        }
+        if !self.env_rotation.is_finite() {
+            return Err(BadInput("--env-rotation: must be finite".into()).into());
+        }
+        if let Some(f) = self.fov
+            && !(f > 0.0 && f < 180.0)
+        {
+            return Err(BadInput(format!("--fov {f}: must be between 0 and 180 degrees")).into());
+        }
+        let eye = self
+            .eye
+            .as_deref()
+            .map(|s| parse_vec3("--eye", s))
+            .transpose()?;
+        let target = self
+            .target
+            .as_deref()
+            .map(|s| parse_vec3("--target", s))
+            .transpose()?;
+        let env_source = self.env.as_deref().map(EnvSource::parse).transpose()?;
+
+        let scene = SceneSource::parse(&self.scene).load()?;
+        let env_source = env_source.unwrap_or_else(|| scene.default_env.clone());
+        let mut env = env_source.load()?;
+        env.intensity = self.env_intensity;
+        env.rotation = self.env_rotation.to_radians();
+
+        let mut camera = match self.camera.as_deref() {
+            None => scene.default_camera(),
+            Some(c) => match c.parse::<usize>() {
+                Ok(i) => *scene.cameras.get(i).ok_or_else(|| {
+                    BadInput(format!(
+                        "--camera {i}: the scene has {} camera(s)",
+                        scene.cameras.len()
+                    ))
+                })?,
+                Err(_) => CameraFile::load(std::path::Path::new(c))?,
+            },
+        };
+        if let Some(e) = eye {
+            camera.eye = e;
+        }
+        if let Some(t) = target {
+            camera.target = t;
+        }
+        if let Some(f) = self.fov {
+            camera.yfov = f.to_radians();
+        }
+        camera
+            .validate()
+            .map_err(|e| BadInput(format!("camera: {e}")))?;
+        Ok(Loaded {
+            scene,
+            env,
+            env_source,
+            camera,
+        })
+    }
+}
+
+/// Technique options shared by render and bench.
+#[derive(Args, Clone, Debug)]
+pub struct TechniqueOpts {
+    /// Samples per pixel for sampling techniques (1..=1024); default: the technique's.
+    #[arg(long)]
+    pub samples: Option<u32>,
+    /// Near-field radius in metres (> 0, or inf); default: the technique's.
+    #[arg(long)]
+    pub radius: Option<String>,
+    /// Technique setting KEY=VALUE (repeatable); see the README for each technique's keys.
+    #[arg(long = "set", value_name = "KEY=VALUE")]
+    pub set: Vec<String>,
+    /// Exposure in EV stops applied before tonemapping (−20..=20).
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+    pub exposure: f32,
+    /// Tonemap operator: aces (Narkowicz' ACES fit), neutral (Khronos PBR Neutral), linear (clamp).
+    #[arg(long, default_value = "aces")]
+    pub tonemap: String,
+    /// Seed of the per-pixel noise sequences.
+    #[arg(long, default_value_t = 0)]
+    pub seed: u32,
+    /// Shadow-map side in texels (256..=8192).
+    #[arg(long, default_value_t = 2048)]
+    pub shadow_size: u32,
+}
+
+impl TechniqueOpts {
+    pub fn params(&self) -> Result<nearfield_render::TechniqueParams> {
+        if let Some(s) = self.samples
+            && !(1..=1024).contains(&s)
+        {
+            return Err(BadInput(format!("--samples {s}: must be in 1..=1024")).into());
+        }
+        let radius = match self.radius.as_deref() {
+            None => None,
+            Some("inf") => Some(f32::INFINITY),
+            Some(r) => {
+                let v: f32 = r
+                    .parse()
+                    .map_err(|_| BadInput(format!("--radius {r}: expected a number or inf")))?;
+                if !(v > 0.0) || v.is_nan() {
+                    return Err(BadInput(format!("--radius {r}: must be > 0 (or inf)")).into());
+                }
+                Some(v)
+            }
+        };
+        let mut set = Vec::new();
+        for kv in &self.set {
+            let (k, v) = kv
+                .split_once('=')
+                .ok_or_else(|| BadInput(format!("--set {kv}: expected KEY=VALUE")))?;
+            set.push((k.trim().to_string(), v.trim().to_string()));
+        }
+        Ok(nearfield_render::TechniqueParams {
+            samples: self.samples,
+            radius,
+            set,
+        })
+    }
+
+    pub fn settings(&self, size: (u32, u32)) -> Result<nearfield_render::RenderSettings> {
+        if !(self.exposure.is_finite() && (-20.0..=20.0).contains(&self.exposure)) {
+            return Err(
+                BadInput(format!("--exposure {}: must be in −20..=20", self.exposure)).into(),
+            );
+        }
+        let tonemap = nearfield_render::Tonemap::parse(&self.tonemap).ok_or_else(|| {
+            BadInput(format!(
+                "--tonemap {}: unknown operator (known: {})",
+                self.tonemap,
+                nearfield_render::Tonemap::NAMES.join(", ")
+            ))
+        })?;
+        if !(256..=8192).contains(&self.shadow_size) {
+            return Err(BadInput(format!(
+                "--shadow-size {}: must be in 256..=8192",
+                self.shadow_size
+            ))
+            .into());
+        }
+        let mut s = nearfield_render::RenderSettings {
+            size,
+            exposure: self.exposure,
+            tonemap,
+            seed: self.seed,
+            ..Default::default()
+        };
+        s.shadows.size = self.shadow_size;
+        Ok(s)
+    }
+}

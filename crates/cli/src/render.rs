@@ -1,0 +1,141 @@
+//! `nearfield render`: one image or AOV.
+
+use crate::BadInput;
+use crate::options::{SceneOpts, TechniqueOpts};
+use anyhow::{Context, Result};
+use clap::Args;
+use nearfield_render::{Aov, GpuContext, Renderer};
+use std::path::{Path, PathBuf};
+
+#[derive(Args, Debug)]
+pub struct RenderArgs {
+    #[command(flatten)]
+    pub scene: SceneOpts,
+    #[command(flatten)]
+    pub technique: TechniqueOpts,
+    /// Near-field technique (see the README's list; `none` = no occlusion).
+    #[arg(long, default_value = "none")]
+    pub method: String,
+    /// Frames to render before output (temporal techniques converge over frames; ≥ 1).
+    #[arg(long, default_value_t = 1)]
+    pub frames: u32,
+    /// What to write: final (PNG) or a float AOV (EXR): radiance, albedo, normal, depth, ao,
+    /// env-irradiance, light-irradiance, indirect-irradiance, diffuse, motion, specular,
+    /// direct-radiance.
+    #[arg(long, default_value = "final")]
+    pub aov: String,
+    /// Output file: .png for `final`, .exr for the others. Default: final.png or AOV.exr.
+    #[arg(short, long)]
+    pub output: Option<PathBuf>,
+}
+
+/// Checks that `path` can take `aov` before anything is rendered.
+pub fn check_output(aov: Aov, path: &Path) -> Result<()> {
+    let ext = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(|e| e.to_ascii_lowercase())
+        .unwrap_or_default();
+    let want = if aov == Aov::Final { "png" } else { "exr" };
+    if ext != want {
+        return Err(BadInput(format!(
+            "{}: the {} AOV is written as .{want}",
+            path.display(),
+            aov.name()
+        ))
+        .into());
+    }
+    let parent = path.parent().filter(|p| !p.as_os_str().is_empty());
+    if let Some(dir) = parent
+        && !dir.is_dir()
+    {
+        return Err(BadInput(format!(
+            "{}: directory {} does not exist",
+            path.display(),
+            dir.display()
+        ))
+        .into());
+    }
+    Ok(())
+}
+
+/// Writes a float AOV as an RGBA float EXR (alpha 0 on background).
+pub fn write_exr(img: &nearfield_render::AovImage, path: &Path) -> Result<()> {
+    let flat: Vec<f32> = img.pixels.iter().flatten().copied().collect();
+    let buf = image::Rgba32FImage::from_raw(img.width, img.height, flat)
+        .context("AOV image has a wrong size")?;
+    save_atomically(path, |tmp| {
+        buf.save_with_format(tmp, image::ImageFormat::OpenExr)
+            .map_err(anyhow::Error::from)
+    })
+}
+
+/// Writes via a temporary file in the same directory, then renames: a failed write never leaves
+/// a truncated file behind.
+pub fn save_atomically(path: &Path, write: impl FnOnce(&Path) -> Result<()>) -> Result<()> {
+    let mut tmp = path.as_os_str().to_owned();
+    tmp.push(".partial");
+    let tmp = PathBuf::from(tmp);
+    write(&tmp).with_context(|| format!("cannot write {}", path.display()))?;
+    std::fs::rename(&tmp, path).with_context(|| format!("cannot write {}", path.display()))?;
+    Ok(())
+}
+
+pub fn run(args: RenderArgs) -> Result<()> {
+    let aov = Aov::parse(&args.aov).ok_or_else(|| {
+        BadInput(format!(
+            "--aov {}: unknown AOV (known: {})",
+            args.aov,
+            Aov::names().join(", ")
+        ))
+    })?;
+    nearfield_render::technique::find(&args.method)?;
+    if args.frames == 0 || args.frames > 100_000 {
+        return Err(BadInput(format!("--frames {}: must be in 1..=100000", args.frames)).into());
+    }
+    let output = args.output.clone().unwrap_or_else(|| {
+        PathBuf::from(if aov == Aov::Final {
+            "final.png".to_string()
+        } else {
+            format!("{}.exr", aov.name())
+        })
+    });
+    check_output(aov, &output)?;
+    let params = args.technique.params()?;
+    let size = crate::options::parse_size(&args.scene.size)?;
+    let settings = args.technique.settings(size)?;
+    let loaded = args.scene.load()?;
+    let ctx = GpuContext::new(args.scene.adapter.as_deref())?;
+    let mut renderer = Renderer::new(
+        &ctx,
+        &loaded.scene,
+        &loaded.env,
+        loaded.camera,
+        &args.method,
+        &params,
+        settings,
+    )?;
+    for _ in 0..args.frames {
+        renderer.render_frame();
+    }
+    if aov == Aov::Final {
+        let img = renderer.read_final();
+        save_atomically(&output, |tmp| {
+            img.save_with_format(tmp, image::ImageFormat::Png)
+                .map_err(anyhow::Error::from)
+        })?;
+    } else {
+        let img = renderer.read_aov(aov);
+        write_exr(&img, &output)?;
+    }
+    eprintln!(
+        "nearfield: wrote {} ({}, {}×{}, {} triangles, {})",
+        output.display(),
+        args.method,
+        size.0,
+        size.1,
+        loaded.scene.triangle_count(),
+        nearfield_render::context::describe(&ctx.adapter_info())
+    );
+    Ok(())
+}

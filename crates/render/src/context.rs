@@ -1,0 +1,103 @@
+//! The GPU device: adapter selection and device creation (headless).
+
+use crate::RenderError;
+
+/// An adapter, device and queue.
+pub struct GpuContext {
+    pub instance: wgpu::Instance,
+    pub adapter: wgpu::Adapter,
+    pub device: wgpu::Device,
+    pub queue: wgpu::Queue,
+    /// Whether pass timestamps are available (`wgpu::Features::TIMESTAMP_QUERY`).
+    pub timestamps: bool,
+}
+
+/// Human-readable adapter description: "NAME (Backend, DeviceType)".
+pub fn describe(info: &wgpu::AdapterInfo) -> String {
+    format!("{} ({:?}, {:?})", info.name, info.backend, info.device_type)
+}
+
+impl GpuContext {
+    /// Opens a device. With `adapter_filter`, takes the first adapter whose name contains it
+    /// (case-insensitive); otherwise prefers discrete, then integrated, then virtual GPUs, and
+    /// falls back to a software adapter (lavapipe, llvmpipe). `WGPU_BACKEND` restricts the
+    /// backends searched. Validation layers are off unless `WGPU_VALIDATION=1`.
+    pub fn new(adapter_filter: Option<&str>) -> Result<Self, RenderError> {
+        let mut desc = wgpu::InstanceDescriptor::new_without_display_handle();
+        desc.backends = wgpu::Backends::from_env().unwrap_or(wgpu::Backends::all());
+        desc.flags = wgpu::InstanceFlags::empty().with_env();
+        let instance = wgpu::Instance::new(desc);
+        let adapters = pollster::block_on(instance.enumerate_adapters(desc_backends()));
+        let rank = |a: &wgpu::Adapter| match a.get_info().device_type {
+            wgpu::DeviceType::DiscreteGpu => 0,
+            wgpu::DeviceType::IntegratedGpu => 1,
+            wgpu::DeviceType::VirtualGpu => 2,
+            wgpu::DeviceType::Other => 3,
+            wgpu::DeviceType::Cpu => 4,
+        };
+        // Vulkan first among equals: it is the backend CI and the timings use.
+        let backend_rank = |a: &wgpu::Adapter| match a.get_info().backend {
+            wgpu::Backend::Vulkan => 0,
+            wgpu::Backend::Metal | wgpu::Backend::Dx12 => 1,
+            _ => 2,
+        };
+        let mut candidates: Vec<wgpu::Adapter> = adapters
+            .into_iter()
+            .filter(|a| match adapter_filter {
+                Some(f) => a.get_info().name.to_lowercase().contains(&f.to_lowercase()),
+                None => true,
+            })
+            .collect();
+        candidates.sort_by_key(|a| (rank(a), backend_rank(a)));
+        let adapter = candidates
+            .into_iter()
+            .next()
+            .ok_or_else(|| RenderError::NoAdapter {
+                filter: adapter_filter
+                    .map(|f| format!(" whose name contains '{f}'"))
+                    .unwrap_or_default(),
+            })?;
+        let info = adapter.get_info();
+        let timestamps = adapter.features().contains(wgpu::Features::TIMESTAMP_QUERY);
+        if !timestamps {
+            log::warn!(
+                "{}: no timestamp queries; per-pass timings are unavailable",
+                describe(&info)
+            );
+        }
+        let mut features = wgpu::Features::empty();
+        if timestamps {
+            features |= wgpu::Features::TIMESTAMP_QUERY;
+        }
+        let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
+            label: Some("nearfield"),
+            required_features: features,
+            required_limits: adapter.limits(),
+            ..Default::default()
+        }))
+        .map_err(|e| RenderError::Device {
+            adapter: describe(&info),
+            msg: e.to_string(),
+        })?;
+        Ok(GpuContext {
+            instance,
+            adapter,
+            device,
+            queue,
+            timestamps,
+        })
+    }
+
+    pub fn adapter_info(&self) -> wgpu::AdapterInfo {
+        self.adapter.get_info()
+    }
+
+    /// Waits until all submitted work has finished.
+    pub fn wait(&self) {
+        let _ = self.device.poll(wgpu::PollType::wait_indefinitely());
+    }
+}
+
+fn desc_backends() -> wgpu::Backends {
+    wgpu::Backends::from_env().unwrap_or(wgpu::Backends::all())
+}

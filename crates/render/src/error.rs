@@ -1,0 +1,25 @@
+//! Errors of the renderer library.
+
+#[derive(Debug, thiserror::Error)]
+pub enum RenderError {
+    #[error(
+        "no GPU adapter found{filter}. Install a Vulkan driver: on Debian/Ubuntu `apt-get install mesa-vulkan-drivers libvulkan1` gives the software rasterizer lavapipe"
+    )]
+    NoAdapter { filter: String },
+    #[error("cannot create the GPU device on {adapter}: {msg}")]
+    Device { adapter: String, msg: String },
+    #[error("image size {width}×{height} is not supported: {why}")]
+    Size {
+        width: u32,
+        height: u32,
+        why: String,
+    },
+    #[error("{0}")]
+    Scene(String),
+    #[error("unknown technique '{name}' (known: {known})")]
+    UnknownTechnique { name: String, known: String },
+    #[error("technique '{technique}': {msg}")]
+    Setting { technique: String, msg: String },
+    #[error("GPU error: {0}")]
+    Gpu(String),
+}

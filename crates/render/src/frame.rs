@@ -1,0 +1,125 @@
+//! Per-frame uniforms shared by every pass (`Frame` in shaders/common.wgsl).
+
+use bytemuck::{Pod, Zeroable};
+use glam::{Mat4, Vec3};
+use nearfield_scene::{Aabb, Camera};
+
+/// Tone-mapping operators (tonemap.wgsl).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Tonemap {
+    /// Narkowicz' ACES filmic fit.
+    #[default]
+    Aces,
+    /// Khronos PBR Neutral.
+    Neutral,
+    /// Clamp to [0, 1].
+    Linear,
+}
+
+impl Tonemap {
+    pub const NAMES: &'static [&'static str] = &["aces", "neutral", "linear"];
+
+    pub fn parse(s: &str) -> Option<Self> {
+        match s {
+            "aces" => Some(Tonemap::Aces),
+            "neutral" => Some(Tonemap::Neutral),
+            "linear" => Some(Tonemap::Linear),
+            _ => None,
+        }
+    }
+
+    pub fn index(self) -> u32 {
+        self as u32
+    }
+}
+
+/// `Frame` in common.wgsl, field for field (16-byte rows, no vec3).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable)]
+pub struct FrameUniforms {
+    pub clip_from_world: [[f32; 4]; 4],
+    pub world_from_clip: [[f32; 4]; 4],
+    pub view_from_world: [[f32; 4]; 4],
+    pub world_from_view: [[f32; 4]; 4],
+    pub prev_clip_from_world: [[f32; 4]; 4],
+    /// xyz camera position; w unused.
+    pub camera_position: [f32; 4],
+    /// width, height, 1/width, 1/height.
+    pub size: [f32; 4],
+    /// near, far, aspect, tan(yfov/2).
+    pub projection: [f32; 4],
+    /// env rotation (rad), env intensity, specular mip count, radiance mip count.
+    pub env_params: [f32; 4],
+    /// exposure (EV), tonemap operator, shadow normal offset (texels), unused.
+    pub post: [f32; 4],
+    /// frame index, light count, seed, selected AOV.
+    pub counts: [u32; 4],
+}
+
+/// The camera matrices of one frame.
+#[derive(Clone, Copy, Debug)]
+pub struct CameraMatrices {
+    pub view_from_world: Mat4,
+    pub clip_from_view: Mat4,
+    pub near: f32,
+    pub far: f32,
+}
+
+impl CameraMatrices {
+    pub fn new(camera: &Camera, size: (u32, u32), bounds: Aabb) -> Self {
+        let (near, far) = camera.depth_range(bounds);
+        let aspect = size.0 as f32 / size.1 as f32;
+        CameraMatrices {
+            view_from_world: camera.view_from_world(),
+            clip_from_view: camera.clip_from_view(aspect, near, far),
+            near,
+            far,
+        }
+    }
+
+    pub fn clip_from_world(&self) -> Mat4 {
+        self.clip_from_view * self.view_from_world
+    }
+}
+
+/// Everything that goes into [`FrameUniforms`] besides the environment and post settings.
+pub struct FrameInputs<'a> {
+    pub camera: &'a Camera,
+    pub current: CameraMatrices,
+    pub previous: CameraMatrices,
+    pub size: (u32, u32),
+    pub frame_index: u32,
+    pub light_count: u32,
+    pub seed: u32,
+}
+
+impl FrameUniforms {
+    pub fn new(f: &FrameInputs, env_params: [f32; 4], post: [f32; 4], aov: u32) -> Self {
+        let clip_from_world = f.current.clip_from_world();
+        let world_from_view = f.current.view_from_world.inverse();
+        let eye: Vec3 = f.camera.eye;
+        FrameUniforms {
+            clip_from_world: clip_from_world.to_cols_array_2d(),
+            world_from_clip: clip_from_world.inverse().to_cols_array_2d(),
+            view_from_world: f.current.view_from_world.to_cols_array_2d(),
+            world_from_view: world_from_view.to_cols_array_2d(),
+            prev_clip_from_world: f.previous.clip_from_world().to_cols_array_2d(),
+            camera_position: [eye.x, eye.y, eye.z, 0.0],
+            size: [
+                f.size.0 as f32,
+                f.size.1 as f32,
+                1.0 / f.size.0 as f32,
+                1.0 / f.size.1 as f32,
+            ],
+            projection: [
+                f.current.near,
+                f.current.far,
+                f.size.0 as f32 / f.size.1 as f32,
+                (0.5 * f.camera.yfov).tan(),
+            ],
+            env_params,
+            post,
+            counts: [f.frame_index, f.light_count, f.seed, aov],
+        }
+    }
+}

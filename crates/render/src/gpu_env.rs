@@ -1,0 +1,270 @@
+//! The environment on the GPU: the lat-long radiance map with box-filtered mips, the
+//! GGX-prefiltered specular chain (passes/env_prefilter.wgsl) and the order-3 SH projection.
+
+use crate::util;
+use bytemuck::{Pod, Zeroable};
+use glam::Vec3;
+use nearfield_scene::{Environment, sh};
+use wgpu::util::DeviceExt;
+
+/// Number of roughness levels in the specular chain (roughness 0, 0.2, …, 1).
+pub const SPECULAR_LEVELS: u32 = 6;
+/// Width of the specular chain's level 0 (at most; never wider than the map).
+pub const SPECULAR_WIDTH: u32 = 512;
+/// Radiance maps wider than this are box-downsampled on upload.
+pub const MAX_RADIANCE_WIDTH: u32 = 2048;
+/// Largest value an rgba16float texel can hold; brighter texels (a sun's core) are clamped on
+/// upload. The SH projection is computed in f32 from the unclamped map.
+pub const F16_MAX: f32 = 65000.0;
+
+/// `PrefilterParams` in env_prefilter.wgsl.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable)]
+pub struct PrefilterParams {
+    pub roughness: f32,
+    pub source_width: f32,
+    pub source_height: f32,
+    pub source_mips: f32,
+}
+
+/// GPU resources of one environment.
+pub struct GpuEnvironment {
+    pub radiance: wgpu::Texture,
+    pub radiance_view: wgpu::TextureView,
+    pub specular_view: wgpu::TextureView,
+    pub sampler: wgpu::Sampler,
+    /// 16 × vec4 (rgb SH coefficients, intensity and rotation applied).
+    pub sh_buffer: wgpu::Buffer,
+    /// The coefficients in `sh_buffer`.
+    pub sh: Vec<Vec3>,
+    pub radiance_mips: u32,
+    pub rotation: f32,
+    pub intensity: f32,
+}
+
+impl GpuEnvironment {
+    pub fn new(device: &wgpu::Device, queue: &wgpu::Queue, env: &Environment) -> Self {
+        let sh_coeffs = sh::project_environment(env, 16);
+        let mut padded = [[0f32; 4]; 16];
+        for (p, c) in padded.iter_mut().zip(&sh_coeffs) {
+            *p = [c.x, c.y, c.z, 0.0];
+        }
+        let sh_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("env SH"),
+            contents: bytemuck::cast_slice(&padded),
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+        });
+
+        // Level 0 texels as f16, box-downsampled on the CPU if the map is very wide.
+        let (mut w, mut h) = (env.width, env.height);
+        let mut texels: Vec<Vec3> = env.texels.clone();
+        while w > MAX_RADIANCE_WIDTH && h >= 2 {
+            let (nw, nh) = (w / 2, h / 2);
+            let mut next = Vec::with_capacity((nw * nh) as usize);
+            for y in 0..nh {
+                for x in 0..nw {
+                    let t = |dx: u32, dy: u32| texels[((2 * y + dy) * w + 2 * x + dx) as usize];
+                    next.push(0.25 * (t(0, 0) + t(1, 0) + t(0, 1) + t(1, 1)));
+                }
+            }
+            (w, h, texels) = (nw, nh, next);
+        }
+        let half: Vec<u16> = texels
+            .iter()
+            .flat_map(|c| {
+                let c = c.min(Vec3::splat(F16_MAX));
+                [c.x, c.y, c.z, 1.0].map(|v| half::f16::from_f32(v).to_bits())
+            })
+            .collect();
+        let radiance_mips = 32 - w.min(h).leading_zeros();
+        let radiance = device.create_texture(&wgpu::TextureDescriptor {
+            label: Some("env radiance"),
+            size: wgpu::Extent3d {
+                width: w,
+                height: h,
+                depth_or_array_layers: 1,
+            },
+            mip_level_count: radiance_mips,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: wgpu::TextureFormat::Rgba16Float,
+            usage: wgpu::TextureUsages::TEXTURE_BINDING
+                | wgpu::TextureUsages::STORAGE_BINDING
+                | wgpu::TextureUsages::COPY_DST,
+            view_formats: &[],
+        });
+        queue.write_texture(
+            radiance.as_image_copy(),
+            bytemuck::cast_slice(&half),
+            wgpu::TexelCopyBufferLayout {
+                offset: 0,
+                bytes_per_row: Some(8 * w),
+                rows_per_image: Some(h),
+            },
+            wgpu::Extent3d {
+                width: w,
+                height: h,
+                depth_or_array_layers: 1,
+            },
+        );
+        let sw = SPECULAR_WIDTH.min(w);
+        let sh_ = (sw / 2).max(1);
+        let specular_levels = SPECULAR_LEVELS.min(32 - sh_.leading_zeros());
+        let specular = device.create_texture(&wgpu::TextureDescriptor {
+            label: Some("env specular"),
+            size: wgpu::Extent3d {
+                width: sw,
+                height: sh_,
+                depth_or_array_layers: 1,
+            },
+            mip_level_count: specular_levels,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: wgpu::TextureFormat::Rgba16Float,
+            usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::STORAGE_BINDING,
+            view_formats: &[],
+        });
+        let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
+            label: Some("env sampler"),
+            address_mode_u: wgpu::AddressMode::Repeat,
+            address_mode_v: wgpu::AddressMode::ClampToEdge,
+            mag_filter: wgpu::FilterMode::Linear,
+            min_filter: wgpu::FilterMode::Linear,
+            mipmap_filter: wgpu::MipmapFilterMode::Linear,
+            ..Default::default()
+        });
+
+        // Build both chains.
+        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("env prefilter"),
+            entries: &[
+                util::uniform(0, wgpu::ShaderStages::COMPUTE),
+                util::texture(1, wgpu::ShaderStages::COMPUTE, true),
+                util::sampler(2, wgpu::ShaderStages::COMPUTE),
+                util::storage_texture(3, wgpu::TextureFormat::Rgba16Float),
+            ],
+        });
+        let source = include_str!("passes/env_prefilter.wgsl");
+        let downsample =
+            util::compute_pipeline(device, "env downsample", source, "downsample", &layout);
+        let prefilter =
+            util::compute_pipeline(device, "env prefilter", source, "prefilter", &layout);
+        let mip_view = |t: &wgpu::Texture, level: u32| {
+            t.create_view(&wgpu::TextureViewDescriptor {
+                base_mip_level: level,
+                mip_level_count: Some(1),
+                ..Default::default()
+            })
+        };
+        let mut encoder = device.create_command_encoder(&Default::default());
+        let mut uniforms = Vec::new();
+        for level in 0..radiance_mips - 1 {
+            let params = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: None,
+                contents: bytemuck::bytes_of(&PrefilterParams {
+                    roughness: 0.0,
+                    source_width: w as f32,
+                    source_height: h as f32,
+                    source_mips: radiance_mips as f32,
+                }),
+                usage: wgpu::BufferUsages::UNIFORM,
+            });
+            let src = mip_view(&radiance, level);
+            let dst = mip_view(&radiance, level + 1);
+            let bg = util::bind_group(
+                device,
+                "env downsample",
+                &layout,
+                &[
+                    (0, params.as_entire_binding()),
+                    (1, wgpu::BindingResource::TextureView(&src)),
+                    (2, wgpu::BindingResource::Sampler(&sampler)),
+                    (3, wgpu::BindingResource::TextureView(&dst)),
+                ],
+            );
+            let mut pass = encoder.begin_compute_pass(&Default::default());
+            pass.set_pipeline(&downsample);
+            pass.set_bind_group(0, &bg, &[]);
+            let (gx, gy) = util::groups_8x8(((w >> (level + 1)).max(1), (h >> (level + 1)).max(1)));
+            pass.dispatch_workgroups(gx, gy, 1);
+            drop(pass);
+            uniforms.push(params);
+        }
+        let radiance_view = radiance.create_view(&Default::default());
+        for level in 0..specular_levels {
+            let params = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: None,
+                contents: bytemuck::bytes_of(&PrefilterParams {
+                    roughness: level as f32 / (specular_levels - 1).max(1) as f32,
+                    source_width: w as f32,
+                    source_height: h as f32,
+                    source_mips: radiance_mips as f32,
+                }),
+                usage: wgpu::BufferUsages::UNIFORM,
+            });
+            let dst = mip_view(&specular, level);
+            let bg = util::bind_group(
+                device,
+                "env prefilter",
+                &layout,
+                &[
+                    (0, params.as_entire_binding()),
+                    (1, wgpu::BindingResource::TextureView(&radiance_view)),
+                    (2, wgpu::BindingResource::Sampler(&sampler)),
+                    (3, wgpu::BindingResource::TextureView(&dst)),
+                ],
+            );
+            let mut pass = encoder.begin_compute_pass(&Default::default());
+            pass.set_pipeline(&prefilter);
+            pass.set_bind_group(0, &bg, &[]);
+            let (gx, gy) = util::groups_8x8(((sw >> level).max(1), (sh_ >> level).max(1)));
+            pass.dispatch_workgroups(gx, gy, 1);
+            drop(pass);
+            uniforms.push(params);
+        }
+        queue.submit([encoder.finish()]);
+        GpuEnvironment {
+            radiance,
+            radiance_view,
+            specular_view: specular.create_view(&Default::default()),
+            sampler,
+            sh_buffer,
+            sh: sh_coeffs,
+            radiance_mips,
+            rotation: env.rotation,
+            intensity: env.intensity,
+        }
+    }
+
+    /// `Frame.env_params`: rotation, intensity (already in the SH; textures are raw), specular
+    /// mip count, radiance mip count.
+    pub fn params(&self) -> [f32; 4] {
+        [
+            self.rotation,
+            self.intensity,
+            self.specular_view.texture().mip_level_count() as f32,
+            self.radiance_mips as f32,
+        ]
+    }
+
+    /// Bind group entries 1..=4 of every pass that includes env.wgsl.
+    pub fn bindings(&self) -> [(u32, wgpu::BindingResource<'_>); 4] {
+        [
+            (1, wgpu::BindingResource::TextureView(&self.radiance_view)),
+            (2, wgpu::BindingResource::TextureView(&self.specular_view)),
+            (3, wgpu::BindingResource::Sampler(&self.sampler)),
+            (4, self.sh_buffer.as_entire_binding()),
+        ]
+    }
+
+    /// Layout entries matching [`Self::bindings`].
+    pub fn layout_entries() -> [wgpu::BindGroupLayoutEntry; 4] {
+        let s = wgpu::ShaderStages::COMPUTE;
+        [
+            util::texture(1, s, true),
+            util::texture(2, s, true),
+            util::sampler(3, s),
+            util::uniform(4, s),
+        ]
+    }
+}

@@ -1,0 +1,343 @@
+//! The scene on the GPU: one vertex and one index buffer for all meshes, the material table,
+//! material textures as two 2D arrays, and the light table.
+
+use crate::RenderError;
+use bytemuck::{Pod, Zeroable};
+use glam::Vec3;
+use nearfield_scene::{Aabb, AlphaMode, LightKind, Scene, TextureColorSpace};
+use wgpu::util::DeviceExt;
+
+/// One vertex (36 bytes): world position, world normal, uv, material index.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable)]
+pub struct Vertex {
+    pub position: [f32; 3],
+    pub normal: [f32; 3],
+    pub uv: [f32; 2],
+    pub material: u32,
+}
+
+impl Vertex {
+    pub const ATTRIBUTES: [wgpu::VertexAttribute; 4] =
+        wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3, 2 => Float32x2, 3 => Uint32];
+
+    pub fn layout() -> wgpu::VertexBufferLayout<'static> {
+        wgpu::VertexBufferLayout {
+            array_stride: std::mem::size_of::<Vertex>() as u64,
+            step_mode: wgpu::VertexStepMode::Vertex,
+            attributes: &Self::ATTRIBUTES,
+        }
+    }
+}
+
+/// `GpuMaterial` in gbuffer.wgsl.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable)]
+pub struct GpuMaterial {
+    pub base_color: [f32; 4],
+    /// rgb emissive (strength applied), w alpha cutoff (< 0: opaque).
+    pub emissive: [f32; 4],
+    /// metallic, roughness, unused, unused.
+    pub params: [f32; 4],
+    /// base colour layer (sRGB array), metallic-roughness layer (linear array), emissive layer
+    /// (sRGB array), unused; u32::MAX = none.
+    pub textures: [u32; 4],
+}
+
+/// `GpuLight` in direct_lighting.wgsl.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable)]
+pub struct GpuLight {
+    /// xyz position or direction of travel; w kind (0 directional, 1 point, 2 spot).
+    pub position: [f32; 4],
+    /// xyz spot axis; w range (0 = unlimited).
+    pub direction: [f32; 4],
+    /// rgb colour × intensity.
+    pub color: [f32; 4],
+    /// cos inner, cos outer, first shadow layer (−1 none), shadow texel size factor.
+    pub cone: [f32; 4],
+}
+
+pub const NO_TEXTURE: u32 = u32::MAX;
+
+/// Largest material texture side kept on the GPU; larger textures are downsampled.
+pub const MAX_TEXTURE_SIZE: u32 = 2048;
+
+/// The scene's GPU buffers and textures.
+pub struct GpuScene {
+    pub vertices: wgpu::Buffer,
+    pub indices: wgpu::Buffer,
+    /// Index count of culled (single-sided) geometry; double-sided geometry follows it.
+    pub single_sided_indices: u32,
+    pub index_count: u32,
+    pub materials: wgpu::Buffer,
+    pub srgb_textures: wgpu::TextureView,
+    pub linear_textures: wgpu::TextureView,
+    pub material_sampler: wgpu::Sampler,
+    pub lights: wgpu::Buffer,
+    pub light_count: u32,
+    /// The scene lights, in the order of `lights`.
+    pub scene_lights: Vec<nearfield_scene::Light>,
+    pub bounds: Aabb,
+    pub triangle_count: u32,
+}
+
+impl GpuScene {
+    pub fn new(
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        scene: &Scene,
+    ) -> Result<Self, RenderError> {
+        // Geometry: single-sided meshes first, then double-sided ones.
+        let mut vertices: Vec<Vertex> = Vec::new();
+        let mut single: Vec<u32> = Vec::new();
+        let mut double: Vec<u32> = Vec::new();
+        for mesh in &scene.meshes {
+            let base = vertices.len() as u32;
+            for i in 0..mesh.positions.len() {
+                vertices.push(Vertex {
+                    position: mesh.positions[i].into(),
+                    normal: mesh.normals[i].into(),
+                    uv: mesh.uvs[i].into(),
+                    material: mesh.material,
+                });
+            }
+            let target = if scene.materials[mesh.material as usize].double_sided {
+                &mut double
+            } else {
+                &mut single
+            };
+            target.extend(mesh.indices.iter().flatten().map(|i| base + i));
+        }
+        let single_sided_indices = single.len() as u32;
+        single.extend(double);
+        let index_count = single.len() as u32;
+        let vertex_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("scene vertices"),
+            contents: bytemuck::cast_slice(&vertices),
+            usage: wgpu::BufferUsages::VERTEX,
+        });
+        let index_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("scene indices"),
+            contents: bytemuck::cast_slice(&single),
+            usage: wgpu::BufferUsages::INDEX,
+        });
+
+        // Textures: one array per colour space, all layers resized to the largest size present.
+        let mut layer_of = vec![NO_TEXTURE; scene.textures.len()];
+        let mut arrays = Vec::new();
+        for space in [TextureColorSpace::Srgb, TextureColorSpace::Linear] {
+            let members: Vec<usize> = (0..scene.textures.len())
+                .filter(|&i| scene.textures[i].color_space == space)
+                .collect();
+            for (layer, &i) in members.iter().enumerate() {
+                layer_of[i] = layer as u32;
+            }
+            arrays.push(texture_array(device, queue, scene, &members, space)?);
+        }
+        let linear_textures = arrays.pop().unwrap();
+        let srgb_textures = arrays.pop().unwrap();
+        let layer = |t: Option<usize>| t.map(|i| layer_of[i]).unwrap_or(NO_TEXTURE);
+        let materials: Vec<GpuMaterial> = scene
+            .materials
+            .iter()
+            .map(|m| GpuMaterial {
+                base_color: m.base_color.into(),
+                emissive: [
+                    m.emissive.x,
+                    m.emissive.y,
+                    m.emissive.z,
+                    match m.alpha_mode {
+                        AlphaMode::Mask { cutoff } => cutoff,
+                        _ => -1.0,
+                    },
+                ],
+                params: [m.metallic, m.roughness, 0.0, 0.0],
+                textures: [
+                    layer(m.base_color_texture),
+                    layer(m.metallic_roughness_texture),
+                    layer(m.emissive_texture),
+                    NO_TEXTURE,
+                ],
+            })
+            .collect();
+        let material_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("materials"),
+            contents: bytemuck::cast_slice(&materials),
+            usage: wgpu::BufferUsages::STORAGE,
+        });
+        let material_sampler = device.create_sampler(&wgpu::SamplerDescriptor {
+            label: Some("material sampler"),
+            address_mode_u: wgpu::AddressMode::Repeat,
+            address_mode_v: wgpu::AddressMode::Repeat,
+            mag_filter: wgpu::FilterMode::Linear,
+            min_filter: wgpu::FilterMode::Linear,
+            mipmap_filter: wgpu::MipmapFilterMode::Linear,
+            ..Default::default()
+        });
+        let light_count = scene.lights.len() as u32;
+        let lights = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("lights"),
+            size: (std::mem::size_of::<GpuLight>() * scene.lights.len().max(1)) as u64,
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        Ok(GpuScene {
+            vertices: vertex_buffer,
+            indices: index_buffer,
+            single_sided_indices,
+            index_count,
+            materials: material_buffer,
+            srgb_textures,
+            linear_textures,
+            material_sampler,
+            lights,
+            light_count,
+            scene_lights: scene.lights.clone(),
+            bounds: scene.bounds(),
+            triangle_count: index_count / 3,
+        })
+    }
+
+    /// Writes the light table; `shadow` gives each light's first shadow layer and texel factor.
+    pub fn write_lights(&self, queue: &wgpu::Queue, shadow: &[(Option<u32>, f32)]) {
+        let lights: Vec<GpuLight> = self
+            .scene_lights
+            .iter()
+            .zip(shadow)
+            .map(|(l, &(layer, texel))| gpu_light(l, layer, texel))
+            .collect();
+        if !lights.is_empty() {
+            queue.write_buffer(&self.lights, 0, bytemuck::cast_slice(&lights));
+        }
+    }
+}
+
+fn gpu_light(l: &nearfield_scene::Light, layer: Option<u32>, texel: f32) -> GpuLight {
+    let c = l.color * l.intensity;
+    let (pos, kind, dir, cones) = match l.kind {
+        LightKind::Directional { direction } => (direction, 0.0, Vec3::ZERO, (1.0, 1.0)),
+        LightKind::Point { position } => (position, 1.0, Vec3::ZERO, (1.0, 1.0)),
+        LightKind::Spot {
+            position,
+            direction,
+            inner_cone,
+            outer_cone,
+        } => (
+            position,
+            2.0,
+            direction,
+            (inner_cone.cos(), outer_cone.cos()),
+        ),
+    };
+    GpuLight {
+        position: [pos.x, pos.y, pos.z, kind],
+        direction: [dir.x, dir.y, dir.z, l.range.unwrap_or(0.0)],
+        color: [c.x, c.y, c.z, 0.0],
+        cone: [
+            cones.0,
+            cones.1,
+            layer.map(|l| l as f32).unwrap_or(-1.0),
+            texel,
+        ],
+    }
+}
+
+/// Uploads the listed textures as layers of one 2D array with a full mip chain. Layers are
+/// resized (bilinear) to the largest width and height among them, capped at
+/// [`MAX_TEXTURE_SIZE`]. Mips are box-filtered in the stored encoding (for sRGB textures that is
+/// a slight darkening of high-contrast detail, the usual shortcut). No members: one white texel.
+fn texture_array(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    scene: &Scene,
+    members: &[usize],
+    space: TextureColorSpace,
+) -> Result<wgpu::TextureView, RenderError> {
+    let (w, h) = members.iter().fold((1u32, 1u32), |(w, h), &i| {
+        (
+            w.max(scene.textures[i].width),
+            h.max(scene.textures[i].height),
+        )
+    });
+    let (w, h) = (w.min(MAX_TEXTURE_SIZE), h.min(MAX_TEXTURE_SIZE));
+    let layers = members.len().max(1) as u32;
+    let max_layers = device.limits().max_texture_array_layers;
+    if layers > max_layers {
+        return Err(RenderError::Scene(format!(
+            "the scene has {layers} textures of one kind; this GPU allows {max_layers} array layers"
+        )));
+    }
+    let mips = 32 - w.max(h).leading_zeros();
+    let format = match space {
+        TextureColorSpace::Srgb => wgpu::TextureFormat::Rgba8UnormSrgb,
+        TextureColorSpace::Linear => wgpu::TextureFormat::Rgba8Unorm,
+    };
+    let texture = device.create_texture(&wgpu::TextureDescriptor {
+        label: Some(match space {
+            TextureColorSpace::Srgb => "sRGB material textures",
+            TextureColorSpace::Linear => "linear material textures",
+        }),
+        size: wgpu::Extent3d {
+            width: w,
+            height: h,
+            depth_or_array_layers: layers,
+        },
+        mip_level_count: mips,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format,
+        usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+        view_formats: &[],
+    });
+    for layer in 0..layers {
+        let mut img = match members.get(layer as usize) {
+            Some(&i) => {
+                let t = &scene.textures[i];
+                let img = image::RgbaImage::from_raw(t.width, t.height, t.rgba8.clone())
+                    .ok_or_else(|| {
+                        RenderError::Scene(format!("texture {i} has a wrong byte count"))
+                    })?;
+                if (t.width, t.height) != (w, h) {
+                    image::imageops::resize(&img, w, h, image::imageops::FilterType::Triangle)
+                } else {
+                    img
+                }
+            }
+            None => image::RgbaImage::from_pixel(w, h, image::Rgba([255; 4])),
+        };
+        for mip in 0..mips {
+            let (mw, mh) = ((w >> mip).max(1), (h >> mip).max(1));
+            if mip > 0 {
+                img = image::imageops::resize(&img, mw, mh, image::imageops::FilterType::Triangle);
+            }
+            queue.write_texture(
+                wgpu::TexelCopyTextureInfo {
+                    texture: &texture,
+                    mip_level: mip,
+                    origin: wgpu::Origin3d {
+                        x: 0,
+                        y: 0,
+                        z: layer,
+                    },
+                    aspect: wgpu::TextureAspect::All,
+                },
+                img.as_raw(),
+                wgpu::TexelCopyBufferLayout {
+                    offset: 0,
+                    bytes_per_row: Some(4 * mw),
+                    rows_per_image: Some(mh),
+                },
+                wgpu::Extent3d {
+                    width: mw,
+                    height: mh,
+                    depth_or_array_layers: 1,
+                },
+            );
+        }
+    }
+    Ok(texture.create_view(&wgpu::TextureViewDescriptor {
+        dimension: Some(wgpu::TextureViewDimension::D2Array),
+        ..Default::default()
+    }))
+}

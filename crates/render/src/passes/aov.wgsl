@@ -1,0 +1,77 @@
+// aov.wgsl — copies one AOV (frame.counts.w, numbered as crate::Aov) into an rgba32float image
+// for output: rgb = the AOV's value exactly as DESIGN.md defines it, a = 1 on surfaces, 0 on
+// background (where rgb = 0, except for `radiance`, which shows the environment).
+//
+//   1 radiance  2 albedo  3 normal (world, unit)  4 depth (view depth, m)  5 ao
+//   6 env-irradiance  7 light-irradiance  8 indirect-irradiance
+//   9 diffuse = ρ · (env-irradiance + light-irradiance + indirect-irradiance)
+//   10 motion (pixels, rg)  11 specular  12 direct-radiance (kept for the next frame)
+
+@group(0) @binding(8) var gb_normal: texture_2d<f32>;
+@group(0) @binding(9) var gb_albedo: texture_2d<f32>;
+@group(0) @binding(10) var gb_view_depth: texture_2d<f32>;
+@group(0) @binding(11) var gb_motion: texture_2d<f32>;
+@group(0) @binding(12) var radiance: texture_2d<f32>;
+@group(0) @binding(13) var ao: texture_2d<f32>;
+@group(0) @binding(14) var env_irradiance: texture_2d<f32>;
+@group(0) @binding(15) var light_irradiance: texture_2d<f32>;
+@group(0) @binding(16) var indirect_irradiance: texture_2d<f32>;
+@group(0) @binding(17) var specular: texture_2d<f32>;
+@group(0) @binding(18) var direct_radiance: texture_2d<f32>;
+@group(0) @binding(19) var out_aov: texture_storage_2d<rgba32float, write>;
+
+@compute @workgroup_size(8, 8, 1)
+fn main(@builtin(global_invocation_id) id: vec3<u32>) {
+    let pixel = id.xy;
+    if !in_bounds(pixel) {
+        return;
+    }
+    let surface = textureLoad(gb_normal, pixel, 0).w;
+    var v = vec3<f32>(0.0);
+    switch frame.counts.w {
+        case 1u: {
+            v = textureLoad(radiance, pixel, 0).rgb;
+        }
+        case 2u: {
+            v = textureLoad(gb_albedo, pixel, 0).rgb;
+        }
+        case 3u: {
+            v = textureLoad(gb_normal, pixel, 0).xyz;
+        }
+        case 4u: {
+            v = vec3<f32>(textureLoad(gb_view_depth, pixel, 0).r);
+        }
+        case 5u: {
+            v = vec3<f32>(textureLoad(ao, pixel, 0).r);
+        }
+        case 6u: {
+            v = textureLoad(env_irradiance, pixel, 0).rgb;
+        }
+        case 7u: {
+            v = textureLoad(light_irradiance, pixel, 0).rgb;
+        }
+        case 8u: {
+            v = textureLoad(indirect_irradiance, pixel, 0).rgb;
+        }
+        case 9u: {
+            v = textureLoad(gb_albedo, pixel, 0).rgb * (textureLoad(env_irradiance, pixel, 0).rgb
+                + textureLoad(light_irradiance, pixel, 0).rgb
+                + textureLoad(indirect_irradiance, pixel, 0).rgb);
+        }
+        case 10u: {
+            v = vec3<f32>(textureLoad(gb_motion, pixel, 0).rg, 0.0);
+        }
+        case 11u: {
+            v = textureLoad(specular, pixel, 0).rgb;
+        }
+        case 12u: {
+            v = textureLoad(direct_radiance, pixel, 0).rgb;
+        }
+        default: {
+        }
+    }
+    if surface == 0.0 && frame.counts.w != 1u {
+        v = vec3<f32>(0.0);
+    }
+    textureStore(out_aov, pixel, vec4<f32>(v, surface));
+}

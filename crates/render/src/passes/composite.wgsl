@@ -1,0 +1,41 @@
+// composite.wgsl — assembles the linear HDR frame (the `radiance` AOV).
+//
+//   radiance = emission + (1 − m) · ρ · (env_irradiance + light_irradiance + indirect_irradiance)
+//              + specular
+// on surfaces (the irradiance terms are already divided by π, so ρ × term is Lambertian
+// radiance), and the environment seen through the pixel (mip 0) on background. Specular light is
+// not occluded by the near-field technique (as in the SSDO textbook chapter: "specular untouched").
+
+@group(0) @binding(8) var gb_normal: texture_2d<f32>;
+@group(0) @binding(9) var gb_albedo: texture_2d<f32>;
+@group(0) @binding(10) var gb_material: texture_2d<f32>;
+@group(0) @binding(11) var gb_emissive: texture_2d<f32>;
+@group(0) @binding(12) var light_irradiance: texture_2d<f32>;
+@group(0) @binding(13) var specular: texture_2d<f32>;
+@group(0) @binding(14) var env_irradiance: texture_2d<f32>;
+@group(0) @binding(15) var indirect_irradiance: texture_2d<f32>;
+@group(0) @binding(16) var out_radiance: texture_storage_2d<rgba16float, write>;
+
+@compute @workgroup_size(8, 8, 1)
+fn main(@builtin(global_invocation_id) id: vec3<u32>) {
+    let pixel = id.xy;
+    if !in_bounds(pixel) {
+        return;
+    }
+    let nw = textureLoad(gb_normal, pixel, 0);
+    if nw.w == 0.0 {
+        // Background: alpha 0 marks it for EXR output and metrics.
+        let bg = min(env_radiance_at(view_ray(pixel), 0.0), vec3<f32>(65000.0));
+        textureStore(out_radiance, pixel, vec4<f32>(bg, 0.0));
+        return;
+    }
+    let albedo = textureLoad(gb_albedo, pixel, 0).rgb;
+    let metallic = textureLoad(gb_material, pixel, 0).r;
+    let irradiance = textureLoad(env_irradiance, pixel, 0).rgb
+        + textureLoad(light_irradiance, pixel, 0).rgb
+        + textureLoad(indirect_irradiance, pixel, 0).rgb;
+    let radiance = textureLoad(gb_emissive, pixel, 0).rgb
+        + (1.0 - metallic) * albedo * irradiance
+        + textureLoad(specular, pixel, 0).rgb;
+    textureStore(out_radiance, pixel, vec4<f32>(min(radiance, vec3<f32>(65000.0)), 1.0));
+}

@@ -1,0 +1,110 @@
+// gbuffer.wgsl — rasterizes the scene into the G-buffer (the only raster pass besides shadows).
+//
+// Targets (formats in passes/gbuffer.rs, `GBuffer`):
+//   0 normal      rgba16float  xyz = world-space unit shading normal facing the viewer side of
+//                              the surface (flipped on back faces of double-sided materials),
+//                              w = 1 on surfaces, 0 on background
+//   1 albedo      rgba8unorm-srgb  base colour ρ (factor × texture), a = 1
+//   2 material    rgba8unorm   r = metallic, g = perceptual roughness, b = 0, a = 1
+//   3 emissive    rgba16float  emitted radiance (linear), a = 1
+//   4 motion      rg16float    previous − current pixel position (pixels) of this surface point
+//   5 view_depth  r32float     distance along −Z in view space (m); 0 on background
+// Material data: `GpuMaterial` (gpu_scene.rs). Textures live in two 2D arrays (sRGB and linear)
+// whose layers are resized to a common size; u32::MAX marks "no texture".
+
+struct GpuMaterial {
+    base_color: vec4<f32>,
+    // rgb: emissive factor (strength applied); w: alpha cutoff (< 0: opaque).
+    emissive: vec4<f32>,
+    // metallic, roughness, unused, unused.
+    params: vec4<f32>,
+    // Layers: base colour (sRGB array), metallic-roughness (linear array), emissive (sRGB array).
+    textures: vec4<u32>,
+}
+
+@group(0) @binding(1) var<storage, read> materials: array<GpuMaterial>;
+@group(0) @binding(2) var srgb_textures: texture_2d_array<f32>;
+@group(0) @binding(3) var linear_textures: texture_2d_array<f32>;
+@group(0) @binding(4) var material_sampler: sampler;
+
+const NO_TEXTURE: u32 = 0xffffffffu;
+
+struct VertexIn {
+    @location(0) position: vec3<f32>,
+    @location(1) normal: vec3<f32>,
+    @location(2) uv: vec2<f32>,
+    @location(3) material: u32,
+}
+
+struct VertexOut {
+    @builtin(position) clip: vec4<f32>,
+    @location(0) world: vec3<f32>,
+    @location(1) normal: vec3<f32>,
+    @location(2) uv: vec2<f32>,
+    @location(3) @interpolate(flat) material: u32,
+}
+
+@vertex
+fn vs_main(v: VertexIn) -> VertexOut {
+    var o: VertexOut;
+    o.clip = frame.clip_from_world * vec4<f32>(v.position, 1.0);
+    o.world = v.position;
+    o.normal = v.normal;
+    o.uv = v.uv;
+    o.material = v.material;
+    return o;
+}
+
+struct GBufferOut {
+    @location(0) normal: vec4<f32>,
+    @location(1) albedo: vec4<f32>,
+    @location(2) material: vec4<f32>,
+    @location(3) emissive: vec4<f32>,
+    @location(4) motion: vec4<f32>,
+    @location(5) view_depth: vec4<f32>,
+}
+
+// Pixel coordinates (x right, y down) of a world point under a clip_from_world matrix.
+fn to_pixel(clip_from_world: mat4x4<f32>, p: vec3<f32>) -> vec2<f32> {
+    let c = clip_from_world * vec4<f32>(p, 1.0);
+    let ndc = c.xy / c.w;
+    return vec2<f32>(ndc.x * 0.5 + 0.5, 0.5 - ndc.y * 0.5) * frame.size.xy;
+}
+
+@fragment
+fn fs_main(in: VertexOut, @builtin(front_facing) front: bool) -> GBufferOut {
+    // Gradients first, in uniform control flow; the texture fetches below are conditional.
+    let duv_dx = dpdx(in.uv);
+    let duv_dy = dpdy(in.uv);
+    let m = materials[in.material];
+    var base = m.base_color;
+    if m.textures.x != NO_TEXTURE {
+        base *= textureSampleGrad(srgb_textures, material_sampler, in.uv, m.textures.x, duv_dx, duv_dy);
+    }
+    if base.a < m.emissive.w {
+        discard;
+    }
+    var metallic = m.params.x;
+    var roughness = m.params.y;
+    if m.textures.y != NO_TEXTURE {
+        let mr = textureSampleGrad(linear_textures, material_sampler, in.uv, m.textures.y, duv_dx, duv_dy);
+        roughness *= mr.g;
+        metallic *= mr.b;
+    }
+    var emissive = m.emissive.rgb;
+    if m.textures.z != NO_TEXTURE {
+        emissive *= textureSampleGrad(srgb_textures, material_sampler, in.uv, m.textures.z, duv_dx, duv_dy).rgb;
+    }
+    var n = normalize(in.normal);
+    if !front {
+        n = -n;
+    }
+    var o: GBufferOut;
+    o.normal = vec4<f32>(n, 1.0);
+    o.albedo = vec4<f32>(base.rgb, 1.0);
+    o.material = vec4<f32>(metallic, roughness, 0.0, 1.0);
+    o.emissive = vec4<f32>(emissive, 1.0);
+    o.motion = vec4<f32>(to_pixel(frame.prev_clip_from_world, in.world) - in.clip.xy, 0.0, 0.0);
+    o.view_depth = vec4<f32>(-(frame.view_from_world * vec4<f32>(in.world, 1.0)).z, 0.0, 0.0, 0.0);
+    return o;
+}

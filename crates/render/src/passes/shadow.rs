@@ -1,0 +1,326 @@
+//! Shadow maps for every punctual light (raster, depth only), sampled with PCF in
+//! direct_lighting.wgsl.
+//!
+//! Layout: one depth32float 2D array of `size`² layers. A directional light takes one layer
+//! (orthographic, fitted to the scene's bounding sphere), a spot light one (perspective over its
+//! outer cone plus a margin, capped at 160°), a point light six (90° faces ±X, ±Y, ±Z). At most
+//! [`ShadowSettings::max_layers`] layers are allocated; lights beyond get no shadow (logged).
+//!
+//! Biases (documented, fixed):
+//! - slope-scaled rasterizer bias: constant 2, slope 2.0 (in the depth format's units), against
+//!   acne on surfaces at grazing angles to the light;
+//! - receiver normal offset: the shaded point moves along its normal by
+//!   [`ShadowSettings::normal_offset_texels`] shadow-map texels (world size of a texel at that
+//!   point) before the lookup, against acne on curved and lit-at-grazing surfaces. Both shift
+//!   shadows by about a texel: contact shadows start that much late.
+
+use crate::gpu_scene::{GpuScene, Vertex};
+use crate::profiler::GpuProfiler;
+use crate::targets::DEPTH_FORMAT;
+use crate::util;
+use glam::{Mat4, Vec3};
+use nearfield_scene::{Aabb, LightKind};
+use wgpu::util::DeviceExt;
+
+pub const SHADER: &str = include_str!("shadow.wgsl");
+
+/// Shadow-map settings.
+#[derive(Clone, Copy, Debug)]
+pub struct ShadowSettings {
+    /// Side of each shadow map (texels), 256..=8192. Default 2048.
+    pub size: u32,
+    /// Most layers (a point light uses six). Default 24.
+    pub max_layers: u32,
+    /// Receiver offset along the normal (shadow-map texels), 0..=8. Default 1.5.
+    pub normal_offset_texels: f32,
+}
+
+impl Default for ShadowSettings {
+    fn default() -> Self {
+        ShadowSettings {
+            size: 2048,
+            max_layers: 24,
+            normal_offset_texels: 1.5,
+        }
+    }
+}
+
+/// Uniform stride of a layer's matrix (the dynamic-offset alignment every device accepts).
+const VIEW_STRIDE: u64 = 256;
+
+pub struct ShadowPass {
+    pipeline: wgpu::RenderPipeline,
+    bind_group: wgpu::BindGroup,
+    layer_views: Vec<wgpu::TextureView>,
+    /// All layers as a D2Array view (for sampling).
+    pub array_view: wgpu::TextureView,
+    pub compare_sampler: wgpu::Sampler,
+    /// light_clip_from_world per layer (storage buffer for the lighting pass).
+    pub matrices: wgpu::Buffer,
+    /// Per scene light: first layer (None = unshadowed) and texel size factor.
+    pub light_layers: Vec<(Option<u32>, f32)>,
+    pub settings: ShadowSettings,
+}
+
+/// Shadow projections of one light, and its texel size factor (metres for orthographic,
+/// metres per metre of distance for perspective layers).
+pub fn light_views(kind: &LightKind, bounds: Aabb, size: u32) -> (Vec<Mat4>, f32) {
+    let center = bounds.center();
+    let radius = bounds.radius().max(1e-3);
+    let up_for = |d: Vec3| if d.y.abs() > 0.99 { Vec3::X } else { Vec3::Y };
+    match *kind {
+        LightKind::Directional { direction } => {
+            let eye = center - direction * (2.0 * radius);
+            let view = glam::camera::rh::view::look_to_mat4(eye, direction, up_for(direction));
+            let proj = glam::camera::rh::proj::directx::orthographic(
+                -radius,
+                radius,
+                -radius,
+                radius,
+                0.5 * radius,
+                3.5 * radius,
+            );
+            (vec![proj * view], 2.0 * radius / size as f32)
+        }
+        LightKind::Spot {
+            position,
+            direction,
+            outer_cone,
+            ..
+        } => {
+            let fov = (2.0 * outer_cone + 4f32.to_radians()).min(160f32.to_radians());
+            let far = (position - center).length() + radius;
+            let view = glam::camera::rh::view::look_to_mat4(position, direction, up_for(direction));
+            let proj = glam::camera::rh::proj::directx::perspective(fov, 1.0, far * 1e-4, far);
+            (vec![proj * view], 2.0 * (0.5 * fov).tan() / size as f32)
+        }
+        LightKind::Point { position } => {
+            let far = (position - center).length() + radius;
+            let proj = glam::camera::rh::proj::directx::perspective(
+                std::f32::consts::FRAC_PI_2,
+                1.0,
+                far * 1e-4,
+                far,
+            );
+            let faces = [
+                Vec3::X,
+                Vec3::NEG_X,
+                Vec3::Y,
+                Vec3::NEG_Y,
+                Vec3::Z,
+                Vec3::NEG_Z,
+            ];
+            let views = faces
+                .iter()
+                .map(|&d| proj * glam::camera::rh::view::look_to_mat4(position, d, up_for(d)))
+                .collect();
+            (views, 2.0 / size as f32)
+        }
+    }
+}
+
+impl ShadowPass {
+    pub fn new(device: &wgpu::Device, scene: &GpuScene, settings: ShadowSettings) -> Self {
+        let mut matrices: Vec<Mat4> = Vec::new();
+        let mut light_layers = Vec::new();
+        let mut dropped = 0;
+        for light in &scene.scene_lights {
+            let (views, texel) = light_views(&light.kind, scene.bounds, settings.size);
+            if matrices.len() + views.len() > settings.max_layers as usize {
+                light_layers.push((None, texel));
+                dropped += 1;
+                continue;
+            }
+            light_layers.push((Some(matrices.len() as u32), texel));
+            matrices.extend(views);
+        }
+        if dropped > 0 {
+            log::warn!(
+                "{dropped} light(s) get no shadow map: more than {} shadow layers",
+                settings.max_layers
+            );
+        }
+        let layers = matrices.len().max(1) as u32;
+        let texture = device.create_texture(&wgpu::TextureDescriptor {
+            label: Some("shadow maps"),
+            size: wgpu::Extent3d {
+                width: settings.size,
+                height: settings.size,
+                depth_or_array_layers: layers,
+            },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: DEPTH_FORMAT,
+            usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING,
+            view_formats: &[],
+        });
+        let layer_views = (0..matrices.len() as u32)
+            .map(|l| {
+                texture.create_view(&wgpu::TextureViewDescriptor {
+                    dimension: Some(wgpu::TextureViewDimension::D2),
+                    base_array_layer: l,
+                    array_layer_count: Some(1),
+                    ..Default::default()
+                })
+            })
+            .collect();
+        let array_view = texture.create_view(&wgpu::TextureViewDescriptor {
+            dimension: Some(wgpu::TextureViewDimension::D2Array),
+            ..Default::default()
+        });
+        let flat: Vec<[[f32; 4]; 4]> = if matrices.is_empty() {
+            vec![Mat4::IDENTITY.to_cols_array_2d()]
+        } else {
+            matrices.iter().map(|m| m.to_cols_array_2d()).collect()
+        };
+        let matrix_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("shadow matrices"),
+            contents: bytemuck::cast_slice(&flat),
+            usage: wgpu::BufferUsages::STORAGE,
+        });
+        let mut strided = vec![0u8; VIEW_STRIDE as usize * flat.len()];
+        for (i, m) in flat.iter().enumerate() {
+            let at = i * VIEW_STRIDE as usize;
+            strided[at..at + 64].copy_from_slice(bytemuck::bytes_of(m));
+        }
+        let view_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("shadow views"),
+            contents: &strided,
+            usage: wgpu::BufferUsages::UNIFORM,
+        });
+        use wgpu::ShaderStages as S;
+        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("shadow"),
+            entries: &[
+                wgpu::BindGroupLayoutEntry {
+                    binding: 0,
+                    visibility: S::VERTEX,
+                    ty: wgpu::BindingType::Buffer {
+                        ty: wgpu::BufferBindingType::Uniform,
+                        has_dynamic_offset: true,
+                        min_binding_size: wgpu::BufferSize::new(64),
+                    },
+                    count: None,
+                },
+                util::storage_buffer(1, S::FRAGMENT),
+                util::texture_array(2, S::FRAGMENT),
+                util::sampler(4, S::FRAGMENT),
+            ],
+        });
+        let bind_group = util::bind_group(
+            device,
+            "shadow",
+            &layout,
+            &[
+                (
+                    0,
+                    wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+                        buffer: &view_buffer,
+                        offset: 0,
+                        size: wgpu::BufferSize::new(64),
+                    }),
+                ),
+                (1, scene.materials.as_entire_binding()),
+                (2, wgpu::BindingResource::TextureView(&scene.srgb_textures)),
+                (4, wgpu::BindingResource::Sampler(&scene.material_sampler)),
+            ],
+        );
+        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some("shadow"),
+            source: wgpu::ShaderSource::Wgsl(SHADER.into()),
+        });
+        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("shadow"),
+            bind_group_layouts: &[Some(&layout)],
+            immediate_size: 0,
+        });
+        let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some("shadow"),
+            layout: Some(&pipeline_layout),
+            vertex: wgpu::VertexState {
+                module: &module,
+                entry_point: Some("vs_main"),
+                compilation_options: Default::default(),
+                buffers: &[Some(Vertex::layout())],
+            },
+            // No culling: single-sided walls (open boxes) must still cast shadows.
+            primitive: wgpu::PrimitiveState {
+                topology: wgpu::PrimitiveTopology::TriangleList,
+                cull_mode: None,
+                ..Default::default()
+            },
+            depth_stencil: Some(wgpu::DepthStencilState {
+                format: DEPTH_FORMAT,
+                depth_write_enabled: Some(true),
+                depth_compare: Some(wgpu::CompareFunction::Less),
+                stencil: Default::default(),
+                bias: wgpu::DepthBiasState {
+                    constant: 2,
+                    slope_scale: 2.0,
+                    clamp: 0.0,
+                },
+            }),
+            multisample: Default::default(),
+            fragment: Some(wgpu::FragmentState {
+                module: &module,
+                entry_point: Some("fs_main"),
+                compilation_options: Default::default(),
+                targets: &[],
+            }),
+            multiview_mask: None,
+            cache: None,
+        });
+        let compare_sampler = device.create_sampler(&wgpu::SamplerDescriptor {
+            label: Some("shadow compare"),
+            address_mode_u: wgpu::AddressMode::ClampToEdge,
+            address_mode_v: wgpu::AddressMode::ClampToEdge,
+            mag_filter: wgpu::FilterMode::Linear,
+            min_filter: wgpu::FilterMode::Linear,
+            compare: Some(wgpu::CompareFunction::LessEqual),
+            ..Default::default()
+        });
+        ShadowPass {
+            pipeline,
+            bind_group,
+            layer_views,
+            array_view,
+            compare_sampler,
+            matrices: matrix_buffer,
+            light_layers,
+            settings,
+        }
+    }
+
+    /// Renders every layer (timed together as "shadows").
+    pub fn encode(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        profiler: &mut GpuProfiler,
+        scene: &GpuScene,
+    ) {
+        let n = self.layer_views.len();
+        for (i, view) in self.layer_views.iter().enumerate() {
+            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some("shadow layer"),
+                color_attachments: &[],
+                depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                    view,
+                    depth_ops: Some(wgpu::Operations {
+                        load: wgpu::LoadOp::Clear(1.0),
+                        store: wgpu::StoreOp::Store,
+                    }),
+                    stencil_ops: None,
+                }),
+                timestamp_writes: profiler.render_group("shadows", i == 0, i + 1 == n),
+                occlusion_query_set: None,
+                multiview_mask: None,
+            });
+            pass.set_pipeline(&self.pipeline);
+            pass.set_bind_group(0, &self.bind_group, &[(i as u64 * VIEW_STRIDE) as u32]);
+            pass.set_vertex_buffer(0, scene.vertices.slice(..));
+            pass.set_index_buffer(scene.indices.slice(..), wgpu::IndexFormat::Uint32);
+            pass.draw_indexed(0..scene.index_count, 0, 0..1);
+        }
+    }
+}

@@ -1,0 +1,306 @@
+//! The frame: owns the GPU scene, environment, targets and passes, and runs them in order
+//! (DESIGN.md, "The frame"): G-buffer → shadow maps → direct lighting → technique → composite →
+//! tonemap. Reads AOVs back for output.
+
+use crate::RenderError;
+use crate::aov::{Aov, AovImage};
+use crate::context::GpuContext;
+use crate::frame::{CameraMatrices, FrameInputs, FrameUniforms, Tonemap};
+use crate::gpu_env::GpuEnvironment;
+use crate::gpu_scene::GpuScene;
+use crate::passes::{
+    self, ScreenPass,
+    gbuffer::GBufferPass,
+    shadow::{ShadowPass, ShadowSettings},
+};
+use crate::profiler::GpuProfiler;
+use crate::targets::{self, FrameTargets};
+use crate::technique::{self, Technique, TechniqueContext, TechniqueParams};
+use nearfield_scene::{Camera, Environment, Scene};
+
+/// Frame-level settings.
+#[derive(Clone, Copy, Debug)]
+pub struct RenderSettings {
+    /// Image size (pixels), 1..=8192 each side.
+    pub size: (u32, u32),
+    /// Exposure (EV stops) applied before tonemapping, −20..=20. Default 0.
+    pub exposure: f32,
+    pub tonemap: Tonemap,
+    pub shadows: ShadowSettings,
+    /// Seed of the per-pixel noise sequences.
+    pub seed: u32,
+}
+
+impl Default for RenderSettings {
+    fn default() -> Self {
+        RenderSettings {
+            size: (1280, 720),
+            exposure: 0.0,
+            tonemap: Tonemap::Aces,
+            shadows: ShadowSettings::default(),
+            seed: 0,
+        }
+    }
+}
+
+pub struct Renderer {
+    device: wgpu::Device,
+    queue: wgpu::Queue,
+    pub scene: GpuScene,
+    pub env: GpuEnvironment,
+    pub targets: FrameTargets,
+    frame_buffer: wgpu::Buffer,
+    gbuffer: GBufferPass,
+    shadows: ShadowPass,
+    direct: ScreenPass,
+    technique: Box<dyn Technique>,
+    composite: ScreenPass,
+    tonemap: ScreenPass,
+    aov: ScreenPass,
+    pub profiler: GpuProfiler,
+    camera: Camera,
+    previous: Option<CameraMatrices>,
+    frame_index: u32,
+    settings: RenderSettings,
+}
+
+impl Renderer {
+    /// Uploads the scene and environment and builds every pass for `technique`.
+    pub fn new(
+        ctx: &GpuContext,
+        scene: &Scene,
+        env: &Environment,
+        camera: Camera,
+        technique_name: &str,
+        params: &TechniqueParams,
+        settings: RenderSettings,
+    ) -> Result<Self, RenderError> {
+        let desc = technique::find(technique_name)?;
+        targets::check_size(settings.size, ctx.device.limits().max_texture_dimension_2d)?;
+        camera.validate().map_err(RenderError::Scene)?;
+        let device = ctx.device.clone();
+        let queue = ctx.queue.clone();
+        let oom = device.push_error_scope(wgpu::ErrorFilter::OutOfMemory);
+        let validation = device.push_error_scope(wgpu::ErrorFilter::Validation);
+        let gpu_scene = GpuScene::new(&device, &queue, scene)?;
+        let gpu_env = GpuEnvironment::new(&device, &queue, env);
+        let targets = FrameTargets::new(&device, settings.size);
+        let frame_buffer = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("frame uniforms"),
+            size: std::mem::size_of::<FrameUniforms>() as u64,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let shadows = ShadowPass::new(&device, &gpu_scene, settings.shadows);
+        gpu_scene.write_lights(&queue, &shadows.light_layers);
+        let gbuffer = GBufferPass::new(&device, &frame_buffer, &gpu_scene);
+        let direct = passes::direct_lighting::new(
+            &device,
+            &frame_buffer,
+            &targets,
+            &gpu_scene,
+            &gpu_env,
+            &shadows,
+        );
+        let technique = (desc.create)(
+            &TechniqueContext {
+                device: &device,
+                queue: &queue,
+                frame: &frame_buffer,
+                targets: &targets,
+                env: &gpu_env,
+            },
+            params,
+        )?;
+        let composite = passes::composite::new(&device, &frame_buffer, &targets, &gpu_env);
+        let tonemap = passes::tonemap::new(&device, &frame_buffer, &targets);
+        let aov = passes::aov::new(&device, &frame_buffer, &targets);
+        let profiler = GpuProfiler::new(&device, &queue, ctx.timestamps);
+        if let Some(e) = pollster::block_on(validation.pop()) {
+            return Err(RenderError::Gpu(e.to_string()));
+        }
+        if let Some(e) = pollster::block_on(oom.pop()) {
+            return Err(RenderError::Gpu(format!("out of GPU memory: {e}")));
+        }
+        Ok(Renderer {
+            device,
+            queue,
+            scene: gpu_scene,
+            env: gpu_env,
+            targets,
+            frame_buffer,
+            gbuffer,
+            shadows,
+            direct,
+            technique,
+            composite,
+            tonemap,
+            aov,
+            profiler,
+            camera,
+            previous: None,
+            frame_index: 0,
+            settings,
+        })
+    }
+
+    pub fn size(&self) -> (u32, u32) {
+        self.settings.size
+    }
+
+    pub fn technique_name(&self) -> &'static str {
+        self.technique.name()
+    }
+
+    pub fn set_camera(&mut self, camera: Camera) {
+        self.camera = camera;
+    }
+
+    pub fn frame_index(&self) -> u32 {
+        self.frame_index
+    }
+
+    fn uniforms(&self, current: CameraMatrices, aov: Aov) -> FrameUniforms {
+        let s = &self.settings;
+        FrameUniforms::new(
+            &FrameInputs {
+                camera: &self.camera,
+                current,
+                previous: self.previous.unwrap_or(current),
+                size: s.size,
+                frame_index: self.frame_index,
+                light_count: self.scene.light_count,
+                seed: s.seed,
+            },
+            self.env.params(),
+            [
+                s.exposure,
+                s.tonemap.index() as f32,
+                s.shadows.normal_offset_texels,
+                0.0,
+            ],
+            aov.shader_id(),
+        )
+    }
+
+    /// Renders one frame and submits it. Per-pass timings of it are then available from
+    /// [`Self::timings`].
+    pub fn render_frame(&mut self) {
+        let current = CameraMatrices::new(&self.camera, self.settings.size, self.scene.bounds);
+        let u = self.uniforms(current, Aov::Final);
+        self.queue
+            .write_buffer(&self.frame_buffer, 0, bytemuck::bytes_of(&u));
+        let mut encoder = self
+            .device
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                label: Some("frame"),
+            });
+        let size = self.settings.size;
+        let side = (self.frame_index % 2) as usize;
+        let p = &mut self.profiler;
+        p.begin_frame();
+        self.gbuffer
+            .encode(&mut encoder, p, &self.targets, &self.scene);
+        self.shadows.encode(&mut encoder, p, &self.scene);
+        self.direct.encode(&mut encoder, p, size, side);
+        self.technique.encode(&mut encoder, p, self.frame_index);
+        self.composite.encode(&mut encoder, p, size, 0);
+        self.tonemap.encode(&mut encoder, p, size, 0);
+        p.resolve(&mut encoder);
+        self.queue.submit([encoder.finish()]);
+        self.previous = Some(current);
+        self.frame_index += 1;
+    }
+
+    /// Per-pass GPU milliseconds of the last frame (waits for it).
+    pub fn timings(&self) -> Vec<(&'static str, f64)> {
+        self.profiler.read(&self.device)
+    }
+
+    /// Waits for all submitted work.
+    pub fn wait(&self) {
+        let _ = self.device.poll(wgpu::PollType::wait_indefinitely());
+    }
+
+    /// Reads one float AOV of the last rendered frame.
+    pub fn read_aov(&mut self, aov: Aov) -> AovImage {
+        let last = self.frame_index.saturating_sub(1);
+        let current = self.previous.unwrap_or_else(|| {
+            CameraMatrices::new(&self.camera, self.settings.size, self.scene.bounds)
+        });
+        // Same matrices as the last frame; only the AOV selector differs.
+        let mut u = self.uniforms(current, aov);
+        u.counts[0] = last;
+        self.queue
+            .write_buffer(&self.frame_buffer, 0, bytemuck::bytes_of(&u));
+        let mut encoder = self.device.create_command_encoder(&Default::default());
+        let mut quiet = GpuProfiler::new(&self.device, &self.queue, false);
+        self.aov.encode(
+            &mut encoder,
+            &mut quiet,
+            self.settings.size,
+            (last % 2) as usize,
+        );
+        let bytes = self.read_texture(encoder, &self.targets.aov.texture, 16);
+        let (w, h) = self.settings.size;
+        AovImage {
+            width: w,
+            height: h,
+            pixels: bytemuck::cast_slice::<u8, [f32; 4]>(&bytes).to_vec(),
+        }
+    }
+
+    /// Reads the tonemapped sRGB image of the last rendered frame.
+    pub fn read_final(&mut self) -> image::RgbaImage {
+        let encoder = self.device.create_command_encoder(&Default::default());
+        let bytes = self.read_texture(encoder, &self.targets.final_ldr.texture, 4);
+        let (w, h) = self.settings.size;
+        image::RgbaImage::from_raw(w, h, bytes).expect("readback size matches the image")
+    }
+
+    /// Copies a whole texture into host memory (tightly packed rows).
+    fn read_texture(
+        &self,
+        mut encoder: wgpu::CommandEncoder,
+        texture: &wgpu::Texture,
+        texel_bytes: u32,
+    ) -> Vec<u8> {
+        let (w, h) = self.settings.size;
+        let row = w * texel_bytes;
+        let padded =
+            row.div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT) * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
+        let buffer = self.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("readback"),
+            size: (padded * h) as u64,
+            usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        encoder.copy_texture_to_buffer(
+            texture.as_image_copy(),
+            wgpu::TexelCopyBufferInfo {
+                buffer: &buffer,
+                layout: wgpu::TexelCopyBufferLayout {
+                    offset: 0,
+                    bytes_per_row: Some(padded),
+                    rows_per_image: Some(h),
+                },
+            },
+            wgpu::Extent3d {
+                width: w,
+                height: h,
+                depth_or_array_layers: 1,
+            },
+        );
+        self.queue.submit([encoder.finish()]);
+        let slice = buffer.slice(..);
+        slice.map_async(wgpu::MapMode::Read, |_| {});
+        let _ = self.device.poll(wgpu::PollType::wait_indefinitely());
+        let data = slice.get_mapped_range().expect("mapped");
+        let mut out = Vec::with_capacity((row * h) as usize);
+        for y in 0..h as usize {
+            let start = y * padded as usize;
+            out.extend_from_slice(&data[start..start + row as usize]);
+        }
+        out
+    }
+}

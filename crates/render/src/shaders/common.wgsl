@@ -1,0 +1,52 @@
+// common.wgsl — prepended to every screen-space and G-buffer shader.
+//
+// `Frame` mirrors `crate::frame::FrameUniforms` field for field (a naga layout test checks the
+// offsets). Conventions (DESIGN.md): right-handed world, +Y up, view space looks down −Z, pixel
+// centres at (x + 0.5, y + 0.5) with row 0 at the top, wgpu clip depth 0..1.
+
+struct Frame {
+    clip_from_world: mat4x4<f32>,
+    world_from_clip: mat4x4<f32>,
+    view_from_world: mat4x4<f32>,
+    world_from_view: mat4x4<f32>,
+    // Last frame's camera, for motion vectors and reprojection.
+    prev_clip_from_world: mat4x4<f32>,
+    // xyz: camera position (world); w: unused.
+    camera_position: vec4<f32>,
+    // width, height, 1/width, 1/height (pixels).
+    size: vec4<f32>,
+    // near, far (m), aspect (w/h), tan(yfov / 2).
+    projection: vec4<f32>,
+    // environment rotation about +Y (rad), intensity, specular mip count, radiance mip count.
+    env_params: vec4<f32>,
+    // exposure (EV), tonemap operator (0 aces, 1 neutral, 2 linear), shadow normal offset
+    // (in shadow-map texels), unused.
+    post: vec4<f32>,
+    // frame index, light count, seed, selected AOV (for the AOV pass).
+    counts: vec4<u32>,
+}
+
+@group(0) @binding(0) var<uniform> frame: Frame;
+
+const PI: f32 = 3.14159265358979;
+
+// View-space position of pixel `pixel` (integer coordinates) at view depth `view_depth` (> 0, m).
+fn view_position(pixel: vec2<u32>, view_depth: f32) -> vec3<f32> {
+    let p = (vec2<f32>(pixel) + 0.5) * frame.size.zw;
+    let ndc = vec2<f32>(2.0 * p.x - 1.0, 1.0 - 2.0 * p.y);
+    let t = frame.projection.w;
+    return vec3<f32>(ndc.x * t * frame.projection.z, ndc.y * t, -1.0) * view_depth;
+}
+
+fn world_position(pixel: vec2<u32>, view_depth: f32) -> vec3<f32> {
+    return (frame.world_from_view * vec4<f32>(view_position(pixel, view_depth), 1.0)).xyz;
+}
+
+// Unit world direction from the camera through the centre of `pixel`.
+fn view_ray(pixel: vec2<u32>) -> vec3<f32> {
+    return normalize((frame.world_from_view * vec4<f32>(view_position(pixel, 1.0), 0.0)).xyz);
+}
+
+fn in_bounds(pixel: vec2<u32>) -> bool {
+    return f32(pixel.x) < frame.size.x && f32(pixel.y) < frame.size.y;
+}

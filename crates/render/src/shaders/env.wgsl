@@ -1,0 +1,65 @@
+// env.wgsl — environment bindings and lookups, prepended (after common.wgsl) to passes that read
+// the environment. Bindings 1..=4 are reserved for it in every such pass.
+//
+// Lat-long convention (DESIGN.md, bit-for-bit the same as nearfield_scene::environment):
+//   v = acos(d.y) / π (row 0 = zenith), u = atan2(d.x, −d.z) / (2π) wrapped to [0, 1),
+// with d first turned by −rotation about +Y. The sampler repeats in u and clamps in v.
+
+// Radiance map with box-filtered mips (background, blurred lookups).
+@group(0) @binding(1) var env_radiance: texture_2d<f32>;
+// GGX-prefiltered radiance: mip k holds roughness k / (count − 1) (split-sum, Karis 2013).
+@group(0) @binding(2) var env_specular: texture_2d<f32>;
+@group(0) @binding(3) var env_sampler: sampler;
+// Order-3 SH projection of the radiance (16 RGB coefficients in .xyz), intensity applied.
+@group(0) @binding(4) var<uniform> env_sh: array<vec4<f32>, 16>;
+
+fn env_uv(d: vec3<f32>) -> vec2<f32> {
+    let a = -frame.env_params.x;
+    let s = sin(a);
+    let c = cos(a);
+    let r = normalize(vec3<f32>(c * d.x + s * d.z, d.y, -s * d.x + c * d.z));
+    var u = atan2(r.x, -r.z) / (2.0 * PI);
+    u = select(u, u + 1.0, u < 0.0);
+    return vec2<f32>(u, acos(clamp(r.y, -1.0, 1.0)) / PI);
+}
+
+// Radiance from direction d at mip `lod` of the box-filtered chain.
+fn env_radiance_at(d: vec3<f32>, lod: f32) -> vec3<f32> {
+    return textureSampleLevel(env_radiance, env_sampler, env_uv(d), lod).rgb * frame.env_params.y;
+}
+
+// Prefiltered GGX radiance for perceptual roughness r.
+fn env_specular_at(d: vec3<f32>, roughness: f32) -> vec3<f32> {
+    let lod = roughness * (frame.env_params.z - 1.0);
+    return textureSampleLevel(env_specular, env_sampler, env_uv(d), lod).rgb * frame.env_params.y;
+}
+
+// The 16 real SH basis functions (nearfield_scene::sh::basis16, same order and constants).
+fn sh_basis(d: vec3<f32>) -> array<f32, 16> {
+    let x = d.x;
+    let y = d.y;
+    let z = d.z;
+    return array<f32, 16>(
+        0.2820948,
+        0.4886025 * y, 0.4886025 * z, 0.4886025 * x,
+        1.0925484 * x * y, 1.0925484 * y * z, 0.31539157 * (3.0 * z * z - 1.0),
+        1.0925484 * x * z, 0.5462742 * (x * x - y * y),
+        0.5900436 * y * (3.0 * x * x - y * y), 2.8906114 * x * y * z,
+        0.4570458 * y * (5.0 * z * z - 1.0), 0.37317633 * z * (5.0 * z * z - 3.0),
+        0.4570458 * x * (5.0 * z * z - 1.0), 1.4453057 * z * (x * x - y * y),
+        0.5900436 * x * (x * x - 3.0 * y * y));
+}
+
+// Unoccluded diffuse irradiance over π, E(n)/π, from bands 0..2 (Ramamoorthi & Hanrahan 2001:
+// Â_l/π = 1, 2/3, 1/4; band 3 does not contribute to irradiance).
+fn env_irradiance_sh(n: vec3<f32>) -> vec3<f32> {
+    let b = sh_basis(n);
+    var e = env_sh[0].rgb * b[0];
+    for (var i = 1u; i < 4u; i++) {
+        e += env_sh[i].rgb * (b[i] * (2.0 / 3.0));
+    }
+    for (var i = 4u; i < 9u; i++) {
+        e += env_sh[i].rgb * (b[i] * 0.25);
+    }
+    return max(e, vec3<f32>(0.0));
+}

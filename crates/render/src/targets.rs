@@ -1,0 +1,136 @@
+//! Screen-sized render targets of one frame. Every screen-space pass reads and writes these; the
+//! formats here are the contract with the shaders.
+
+use crate::RenderError;
+
+/// G-buffer formats (see gbuffer.wgsl for the meaning of every channel).
+pub const NORMAL_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
+pub const ALBEDO_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrgb;
+pub const MATERIAL_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
+pub const EMISSIVE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
+pub const MOTION_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rg16Float;
+pub const VIEW_DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R32Float;
+pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
+/// Lighting buffers: HDR radiance or irradiance/π, linear RGB.
+pub const HDR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
+/// Ambient occlusion in [0, 1].
+pub const AO_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R32Float;
+/// Display image, sRGB-encoded by the tonemapper.
+pub const FINAL_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
+/// AOV readback image.
+pub const AOV_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
+
+/// Largest image side accepted (pixels).
+pub const MAX_SIZE: u32 = 8192;
+
+/// A texture and its full view.
+pub struct Target {
+    pub texture: wgpu::Texture,
+    pub view: wgpu::TextureView,
+}
+
+impl Target {
+    fn new(
+        device: &wgpu::Device,
+        label: &str,
+        size: (u32, u32),
+        format: wgpu::TextureFormat,
+        usage: wgpu::TextureUsages,
+    ) -> Self {
+        let texture = device.create_texture(&wgpu::TextureDescriptor {
+            label: Some(label),
+            size: wgpu::Extent3d {
+                width: size.0,
+                height: size.1,
+                depth_or_array_layers: 1,
+            },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format,
+            usage,
+            view_formats: &[],
+        });
+        let view = texture.create_view(&Default::default());
+        Target { texture, view }
+    }
+}
+
+/// All screen-sized targets.
+pub struct FrameTargets {
+    pub size: (u32, u32),
+    // G-buffer (raster).
+    pub normal: Target,
+    pub albedo: Target,
+    pub material: Target,
+    pub emissive: Target,
+    pub motion: Target,
+    pub view_depth: Target,
+    pub depth: Target,
+    // Direct lighting.
+    pub light_irradiance: Target,
+    pub specular: Target,
+    /// Ping-pong pair: frame i writes `direct_radiance[i % 2]` and can read last frame's from
+    /// the other one.
+    pub direct_radiance: [Target; 2],
+    // Near-field technique outputs.
+    pub ao: Target,
+    pub env_irradiance: Target,
+    pub indirect_irradiance: Target,
+    // Composite, tonemap, readback.
+    pub radiance: Target,
+    pub final_ldr: Target,
+    pub aov: Target,
+}
+
+/// Checks an image size before anything is allocated.
+pub fn check_size(size: (u32, u32), device_max: u32) -> Result<(), RenderError> {
+    let (width, height) = size;
+    let limit = MAX_SIZE.min(device_max);
+    if width == 0 || height == 0 {
+        return Err(RenderError::Size {
+            width,
+            height,
+            why: "both sides must be at least 1".into(),
+        });
+    }
+    if width > limit || height > limit {
+        return Err(RenderError::Size {
+            width,
+            height,
+            why: format!("the largest side supported is {limit}"),
+        });
+    }
+    Ok(())
+}
+
+impl FrameTargets {
+    pub fn new(device: &wgpu::Device, size: (u32, u32)) -> Self {
+        use wgpu::TextureUsages as U;
+        let raster = U::RENDER_ATTACHMENT | U::TEXTURE_BINDING;
+        let storage = U::STORAGE_BINDING | U::TEXTURE_BINDING;
+        let t = |label: &str, format, usage| Target::new(device, label, size, format, usage);
+        FrameTargets {
+            size,
+            normal: t("gbuffer normal", NORMAL_FORMAT, raster),
+            albedo: t("gbuffer albedo", ALBEDO_FORMAT, raster),
+            material: t("gbuffer material", MATERIAL_FORMAT, raster),
+            emissive: t("gbuffer emissive", EMISSIVE_FORMAT, raster),
+            motion: t("gbuffer motion", MOTION_FORMAT, raster),
+            view_depth: t("gbuffer view depth", VIEW_DEPTH_FORMAT, raster),
+            depth: t("gbuffer depth", DEPTH_FORMAT, U::RENDER_ATTACHMENT),
+            light_irradiance: t("light irradiance", HDR_FORMAT, storage),
+            specular: t("specular", HDR_FORMAT, storage),
+            direct_radiance: [
+                t("direct radiance 0", HDR_FORMAT, storage),
+                t("direct radiance 1", HDR_FORMAT, storage),
+            ],
+            ao: t("ao", AO_FORMAT, storage),
+            env_irradiance: t("env irradiance", HDR_FORMAT, storage),
+            indirect_irradiance: t("indirect irradiance", HDR_FORMAT, storage),
+            radiance: t("radiance", HDR_FORMAT, storage),
+            final_ldr: t("final", FINAL_FORMAT, storage | U::COPY_SRC),
+            aov: t("aov", AOV_FORMAT, U::STORAGE_BINDING | U::COPY_SRC),
+        }
+    }
+}

@@ -1,0 +1,96 @@
+//! Near-field techniques and their registry.
+//!
+//! A technique reads the G-buffer, the direct radiance (this frame's and last frame's) and the
+//! environment, and writes `ao`, `env_irradiance` and `indirect_irradiance` (DESIGN.md's AOV
+//! definitions; `crate::targets`). The registry is the one list that the command line, the
+//! viewer, `bench` and `compare` enumerate.
+
+pub mod none;
+
+use crate::RenderError;
+use crate::gpu_env::GpuEnvironment;
+use crate::profiler::GpuProfiler;
+use crate::targets::FrameTargets;
+
+/// Generic settings from the command line, interpreted by each technique: `--samples`,
+/// `--radius` and `--set key=value`.
+#[derive(Clone, Debug, Default)]
+pub struct TechniqueParams {
+    /// Samples per pixel (`--samples`); `None` = the technique's default.
+    pub samples: Option<u32>,
+    /// Near-field radius in metres (`--radius`, `inf` allowed); `None` = default.
+    pub radius: Option<f32>,
+    /// `--set key=value` pairs, in order.
+    pub set: Vec<(String, String)>,
+}
+
+/// What a technique may bind when it is created.
+pub struct TechniqueContext<'a> {
+    pub device: &'a wgpu::Device,
+    pub queue: &'a wgpu::Queue,
+    pub frame: &'a wgpu::Buffer,
+    pub targets: &'a FrameTargets,
+    pub env: &'a GpuEnvironment,
+}
+
+/// A created technique: records its passes each frame.
+pub trait Technique {
+    fn name(&self) -> &'static str;
+    /// Records this frame's passes. `frame_index` selects the direct-radiance ping-pong side:
+    /// this frame's is `targets.direct_radiance[frame_index % 2]`, last frame's the other.
+    /// Allocates nothing.
+    fn encode(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        profiler: &mut GpuProfiler,
+        frame_index: u32,
+    );
+}
+
+/// A registry entry.
+pub struct TechniqueDesc {
+    pub name: &'static str,
+    /// One line for `--help` and the README.
+    pub summary: &'static str,
+    pub create: fn(&TechniqueContext, &TechniqueParams) -> Result<Box<dyn Technique>, RenderError>,
+}
+
+/// Every technique, in the order shown to users.
+pub const REGISTRY: &[TechniqueDesc] = &[none::DESC];
+
+/// Names of all registered techniques.
+pub fn names() -> Vec<&'static str> {
+    REGISTRY.iter().map(|t| t.name).collect()
+}
+
+/// Looks a technique up by name.
+pub fn find(name: &str) -> Result<&'static TechniqueDesc, RenderError> {
+    REGISTRY
+        .iter()
+        .find(|t| t.name == name)
+        .ok_or_else(|| RenderError::UnknownTechnique {
+            name: name.to_string(),
+            known: names().join(", "),
+        })
+}
+
+/// Rejects `--set` keys a technique does not know, naming the ones it does.
+pub fn reject_unknown_keys(
+    technique: &str,
+    params: &TechniqueParams,
+    known: &[&str],
+) -> Result<(), RenderError> {
+    for (k, _) in &params.set {
+        if !known.contains(&k.as_str()) {
+            return Err(RenderError::Setting {
+                technique: technique.into(),
+                msg: if known.is_empty() {
+                    format!("unknown setting '{k}' (this technique has no settings)")
+                } else {
+                    format!("unknown setting '{k}' (known: {})", known.join(", "))
+                },
+            });
+        }
+    }
+    Ok(())
+}
