@@ -21,7 +21,7 @@ pub struct SceneOpts {
     #[arg(long)]
     pub env: Option<String>,
     /// Multiplies the environment's radiance (≥ 0).
-    #[arg(long, default_value_t = 1.0)]
+    #[arg(long, default_value_t = 1.0, allow_hyphen_values = true)]
     pub env_intensity: f32,
     /// Turns the environment about +Y (degrees).
     #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
@@ -156,7 +156,7 @@ pub struct TechniqueOpts {
     #[arg(long)]
     pub samples: Option<u32>,
     /// Near-field radius in metres (> 0, or inf); default: the technique's.
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true)]
     pub radius: Option<String>,
     /// Technique setting KEY=VALUE (repeatable); see the README for each technique's keys.
     #[arg(long = "set", value_name = "KEY=VALUE")]

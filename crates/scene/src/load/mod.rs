@@ -8,7 +8,8 @@ pub mod ply;
 use crate::{Mesh, SceneError};
 use std::path::Path;
 
-/// Fills missing or degenerate normals with smooth area-weighted ones, and missing uvs with 0.
+/// Fills missing or degenerate normals with smooth area-weighted ones (and normalises stored
+/// ones), and missing uvs with 0.
 pub(crate) fn finish_mesh(mesh: &mut Mesh, path: &Path) {
     if mesh.normals_need_generating() {
         if !mesh.normals.is_empty() {
@@ -19,6 +20,11 @@ pub(crate) fn finish_mesh(mesh: &mut Mesh, path: &Path) {
             );
         }
         mesh.generate_smooth_normals();
+    } else {
+        // Files may store unnormalised normals; shading needs unit ones.
+        for n in &mut mesh.normals {
+            *n = n.normalize();
+        }
     }
     if mesh.uvs.len() != mesh.positions.len() {
         mesh.uvs = vec![glam::Vec2::ZERO; mesh.positions.len()];

@@ -1,0 +1,154 @@
+//! Bad input never panics: each case below exits with status 2 and prints exactly one line that
+//! names the problem. Cases that reach the GPU (sizes, methods) fail before an adapter is needed.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+fn nearfield(args: &[&str]) -> (i32, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_nearfield"))
+        .args(args)
+        .output()
+        .expect("run nearfield");
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+fn scratch() -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("nearfield-bad-input-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+fn write(dir: &Path, name: &str, bytes: &[u8]) -> String {
+    let p = dir.join(name);
+    std::fs::write(&p, bytes).unwrap();
+    p.to_str().unwrap().to_string()
+}
+
+/// A one-triangle glTF whose buffer is a data URI; `extra` is spliced into the root object.
+fn gltf(buffer_uri: &str, extra: &str) -> String {
+    format!(
+        r#"{{"asset":{{"version":"2.0"}},"buffers":[{{"byteLength":36,"uri":"{buffer_uri}"}}],
+        "bufferViews":[{{"buffer":0,"byteLength":36}}],
+        "accessors":[{{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3","min":[0,0,0],"max":[1,1,0]}}],
+        "meshes":[{{"primitives":[{{"attributes":{{"POSITION":0}},"material":0}}]}}],
+        "materials":[{{}}],
+        "nodes":[{{"mesh":0}}],"scenes":[{{"nodes":[0]}}],"scene":0{extra}}}"#
+    )
+}
+
+fn triangle_data_uri() -> String {
+    let floats: [f32; 9] = [0., 0., 0., 1., 0., 0., 0., 1., 0.];
+    let bytes: Vec<u8> = floats.iter().flat_map(|f| f.to_le_bytes()).collect();
+    // Minimal base64 (standard alphabet, padded).
+    const A: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    let mut s = String::new();
+    for c in bytes.chunks(3) {
+        let n = (c[0] as u32) << 16
+            | (*c.get(1).unwrap_or(&0) as u32) << 8
+            | *c.get(2).unwrap_or(&0) as u32;
+        for i in 0..4 {
+            if i <= c.len() {
+                s.push(A[(n >> (18 - 6 * i) & 63) as usize] as char);
+            } else {
+                s.push('=');
+            }
+        }
+    }
+    format!("data:application/octet-stream;base64,{s}")
+}
+
+fn exr_with(dir: &Path, name: &str, value: f32) -> String {
+    let mut img = image::Rgb32FImage::from_pixel(8, 4, image::Rgb([0.5, 0.5, 0.5]));
+    img.put_pixel(3, 2, image::Rgb([value, 0.0, 0.0]));
+    let p = dir.join(name);
+    img.save_with_format(&p, image::ImageFormat::OpenExr)
+        .unwrap();
+    p.to_str().unwrap().to_string()
+}
+
+#[test]
+fn every_bad_input_exits_2_with_one_line() {
+    let d = scratch();
+    let uri = triangle_data_uri();
+    let good_gltf = write(&d, "good.gltf", gltf(&uri, "").as_bytes());
+    let cases: Vec<(Vec<String>, &str)> = vec![
+        (vec!["render".into(), d.join("nope.gltf").to_str().unwrap().into()], "no such file"),
+        (vec!["render".into(), write(&d, "scene.xyz", b"hello")], "unknown scene format"),
+        (vec!["render".into(), write(&d, "corrupt.gltf", b"{ not json")], "invalid glTF"),
+        (vec!["render".into(), write(&d, "corrupt.glb", b"glTF\x02\x00\x00\x00garbage")], "invalid glTF"),
+        (vec!["render".into(), write(&d, "nobuffer.gltf", gltf("missing.bin", "").as_bytes())], "buffer"),
+        (
+            vec![
+                "render".into(),
+                write(
+                    &d,
+                    "notexture.gltf",
+                    gltf(&uri, r#","images":[{"uri":"missing.png"}],"textures":[{"source":0}]"#)
+                        .replace(r#""materials":[{}]"#, r#""materials":[{"pbrMetallicRoughness":{"baseColorTexture":{"index":0}}}]"#)
+                        .as_bytes(),
+                ),
+            ],
+            "image",
+        ),
+        (
+            vec![
+                "render".into(),
+                write(&d, "required.gltf", gltf(&uri, r#","extensionsUsed":["KHR_draco_mesh_compression"],"extensionsRequired":["KHR_draco_mesh_compression"]"#).as_bytes()),
+            ],
+            "KHR_draco_mesh_compression",
+        ),
+        (vec!["render".into(), write(&d, "corrupt.obj", b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n")], "OBJ"),
+        (vec!["render".into(), write(&d, "empty.obj", b"# nothing\n")], "empty.obj"),
+        (vec!["render".into(), write(&d, "corrupt.ply", b"ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nend_header\n0\n1\n")], "PLY"),
+        (vec!["render".into(), write(&d, "badindex.ply", b"ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n")], "vertex 7"),
+        (vec!["render".into(), good_gltf.clone(), "--env".into(), write(&d, "corrupt.hdr", b"#?RADIANCE\ngarbage")], "environment"),
+        (vec!["render".into(), good_gltf.clone(), "--env".into(), write(&d, "corrupt.exr", b"not an exr")], "environment"),
+        (vec!["render".into(), good_gltf.clone(), "--env".into(), exr_with(&d, "nan.exr", f32::NAN)], "not finite"),
+        (vec!["render".into(), good_gltf.clone(), "--env".into(), exr_with(&d, "inf.exr", f32::INFINITY)], "not finite"),
+        (vec!["render".into(), good_gltf.clone(), "--env".into(), d.join("missing.hdr").to_str().unwrap().into()], "no such file"),
+        (vec!["render".into(), "--env".into(), "constant:1,x,2".into()], "constant:R,G,B"),
+        (vec!["render".into(), "--size".into(), "0x0".into()], "at least 1"),
+        (vec!["render".into(), "--size".into(), "100000x100000".into()], "largest side"),
+        (vec!["render".into(), "--size".into(), "big".into()], "WIDTHxHEIGHT"),
+        (vec!["render".into(), "--method".into(), "magic".into()], "unknown technique"),
+        (vec!["render".into(), "--aov".into(), "magic".into()], "unknown AOV"),
+        (vec!["render".into(), "--aov".into(), "ao".into(), "-o".into(), "x.png".into()], ".exr"),
+        (vec!["render".into(), "-o".into(), d.join("no/such/dir/x.png").to_str().unwrap().into()], "does not exist"),
+        (vec!["render".into(), "--camera".into(), write(&d, "cam.json", br#"{"target":[0,0,0],"yfov_deg":45}"#)], "missing field `eye`"),
+        (vec!["render".into(), "--camera".into(), write(&d, "cam2.json", br#"{"eye":[0,0,0],"target":[0,0,0],"yfov_deg":45}"#)], "coincide"),
+        (vec!["render".into(), "--camera".into(), "7".into()], "camera(s)"),
+        (vec!["render".into(), "--fov".into(), "0".into()], "--fov"),
+        (vec!["render".into(), "--radius".into(), "-1".into()], "--radius"),
+        (vec!["render".into(), "--radius".into(), "nan".into()], "--radius"),
+        (vec!["render".into(), "--samples".into(), "0".into()], "--samples"),
+        (vec!["render".into(), "--set".into(), "radius".into()], "KEY=VALUE"),
+        (vec!["render".into(), "--set".into(), "foo=1".into()], "unknown setting"),
+        (vec!["render".into(), "--frames".into(), "0".into()], "--frames"),
+        (vec!["render".into(), "--exposure".into(), "nan".into()], "--exposure"),
+        (vec!["render".into(), "--tonemap".into(), "magic".into()], "--tonemap"),
+        (vec!["render".into(), "--env-intensity".into(), "-1".into()], "--env-intensity"),
+        (vec!["render".into(), "builtin:nope".into()], "unknown built-in scene"),
+        (vec!["render".into(), "--adapter".into(), "no-such-gpu-xyz".into()], "no GPU adapter"),
+        (vec!["bench".into(), "--methods".into(), "none,magic".into()], "unknown technique"),
+        (vec!["render".into(), "--no-such-flag".into()], "--no-such-flag"),
+    ];
+    for (args, needle) in cases {
+        let args: Vec<&str> = args.iter().map(String::as_str).collect();
+        let (code, stderr) = nearfield(&args);
+        let lines: Vec<&str> = stderr.lines().filter(|l| !l.trim().is_empty()).collect();
+        assert_eq!(code, 2, "{args:?}: exit {code}, stderr:\n{stderr}");
+        assert!(!stderr.contains("panicked"), "{args:?} panicked:\n{stderr}");
+        assert_eq!(
+            lines.len(),
+            1,
+            "{args:?}: expected one line, got:\n{stderr}"
+        );
+        assert!(
+            stderr.contains(needle),
+            "{args:?}: '{needle}' not in:\n{stderr}"
+        );
+    }
+}

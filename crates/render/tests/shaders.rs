@@ -1,0 +1,138 @@
+//! Every WGSL program parses and validates with naga (no GPU needed), and every struct shared
+//! between host and shader has the same size and member offsets on both sides.
+
+use nearfield_render::{
+    frame::FrameUniforms,
+    gpu_env::PrefilterParams,
+    gpu_scene::{GpuLight, GpuMaterial},
+};
+use std::mem::{offset_of, size_of};
+
+fn module(source: &str) -> naga::Module {
+    naga::front::wgsl::parse_str(source).unwrap_or_else(|e| panic!("{}", e.emit_to_string(source)))
+}
+
+#[test]
+fn every_shader_validates() {
+    let sources = nearfield_render::shader_sources();
+    assert!(sources.len() >= 8);
+    for (name, source) in sources {
+        let m = module(&source);
+        naga::valid::Validator::new(
+            naga::valid::ValidationFlags::all(),
+            naga::valid::Capabilities::default(),
+        )
+        .validate(&m)
+        .unwrap_or_else(|e| panic!("{name}: {}", e.emit_to_string(&source)));
+    }
+}
+
+/// (size, [(member name, offset)]) of a struct in a WGSL module.
+fn layout(source: &str, name: &str) -> (u32, Vec<(String, u32)>) {
+    let m = module(source);
+    for (_, ty) in m.types.iter() {
+        if ty.name.as_deref() == Some(name)
+            && let naga::TypeInner::Struct { members, span } = &ty.inner
+        {
+            return (
+                *span,
+                members
+                    .iter()
+                    .map(|mm| (mm.name.clone().unwrap_or_default(), mm.offset))
+                    .collect(),
+            );
+        }
+    }
+    panic!("struct {name} not found");
+}
+
+fn check(source: &str, name: &str, size: usize, offsets: &[(&str, usize)]) {
+    let (span, members) = layout(source, name);
+    assert_eq!(span as usize, size, "{name}: size");
+    assert_eq!(members.len(), offsets.len(), "{name}: member count");
+    for ((wgsl_name, wgsl_off), (rust_name, rust_off)) in members.iter().zip(offsets) {
+        assert_eq!(wgsl_name, rust_name, "{name}: member order");
+        assert_eq!(*wgsl_off as usize, *rust_off, "{name}.{wgsl_name}: offset");
+    }
+}
+
+#[test]
+fn host_and_shader_structs_agree() {
+    let common = nearfield_render::util::COMMON_WGSL;
+    check(
+        common,
+        "Frame",
+        size_of::<FrameUniforms>(),
+        &[
+            (
+                "clip_from_world",
+                offset_of!(FrameUniforms, clip_from_world),
+            ),
+            (
+                "world_from_clip",
+                offset_of!(FrameUniforms, world_from_clip),
+            ),
+            (
+                "view_from_world",
+                offset_of!(FrameUniforms, view_from_world),
+            ),
+            (
+                "world_from_view",
+                offset_of!(FrameUniforms, world_from_view),
+            ),
+            (
+                "prev_clip_from_world",
+                offset_of!(FrameUniforms, prev_clip_from_world),
+            ),
+            (
+                "camera_position",
+                offset_of!(FrameUniforms, camera_position),
+            ),
+            ("size", offset_of!(FrameUniforms, size)),
+            ("projection", offset_of!(FrameUniforms, projection)),
+            ("env_params", offset_of!(FrameUniforms, env_params)),
+            ("post", offset_of!(FrameUniforms, post)),
+            ("counts", offset_of!(FrameUniforms, counts)),
+        ],
+    );
+    let material = [
+        ("base_color", offset_of!(GpuMaterial, base_color)),
+        ("emissive", offset_of!(GpuMaterial, emissive)),
+        ("params", offset_of!(GpuMaterial, params)),
+        ("textures", offset_of!(GpuMaterial, textures)),
+    ];
+    check(
+        &nearfield_render::passes::gbuffer::source(),
+        "GpuMaterial",
+        size_of::<GpuMaterial>(),
+        &material,
+    );
+    check(
+        nearfield_render::passes::shadow::SHADER,
+        "GpuMaterial",
+        size_of::<GpuMaterial>(),
+        &material,
+    );
+    check(
+        &nearfield_render::passes::direct_lighting::source(),
+        "GpuLight",
+        size_of::<GpuLight>(),
+        &[
+            ("position", offset_of!(GpuLight, position)),
+            ("direction", offset_of!(GpuLight, direction)),
+            ("color", offset_of!(GpuLight, color)),
+            ("cone", offset_of!(GpuLight, cone)),
+        ],
+    );
+    check(
+        include_str!("../src/passes/env_prefilter.wgsl"),
+        "PrefilterParams",
+        size_of::<PrefilterParams>(),
+        &[
+            ("roughness", offset_of!(PrefilterParams, roughness)),
+            ("source_width", offset_of!(PrefilterParams, source_width)),
+            ("source_height", offset_of!(PrefilterParams, source_height)),
+            ("source_mips", offset_of!(PrefilterParams, source_mips)),
+        ],
+    );
+}
