@@ -189,7 +189,7 @@ impl TechniqueOpts {
                 let v: f32 = r
                     .parse()
                     .map_err(|_| BadInput(format!("--radius {r}: expected a number or inf")))?;
-                if !(v > 0.0) || v.is_nan() {
+                if v.is_nan() || v <= 0.0 {
                     return Err(BadInput(format!("--radius {r}: must be > 0 (or inf)")).into());
                 }
                 Some(v)

@@ -111,7 +111,7 @@ impl Sky {
         // xyY → XYZ → linear Rec.709 (sRGB primaries, D65).
         let xyz = Vec3::new(x / y * big_y, big_y, (1.0 - x - y) / y * big_y);
         let to_rgb = Mat3::from_cols(
-            Vec3::new(3.2404542, -0.9692660, 0.0556434),
+            Vec3::new(3.2404542, -0.969266, 0.0556434),
             Vec3::new(-1.5371385, 1.8760108, -0.2040259),
             Vec3::new(-0.4985314, 0.0415560, 1.0572252),
         );

@@ -47,12 +47,16 @@ pub trait Technique {
     );
 }
 
+/// Builds a technique's pipelines and bind groups.
+pub type CreateFn =
+    fn(&TechniqueContext, &TechniqueParams) -> Result<Box<dyn Technique>, RenderError>;
+
 /// A registry entry.
 pub struct TechniqueDesc {
     pub name: &'static str,
     /// One line for `--help` and the README.
     pub summary: &'static str,
-    pub create: fn(&TechniqueContext, &TechniqueParams) -> Result<Box<dyn Technique>, RenderError>,
+    pub create: CreateFn,
 }
 
 /// Every technique, in the order shown to users.

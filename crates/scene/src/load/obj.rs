@@ -40,8 +40,10 @@ pub fn load(path: &Path) -> Result<Scene, SceneError> {
     };
     scene.materials.push(Material::default());
     for m in &mtl {
-        let mut mat = Material::default();
-        mat.name = m.name.clone();
+        let mut mat = Material {
+            name: m.name.clone(),
+            ..Default::default()
+        };
         if let Some(kd) = m.diffuse {
             mat.base_color = Vec3::from(kd).extend(1.0);
         }

@@ -1,0 +1,32 @@
+#!/usr/bin/env bash
+# Installs what a fresh Debian/Ubuntu machine lacks to build and run nearfield:
+# - a Vulkan driver: Mesa's lavapipe (software rasterizer) when no Vulkan ICD is installed;
+# - a Rust toolchain through rustup when cargo is missing.
+# Idempotent: does nothing when both are present.
+set -euo pipefail
+
+as_root() {
+    if [ "$(id -u)" -eq 0 ]; then "$@"; else sudo "$@"; fi
+}
+
+has_vulkan_driver() {
+    # An installed ICD manifest and the loader library are enough for wgpu to find an adapter.
+    ls /usr/share/vulkan/icd.d/*.json /etc/vulkan/icd.d/*.json >/dev/null 2>&1 &&
+        { ldconfig -p 2>/dev/null | grep -q 'libvulkan\.so\.1'; }
+}
+
+if ! has_vulkan_driver; then
+    echo "setup: no Vulkan driver found; installing Mesa's lavapipe (mesa-vulkan-drivers, libvulkan1)"
+    export DEBIAN_FRONTEND=noninteractive
+    as_root apt-get update -qq
+    as_root apt-get install -y -qq --no-install-recommends mesa-vulkan-drivers libvulkan1 >/dev/null
+fi
+
+if ! command -v cargo >/dev/null 2>&1; then
+    if [ -x "$HOME/.cargo/bin/cargo" ]; then
+        echo "setup: cargo is in ~/.cargo/bin; add it to PATH"
+    else
+        echo "setup: installing Rust (rustup, stable)"
+        curl --proto '=https' --tlsv1.2 -sSf https://sh.rustup.rs | sh -s -- -y --profile minimal
+    fi
+fi
