@@ -90,6 +90,10 @@ impl GpuProfiler {
     ) -> Option<wgpu::RenderPassTimestampWrites<'_>> {
         if first {
             self.slot(label)?;
+        } else if !last {
+            // Passes in the middle of the group write no timestamp (wgpu requires at least one
+            // index when timestamp writes are given).
+            return None;
         }
         let i = 2 * (self.labels.len() as u32).checked_sub(1)?;
         let q = self.queries.as_ref()?;

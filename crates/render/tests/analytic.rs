@@ -127,10 +127,10 @@ fn lat_long_convention_on_the_gpu() {
             0.5 + 0.5 * (tau * uv.x).cos(),
         )
     });
-    // A tiny triangle far behind everything so that the scene is not empty.
+    // Tiny quads far off every axis so that the scene is not empty.
     let mut scene = facing_pair();
     for p in &mut scene.meshes[0].positions {
-        *p = *p * 1e-3 + Vec3::new(0.0, -500.0, 0.0);
+        *p = *p * 1e-3 + Vec3::splat(300.0);
     }
     let cases = [
         (Vec3::NEG_Z, 0.0, 0.5),
@@ -304,5 +304,51 @@ fn directional_light_casts_the_box_shadow() {
     assert!(
         shadowed > 100 && lit > 500,
         "shadowed {shadowed}, lit {lit}"
+    );
+}
+
+/// A point light inside the closed room (six cube-face shadow layers): floor pixels receive
+/// exactly E/π = I cos θ / (π d²) where the light is unblocked, and never more. The block
+/// shadows only a small part of the floor.
+#[test]
+fn point_light_irradiance_through_cube_shadow_maps() {
+    let Some(ctx) = common::context() else { return };
+    let scene = builtin::scene("closed-box").unwrap();
+    let light = scene.lights[0];
+    let env = Environment::constant(Vec3::ZERO);
+    let camera = scene.default_camera();
+    let size = (96, 64);
+    let imgs = common::render_aovs(
+        &ctx,
+        &scene,
+        &env,
+        camera,
+        size,
+        &[Aov::LightIrradiance, Aov::Depth, Aov::Normal],
+    );
+    let (mut floor, mut exact) = (0, 0);
+    for y in 0..size.1 {
+        for x in 0..size.0 {
+            let n = imgs[2].get(x, y);
+            if n[3] == 0.0 || n[1] < 0.99 {
+                continue;
+            }
+            let p = common::world_position(&camera, size, &imgs[1], x, y);
+            if p.y > 0.01 {
+                continue;
+            }
+            floor += 1;
+            let want = light.irradiance(p, Vec3::Y).x / std::f32::consts::PI;
+            let got = imgs[0].get(x, y)[0];
+            assert!(got <= want * 1.01 + 1e-4, "{p}: {got} > {want}");
+            if (got - want).abs() <= 0.01 * want {
+                exact += 1;
+            }
+        }
+    }
+    assert!(floor > 1000, "{floor}");
+    assert!(
+        exact as f32 > 0.85 * floor as f32,
+        "{exact} of {floor} floor pixels match"
     );
 }
