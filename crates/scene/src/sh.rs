@@ -11,7 +11,6 @@
 
 use crate::Environment;
 use glam::Vec3;
-use std::f32::consts::PI;
 
 /// Number of coefficients for bands 0..=l_max.
 pub const fn coefficient_count(l_max: usize) -> usize {
@@ -86,33 +85,33 @@ pub fn evaluate(coeffs: &[Vec3], d: Vec3) -> Vec3 {
     coeffs.iter().enumerate().map(|(i, c)| *c * b[i]).sum()
 }
 
-/// The exact solid-angle integral of a basis product, for tests: ∫ Y_i Y_j dω ≈ δ_ij.
-pub fn orthonormality_error(samples_per_axis: u32) -> f32 {
-    let env = Environment::from_fn("unit", 2 * samples_per_axis, samples_per_axis, |_| {
-        Vec3::ONE
-    });
-    let mut worst: f32 = 0.0;
-    for i in 0..16 {
-        for j in 0..16 {
-            let mut s = 0.0f64;
-            for y in 0..env.height {
-                let dw = env.texel_solid_angle(y) as f64;
-                for x in 0..env.width {
-                    let b = basis16(env.texel_direction(x, y));
-                    s += (b[i] * b[j]) as f64 * dw;
-                }
-            }
-            let expect = if i == j { 1.0 } else { 0.0 };
-            worst = worst.max((s as f32 - expect).abs());
-        }
-    }
-    let _ = PI;
-    worst
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
+    use std::f32::consts::PI;
+
+    /// Largest deviation of the discretised ∫ Y_i Y_j dω from δ_ij.
+    fn orthonormality_error(samples_per_axis: u32) -> f32 {
+        let env = Environment::from_fn("unit", 2 * samples_per_axis, samples_per_axis, |_| {
+            Vec3::ONE
+        });
+        let mut worst: f32 = 0.0;
+        for i in 0..16 {
+            for j in 0..16 {
+                let mut s = 0.0f64;
+                for y in 0..env.height {
+                    let dw = env.texel_solid_angle(y) as f64;
+                    for x in 0..env.width {
+                        let b = basis16(env.texel_direction(x, y));
+                        s += (b[i] * b[j]) as f64 * dw;
+                    }
+                }
+                let expect = if i == j { 1.0 } else { 0.0 };
+                worst = worst.max((s as f32 - expect).abs());
+            }
+        }
+        worst
+    }
 
     #[test]
     fn basis_is_orthonormal() {
