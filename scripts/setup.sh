@@ -11,8 +11,8 @@ as_root() {
 
 has_vulkan_driver() {
     # An installed ICD manifest and the loader library are enough for wgpu to find an adapter.
-    ls /usr/share/vulkan/icd.d/*.json /etc/vulkan/icd.d/*.json >/dev/null 2>&1 &&
-        { ldconfig -p 2>/dev/null | grep -q 'libvulkan\.so\.1'; }
+    compgen -G '/usr/share/vulkan/icd.d/*.json' >/dev/null || compgen -G '/etc/vulkan/icd.d/*.json' >/dev/null || return 1
+    ldconfig -p 2>/dev/null | grep 'libvulkan\.so\.1' >/dev/null
 }
 
 if ! has_vulkan_driver; then

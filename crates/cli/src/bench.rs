@@ -106,16 +106,8 @@ pub fn run(args: BenchArgs) -> Result<()> {
     if args.frames == 0 || args.frames > 100_000 {
         return Err(BadInput(format!("--frames {}: must be in 1..=100000", args.frames)).into());
     }
-    if let Some(p) = &args.json
-        && let Some(dir) = p.parent().filter(|d| !d.as_os_str().is_empty())
-        && !dir.is_dir()
-    {
-        return Err(BadInput(format!(
-            "{}: directory {} does not exist",
-            p.display(),
-            dir.display()
-        ))
-        .into());
+    if let Some(p) = &args.json {
+        crate::render::check_parent_dir(p)?;
     }
     let params = args.technique.params()?;
     let size = crate::options::parse_size(&args.scene.size)?;

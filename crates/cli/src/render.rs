@@ -45,6 +45,11 @@ pub fn check_output(aov: Aov, path: &Path) -> Result<()> {
         ))
         .into());
     }
+    check_parent_dir(path)
+}
+
+/// Fails (exit 2) when the directory that would hold `path` does not exist.
+pub fn check_parent_dir(path: &Path) -> Result<()> {
     let parent = path.parent().filter(|p| !p.as_os_str().is_empty());
     if let Some(dir) = parent
         && !dir.is_dir()

@@ -133,6 +133,7 @@ fn every_bad_input_exits_2_with_one_line() {
         (vec!["render".into(), "builtin:nope".into()], "unknown built-in scene"),
         (vec!["render".into(), "--adapter".into(), "no-such-gpu-xyz".into()], "no GPU adapter"),
         (vec!["bench".into(), "--methods".into(), "none,magic".into()], "unknown technique"),
+        (vec!["bench".into(), "--json".into(), d.join("no/such/dir/b.json").to_str().unwrap().into()], "does not exist"),
         (vec!["render".into(), "--no-such-flag".into()], "--no-such-flag"),
     ];
     for (args, needle) in cases {

@@ -2,7 +2,7 @@
 
 mod common;
 
-use glam::{Vec2, Vec3};
+use glam::Vec3;
 use nearfield_render::Aov;
 use nearfield_scene::{Camera, Environment, Light, LightKind, Material, Mesh, Scene, builtin};
 
@@ -36,19 +36,8 @@ fn facing_pair() -> Scene {
         name: "pair".into(),
         ..Default::default()
     };
-    let quad = |mesh: &mut Mesh, c: [Vec3; 4]| {
-        let n = (c[1] - c[0]).cross(c[2] - c[0]).normalize();
-        let b = mesh.positions.len() as u32;
-        for p in c {
-            mesh.positions.push(p);
-            mesh.normals.push(n);
-            mesh.uvs.push(Vec2::ZERO);
-        }
-        mesh.indices.push([b, b + 1, b + 2]);
-        mesh.indices.push([b, b + 2, b + 3]);
-    };
     // Quad A faces +X at x = 0.5, quad B faces −X at x = −0.5, both spanning z ∈ [−1, 0].
-    quad(
+    common::push_quad(
         &mut mesh,
         [
             Vec3::new(0.5, 0.0, 0.0),
@@ -57,7 +46,7 @@ fn facing_pair() -> Scene {
             Vec3::new(0.5, 1.0, 0.0),
         ],
     );
-    quad(
+    common::push_quad(
         &mut mesh,
         [
             Vec3::new(-0.5, 0.0, -1.0),
@@ -204,15 +193,7 @@ fn directional_light_casts_the_box_shadow() {
         ],
     ];
     for c in faces {
-        let n = (c[1] - c[0]).cross(c[2] - c[0]).normalize();
-        let b = mesh.positions.len() as u32;
-        for p in c {
-            mesh.positions.push(p);
-            mesh.normals.push(n);
-            mesh.uvs.push(Vec2::ZERO);
-        }
-        mesh.indices.push([b, b + 1, b + 2]);
-        mesh.indices.push([b, b + 2, b + 3]);
+        common::push_quad(&mut mesh, c);
     }
     // Keep the ground small so that the shadow map's texels are fine.
     for p in &mut scene.meshes[0].positions {

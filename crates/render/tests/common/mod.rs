@@ -1,9 +1,9 @@
 //! Helpers for GPU tests: an adapter (lavapipe in CI), and rendering a scene to AOVs.
 #![allow(dead_code)]
 
-use glam::Vec3;
+use glam::{Vec2, Vec3};
 use nearfield_render::{Aov, AovImage, GpuContext, RenderSettings, Renderer, TechniqueParams};
-use nearfield_scene::{Camera, Environment, Scene};
+use nearfield_scene::{Camera, Environment, Mesh, Scene};
 
 /// The test adapter, or None (test skipped) when there is none — unless `REQUIRE_GPU=1`, which
 /// turns a missing adapter into a failure (CI sets it).
@@ -62,4 +62,17 @@ pub fn world_position(camera: &Camera, size: (u32, u32), depth: &AovImage, x: u3
     let d = camera.primary_ray(x, y, size);
     let t = depth.get(x, y)[0] / d.dot(camera.forward());
     camera.eye + d * t
+}
+
+/// Appends a planar quad (corners counter-clockwise seen from the front) with its flat normal.
+pub fn push_quad(mesh: &mut Mesh, c: [Vec3; 4]) {
+    let n = (c[1] - c[0]).cross(c[2] - c[0]).normalize();
+    let b = mesh.positions.len() as u32;
+    for p in c {
+        mesh.positions.push(p);
+        mesh.normals.push(n);
+        mesh.uvs.push(Vec2::ZERO);
+    }
+    mesh.indices.push([b, b + 1, b + 2]);
+    mesh.indices.push([b, b + 2, b + 3]);
 }
