@@ -76,6 +76,24 @@ impl Scene {
             .unwrap_or_else(|| Camera::framing(self.bounds(), 45f32.to_radians()))
     }
 
+    /// Base colour ρ (linear RGBA: factor × bilinear texture) of material `m` at `uv`.
+    pub fn base_color(&self, m: u32, uv: glam::Vec2) -> glam::Vec4 {
+        let mat = &self.materials[m as usize];
+        match mat.base_color_texture {
+            Some(t) => mat.base_color * self.textures[t].sample_bilinear(uv.x, uv.y),
+            None => mat.base_color,
+        }
+    }
+
+    /// Emitted radiance of material `m` at `uv` (factor × texture).
+    pub fn emission(&self, m: u32, uv: glam::Vec2) -> glam::Vec3 {
+        let mat = &self.materials[m as usize];
+        match mat.emissive_texture {
+            Some(t) => mat.emissive * self.textures[t].sample_bilinear(uv.x, uv.y).truncate(),
+            None => mat.emissive,
+        }
+    }
+
     /// Checks invariants that every consumer relies on: indices in range, finite positions,
     /// valid material references. Loaders call this before they return.
     pub fn validate(&self, path: &Path) -> Result<(), SceneError> {

@@ -105,6 +105,29 @@ impl Texture {
     }
 }
 
+impl Texture {
+    /// Bilinear lookup of level 0 at `uv`, wrapping (glTF `REPEAT`), as linear RGBA. Texels are
+    /// decoded before they are blended, as a GPU does for sRGB formats.
+    pub fn sample_bilinear(&self, u: f32, v: f32) -> Vec4 {
+        let x = u * self.width as f32 - 0.5;
+        let y = v * self.height as f32 - 0.5;
+        let (x0, y0) = (x.floor(), y.floor());
+        let (fx, fy) = (x - x0, y - y0);
+        let texel = |xi: i64, yi: i64| {
+            let xw = xi.rem_euclid(self.width as i64) as f32;
+            let yw = yi.rem_euclid(self.height as i64) as f32;
+            self.sample_nearest(
+                (xw + 0.5) / self.width as f32,
+                (yw + 0.5) / self.height as f32,
+            )
+        };
+        let (x0, y0) = (x0 as i64, y0 as i64);
+        let top = texel(x0, y0).lerp(texel(x0 + 1, y0), fx);
+        let bottom = texel(x0, y0 + 1).lerp(texel(x0 + 1, y0 + 1), fx);
+        top.lerp(bottom, fy)
+    }
+}
+
 /// The sRGB electro-optical transfer function (IEC 61966-2-1).
 pub fn srgb_to_linear(c: f32) -> f32 {
     if c <= 0.04045 {

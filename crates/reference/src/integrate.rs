@@ -1,0 +1,300 @@
+//! Per-pixel estimators of every AOV (DESIGN.md's definitions).
+//!
+//! For the primary hit P (normal n, albedo ρ), N cosine-weighted directions ωᵢ (pdf cos θ/π):
+//! - `ao` ≈ mean V_R(ωᵢ); `env-irradiance` ≈ mean V_R(ωᵢ) L_env(ωᵢ);
+//! - `indirect-irradiance` ≈ mean (1 − V_R(ωᵢ)) L_o(x′ᵢ), x′ᵢ the closest hit within R, with
+//!   L_o(x′) = Le(x′) + ρ(x′) (E_env(n′)/π + Σ_l E_l(x′, n′)/π): environment and lights with
+//!   full visibility (no occlusion, no shadows; E_env from `irradiance::IrradianceMap`), n′ the
+//!   shading normal of the side facing P;
+//! - `light-irradiance` = (1/π) Σ_l E_l(P, n) · [shadow ray reaches the light] — exact, no noise;
+//! - `diffuse` = ρ (env + light + indirect), R as given;
+//! - `radiance`: a path tracer with Lambertian surfaces of albedo ρ, next-event estimation of the
+//!   punctual lights, cosine-weighted continuation, environment on escape, emission where a path
+//!   hits an emitter; `max_depth` segments (camera segment included), Russian roulette from the
+//!   fourth segment on. Background pixels show the environment (alpha 0).
+//! The standard error is the sample standard deviation over √N (per channel).
+
+use crate::irradiance::IrradianceMap;
+use crate::sampling::{Pcg32, cosine_hemisphere, pixel_seed, r2, r2_offset};
+use crate::tracer::{Hit, Tracer, offset_origin};
+use crate::{PixelResult, ReferenceAov, ReferenceSettings};
+use glam::Vec3;
+use nearfield_scene::{Camera, Environment, Scene};
+use std::f32::consts::PI;
+
+pub struct Context<'a> {
+    pub tracer: Tracer<'a>,
+    pub scene: &'a Scene,
+    pub env: &'a Environment,
+    pub camera: Camera,
+    pub settings: ReferenceSettings,
+    irradiance: Option<IrradianceMap>,
+    scene_radius: f32,
+}
+
+/// Running mean and variance (Welford).
+#[derive(Default)]
+struct Stats {
+    n: u32,
+    mean: Vec3,
+    m2: Vec3,
+}
+
+impl Stats {
+    fn push(&mut self, x: Vec3) {
+        self.n += 1;
+        let d = x - self.mean;
+        self.mean += d / self.n as f32;
+        self.m2 += d * (x - self.mean);
+    }
+
+    fn stderr(&self) -> Vec3 {
+        if self.n < 2 {
+            return Vec3::ZERO;
+        }
+        (self.m2 / ((self.n - 1) as f32 * self.n as f32))
+            .max(Vec3::ZERO)
+            .map(f32::sqrt)
+    }
+}
+
+impl<'a> Context<'a> {
+    pub fn new(
+        scene: &'a Scene,
+        env: &'a Environment,
+        camera: &Camera,
+        settings: &ReferenceSettings,
+    ) -> Self {
+        let needs_irradiance = matches!(
+            settings.aov,
+            ReferenceAov::IndirectIrradiance | ReferenceAov::Diffuse
+        );
+        Context {
+            tracer: Tracer::new(scene),
+            scene,
+            env,
+            camera: *camera,
+            settings: *settings,
+            irradiance: needs_irradiance.then(|| IrradianceMap::new(env)),
+            scene_radius: scene.bounds().radius(),
+        }
+    }
+
+    /// (1/π) Σ_l E_l(P, n) with exact shadow rays.
+    fn light_irradiance(&self, hit: &Hit, rays: &mut u64) -> Vec3 {
+        self.light_irradiance_from(hit, self.camera.eye, rays)
+    }
+
+    /// L_o(x′) towards −dir: emission + ρ (unoccluded env + unshadowed lights) / π.
+    fn outgoing_diffuse(&self, hit: &Hit) -> Vec3 {
+        let albedo = self.scene.base_color(hit.material, hit.uv).truncate();
+        let env = self
+            .irradiance
+            .as_ref()
+            .map(|m| m.lookup(hit.ns))
+            .unwrap_or(Vec3::ZERO);
+        let lights: Vec3 = self
+            .scene
+            .lights
+            .iter()
+            .map(|l| l.irradiance(hit.p, hit.ns))
+            .sum::<Vec3>()
+            / PI;
+        self.scene.emission(hit.material, hit.uv) + albedo * (env + lights)
+    }
+
+    pub fn pixel(&self, x: u32, y: u32) -> PixelResult {
+        let s = &self.settings;
+        let dir = self.camera.primary_ray(x, y, s.size);
+        let mut rays = 1u64;
+        let Some(hit) = self
+            .tracer
+            .closest(self.camera.eye, dir, f32::INFINITY, true)
+        else {
+            let value = if s.aov == ReferenceAov::Radiance {
+                self.env.radiance(dir)
+            } else {
+                Vec3::ZERO
+            };
+            return PixelResult {
+                value,
+                rays,
+                ..Default::default()
+            };
+        };
+        let depth = hit.t * dir.dot(self.camera.forward());
+        let done = |value: Vec3, stderr: Vec3, rays: u64| PixelResult {
+            value,
+            alpha: 1.0,
+            stderr,
+            depth,
+            rays,
+        };
+        let albedo = || self.scene.base_color(hit.material, hit.uv).truncate();
+        match s.aov {
+            ReferenceAov::Albedo => return done(albedo(), Vec3::ZERO, rays),
+            ReferenceAov::Normal => return done(hit.ns, Vec3::ZERO, rays),
+            ReferenceAov::Depth => return done(Vec3::splat(depth), Vec3::ZERO, rays),
+            ReferenceAov::LightIrradiance => {
+                let e = self.light_irradiance(&hit, &mut rays);
+                return done(e, Vec3::ZERO, rays);
+            }
+            ReferenceAov::Radiance => return self.path_trace(x, y, &hit, depth),
+            _ => {}
+        }
+        let seed = pixel_seed(x, y, s.seed);
+        let offset = r2_offset(seed);
+        let mut stats = Stats::default();
+        let radius = s.radius;
+        let needs_hit = matches!(
+            s.aov,
+            ReferenceAov::IndirectIrradiance | ReferenceAov::Diffuse
+        );
+        let (rho, light) = if s.aov == ReferenceAov::Diffuse {
+            (albedo(), self.light_irradiance(&hit, &mut rays))
+        } else {
+            (Vec3::ONE, Vec3::ZERO)
+        };
+        for i in 0..s.spp {
+            let w = cosine_hemisphere(hit.ns, r2(i, offset));
+            let below = w.dot(hit.ng) <= 0.0;
+            let sample = if radius == 0.0 {
+                // Nothing is near: V_R = 1 (the surface's own tangent plane included).
+                match s.aov {
+                    ReferenceAov::Ao => Vec3::ONE,
+                    ReferenceAov::EnvIrradiance => self.env.radiance(w),
+                    ReferenceAov::IndirectIrradiance => Vec3::ZERO,
+                    _ => self.env.radiance(w),
+                }
+            } else if needs_hit {
+                let near = if below {
+                    None
+                } else {
+                    rays += 1;
+                    self.tracer.closest(
+                        offset_origin(&hit, w, self.camera.eye, self.scene_radius),
+                        w,
+                        radius,
+                        false,
+                    )
+                };
+                let blocked = below || near.is_some();
+                let indirect = near
+                    .map(|h| self.outgoing_diffuse(&h))
+                    .unwrap_or(Vec3::ZERO);
+                match s.aov {
+                    ReferenceAov::IndirectIrradiance => indirect,
+                    _ => {
+                        let env = if blocked {
+                            Vec3::ZERO
+                        } else {
+                            self.env.radiance(w)
+                        };
+                        env + indirect
+                    }
+                }
+            } else {
+                let visible = !below && {
+                    rays += 1;
+                    !self.tracer.occluded(
+                        offset_origin(&hit, w, self.camera.eye, self.scene_radius),
+                        w,
+                        radius,
+                    )
+                };
+                match (s.aov, visible) {
+                    (_, false) => Vec3::ZERO,
+                    (ReferenceAov::Ao, true) => Vec3::ONE,
+                    (_, true) => self.env.radiance(w),
+                }
+            };
+            stats.push(sample);
+        }
+        let (mean, se) = (stats.mean, stats.stderr());
+        if s.aov == ReferenceAov::Diffuse {
+            done(rho * (mean + light), rho * se, rays)
+        } else {
+            done(mean, se, rays)
+        }
+    }
+
+    fn path_trace(&self, x: u32, y: u32, primary: &Hit, depth: f32) -> PixelResult {
+        let s = &self.settings;
+        let mut stats = Stats::default();
+        let mut rays = 1u64;
+        let mut rng = Pcg32::new(pixel_seed(x, y, s.seed) as u64, 0x5851_f42d_4c95_7f2d);
+        for _ in 0..s.spp {
+            let mut l = self.scene.emission(primary.material, primary.uv);
+            let mut throughput = Vec3::ONE;
+            let mut hit = *primary;
+            let mut segments = 1;
+            let mut from = self.camera.eye;
+            while segments < s.max_depth {
+                let rho = self.scene.base_color(hit.material, hit.uv).truncate();
+                // Next-event estimation: one more segment, to each punctual light.
+                l += throughput * rho * self.light_irradiance_from(&hit, from, &mut rays);
+                let w = cosine_hemisphere(hit.ns, rng.next_vec2());
+                if w.dot(hit.ng) <= 0.0 {
+                    break;
+                }
+                throughput *= rho;
+                segments += 1;
+                rays += 1;
+                let o = offset_origin(&hit, w, from, self.scene_radius);
+                match self.tracer.closest(o, w, f32::INFINITY, false) {
+                    None => {
+                        l += throughput * self.env.radiance(w);
+                        break;
+                    }
+                    Some(next) => {
+                        l += throughput * self.scene.emission(next.material, next.uv);
+                        from = hit.p;
+                        hit = next;
+                    }
+                }
+                if segments >= 4 {
+                    let p = throughput.max_element().min(0.95);
+                    if p <= 0.0 || rng.next_f32() >= p {
+                        break;
+                    }
+                    throughput /= p;
+                }
+            }
+            stats.push(l);
+        }
+        PixelResult {
+            value: stats.mean,
+            alpha: 1.0,
+            stderr: stats.stderr(),
+            depth,
+            rays,
+        }
+    }
+
+    /// (1/π) Σ_l E_l at `hit` with exact shadow rays whose origins are pushed towards `from`
+    /// (the camera, or the previous path vertex).
+    fn light_irradiance_from(&self, hit: &Hit, from: Vec3, rays: &mut u64) -> Vec3 {
+        let mut e = Vec3::ZERO;
+        for light in &self.scene.lights {
+            let (l, dist) = light.direction_from(hit.p);
+            if l.dot(hit.ns) <= 0.0 || l.dot(hit.ng) <= 0.0 {
+                continue;
+            }
+            let irr = light.irradiance(hit.p, hit.ns);
+            if irr.max_element() <= 0.0 {
+                continue;
+            }
+            let o = offset_origin(hit, l, from, self.scene_radius);
+            let tmax = if dist.is_finite() {
+                (hit.p + l * dist - o).length() * (1.0 - 1e-4)
+            } else {
+                f32::INFINITY
+            };
+            *rays += 1;
+            if !self.tracer.occluded(o, l, tmax) {
+                e += irr;
+            }
+        }
+        e / PI
+    }
+}

@@ -1,0 +1,186 @@
+//! nearfield's CPU ground truth: a BVH ray tracer (obvhs) that computes, for the pixels the GPU
+//! shades, exactly the integrals DESIGN.md defines for each AOV, with a per-pixel standard error.
+//! No wgpu: it shares only the scene model (`nearfield_scene`) with the renderer.
+//!
+//! Same camera model and pixel centres as the rasterizer (`Camera::primary_ray`), the same
+//! environment lookup (`Environment::radiance`, bilinear, DESIGN.md convention), the same albedo
+//! (`Scene::base_color`: factor × bilinear sRGB-decoded texture) and the same shading normals
+//! (see [`tracer`]). Hemisphere integrals use cosine-weighted samples around the shading normal;
+//! directions below the geometric tangent plane count as blocked (the surface itself is there).
+
+pub mod cache;
+pub mod exr_io;
+pub mod integrate;
+pub mod irradiance;
+pub mod sampling;
+pub mod tracer;
+
+use glam::Vec3;
+use nearfield_scene::{Camera, Environment, Scene};
+use rayon::prelude::*;
+
+/// What the reference computes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum ReferenceAov {
+    /// (1/π) ∫ V_R cos θ dω.
+    Ao,
+    /// (1/π) ∫ L_env V_R cos θ dω.
+    EnvIrradiance,
+    /// (1/π) Σ E_l with exact shadow rays.
+    LightIrradiance,
+    /// (1/π) ∫ (1 − V_R) L_o(x′) cos θ dω, one bounce.
+    IndirectIrradiance,
+    /// ρ × (env + light + indirect irradiance).
+    Diffuse,
+    /// Path-traced image (Lambertian, environment + lights + emission).
+    Radiance,
+    /// Base colour ρ.
+    Albedo,
+    /// Shading normal.
+    Normal,
+    /// View depth (m).
+    Depth,
+}
+
+impl ReferenceAov {
+    pub const ALL: [ReferenceAov; 9] = [
+        ReferenceAov::Ao,
+        ReferenceAov::EnvIrradiance,
+        ReferenceAov::LightIrradiance,
+        ReferenceAov::IndirectIrradiance,
+        ReferenceAov::Diffuse,
+        ReferenceAov::Radiance,
+        ReferenceAov::Albedo,
+        ReferenceAov::Normal,
+        ReferenceAov::Depth,
+    ];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            ReferenceAov::Ao => "ao",
+            ReferenceAov::EnvIrradiance => "env-irradiance",
+            ReferenceAov::LightIrradiance => "light-irradiance",
+            ReferenceAov::IndirectIrradiance => "indirect-irradiance",
+            ReferenceAov::Diffuse => "diffuse",
+            ReferenceAov::Radiance => "radiance",
+            ReferenceAov::Albedo => "albedo",
+            ReferenceAov::Normal => "normal",
+            ReferenceAov::Depth => "depth",
+        }
+    }
+
+    pub fn parse(s: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|a| a.name() == s)
+    }
+
+    pub fn names() -> Vec<&'static str> {
+        Self::ALL.iter().map(|a| a.name()).collect()
+    }
+}
+
+/// Settings of one reference render.
+#[derive(Clone, Copy, Debug)]
+pub struct ReferenceSettings {
+    pub aov: ReferenceAov,
+    pub size: (u32, u32),
+    /// Near-field radius R (m), > 0 or infinite; 0 means nothing is near (V_R = 1).
+    pub radius: f32,
+    /// Samples per pixel, ≥ 1.
+    pub spp: u32,
+    pub seed: u32,
+    /// Path length limit for `radiance` (segments, camera segment included), ≥ 1.
+    pub max_depth: u32,
+}
+
+impl Default for ReferenceSettings {
+    fn default() -> Self {
+        ReferenceSettings {
+            aov: ReferenceAov::Ao,
+            size: (512, 512),
+            radius: f32::INFINITY,
+            spp: 64,
+            seed: 0,
+            max_depth: 5,
+        }
+    }
+}
+
+/// A reference image: value (rgb + coverage alpha), the standard error of the mean per channel,
+/// and view depth (0 on background). Row 0 at the top.
+#[derive(Clone, Debug)]
+pub struct ReferenceImage {
+    pub width: u32,
+    pub height: u32,
+    pub value: Vec<[f32; 4]>,
+    pub stderr: Vec<[f32; 3]>,
+    pub depth: Vec<f32>,
+    /// Rays traced (primary + secondary), for throughput figures.
+    pub rays: u64,
+}
+
+impl ReferenceImage {
+    pub fn get(&self, x: u32, y: u32) -> [f32; 4] {
+        self.value[(y * self.width + x) as usize]
+    }
+}
+
+/// Result of one pixel.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct PixelResult {
+    pub value: Vec3,
+    pub alpha: f32,
+    pub stderr: Vec3,
+    pub depth: f32,
+    pub rays: u64,
+}
+
+/// Renders the reference for one AOV. `progress` shows a bar with ETA on stderr when it is a
+/// terminal. Results depend only on the inputs and settings, not on the thread count.
+pub fn render(
+    scene: &Scene,
+    env: &Environment,
+    camera: &Camera,
+    settings: &ReferenceSettings,
+    progress: bool,
+) -> ReferenceImage {
+    let ctx = integrate::Context::new(scene, env, camera, settings);
+    let (w, h) = settings.size;
+    let bar = if progress {
+        let bar = indicatif::ProgressBar::new(h as u64);
+        bar.set_style(
+            indicatif::ProgressStyle::with_template(
+                "reference {msg} [{bar:40}] {pos}/{len} rows, {elapsed} elapsed, ETA {eta}",
+            )
+            .expect("valid template")
+            .progress_chars("=> "),
+        );
+        bar.set_message(settings.aov.name());
+        bar
+    } else {
+        indicatif::ProgressBar::hidden()
+    };
+    let rows: Vec<Vec<PixelResult>> = (0..h)
+        .into_par_iter()
+        .map(|y| {
+            let row = (0..w).map(|x| ctx.pixel(x, y)).collect();
+            bar.inc(1);
+            row
+        })
+        .collect();
+    bar.finish_and_clear();
+    let mut img = ReferenceImage {
+        width: w,
+        height: h,
+        value: Vec::with_capacity((w * h) as usize),
+        stderr: Vec::with_capacity((w * h) as usize),
+        depth: Vec::with_capacity((w * h) as usize),
+        rays: 0,
+    };
+    for p in rows.into_iter().flatten() {
+        img.value.push([p.value.x, p.value.y, p.value.z, p.alpha]);
+        img.stderr.push(p.stderr.into());
+        img.depth.push(p.depth);
+        img.rays += p.rays;
+    }
+    img
+}
