@@ -5,7 +5,9 @@
 //! failures.
 
 mod bench;
+mod compare;
 mod options;
+mod reference;
 mod render;
 
 use clap::{Parser, Subcommand};
@@ -27,6 +29,10 @@ struct Cli {
 enum Command {
     /// Render one image (or one AOV) of a scene with a near-field technique.
     Render(render::RenderArgs),
+    /// Compute the CPU ground truth of one AOV (cached).
+    Reference(reference::ReferenceArgs),
+    /// Compare techniques with the reference: metrics.json, report.html, images.
+    Compare(compare::CompareArgs),
     /// Time every pass of one or more techniques (median and p90 over many frames).
     Bench(bench::BenchArgs),
 }
@@ -114,6 +120,8 @@ fn main() -> ExitCode {
     };
     let result = match cli.command {
         Command::Render(a) => render::run(a),
+        Command::Reference(a) => reference::run(a),
+        Command::Compare(a) => compare::run(a),
         Command::Bench(a) => bench::run(a),
     };
     match result {

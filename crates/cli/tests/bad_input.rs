@@ -135,6 +135,21 @@ fn every_bad_input_exits_2_with_one_line() {
         (vec!["bench".into(), "--methods".into(), "none,magic".into()], "unknown technique"),
         (vec!["bench".into(), "--json".into(), d.join("no/such/dir/b.json").to_str().unwrap().into()], "does not exist"),
         (vec!["render".into(), "--no-such-flag".into()], "--no-such-flag"),
+        (vec!["reference".into(), "--radius".into(), "-1".into()], "--radius"),
+        (vec!["reference".into(), "--radius".into(), "nan".into()], "--radius"),
+        (vec!["reference".into(), "--spp".into(), "0".into()], "--spp"),
+        (vec!["reference".into(), "--max-depth".into(), "0".into()], "--max-depth"),
+        (vec!["reference".into(), "--aov".into(), "final".into()], "does not compute"),
+        (vec!["reference".into(), "-o".into(), "ref.png".into()], ".exr"),
+        (vec!["reference".into(), "--size".into(), "0x0".into()], "at least 1"),
+        (vec!["reference".into(), d.join("nope.obj").to_str().unwrap().into()], "no such file"),
+        (vec!["reference".into(), "--camera".into(), write(&d, "cam3.json", b"{}")], "missing field"),
+        (vec!["compare".into(), "--reference".into(), d.join("missing.exr").to_str().unwrap().into(), "--out".into(), d.join("c1").to_str().unwrap().into()], "no such file"),
+        (vec!["compare".into(), "--reference".into(), write(&d, "notexr.exr", b"hello"), "--out".into(), d.join("c2").to_str().unwrap().into()], "not a readable OpenEXR"),
+        (vec!["compare".into(), "--size".into(), "32x16".into(), "--reference".into(), exr_with(&d, "small.exr", 1.0), "--out".into(), d.join("c3").to_str().unwrap().into()], "reference is 8x4"),
+        (vec!["compare".into(), "--methods".into(), "magic".into()], "unknown technique"),
+        (vec!["compare".into(), "--aov".into(), "motion".into()], "does not compute"),
+        (vec!["compare".into(), "--spp".into(), "0".into()], "--spp"),
     ];
     for (args, needle) in cases {
         let args: Vec<&str> = args.iter().map(String::as_str).collect();

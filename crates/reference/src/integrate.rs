@@ -1,7 +1,10 @@
 //! Per-pixel estimators of every AOV (DESIGN.md's definitions).
 //!
 //! For the primary hit P (normal n, albedo ρ), N cosine-weighted directions ωᵢ (pdf cos θ/π):
-//! - `ao` ≈ mean V_R(ωᵢ); `env-irradiance` ≈ mean V_R(ωᵢ) L_env(ωᵢ);
+//! - `ao` ≈ mean V_R(ωᵢ);
+//! - `env-irradiance` ≈ mean of two samples combined by the balance heuristic: ωᵢ and a
+//!   direction drawn from the map's energy (`env_sampling`), each contributing
+//!   V_R L_env cos θ/π / (pdf_cos + pdf_env);
 //! - `indirect-irradiance` ≈ mean (1 − V_R(ωᵢ)) L_o(x′ᵢ), x′ᵢ the closest hit within R, with
 //!   L_o(x′) = Le(x′) + ρ(x′) (E_env(n′)/π + Σ_l E_l(x′, n′)/π): environment and lights with
 //!   full visibility (no occlusion, no shadows; E_env from `irradiance::IrradianceMap`), n′ the
@@ -14,6 +17,7 @@
 //!   fourth segment on. Background pixels show the environment (alpha 0).
 //! The standard error is the sample standard deviation over √N (per channel).
 
+use crate::env_sampling::EnvDistribution;
 use crate::irradiance::IrradianceMap;
 use crate::sampling::{Pcg32, cosine_hemisphere, pixel_seed, r2, r2_offset};
 use crate::tracer::{Hit, Tracer, offset_origin};
@@ -29,6 +33,7 @@ pub struct Context<'a> {
     pub camera: Camera,
     pub settings: ReferenceSettings,
     irradiance: Option<IrradianceMap>,
+    env_dist: Option<EnvDistribution>,
     scene_radius: f32,
 }
 
@@ -76,6 +81,14 @@ impl<'a> Context<'a> {
             camera: *camera,
             settings: *settings,
             irradiance: needs_irradiance.then(|| IrradianceMap::new(env)),
+            env_dist: if matches!(
+                settings.aov,
+                ReferenceAov::EnvIrradiance | ReferenceAov::Diffuse
+            ) {
+                EnvDistribution::new(env)
+            } else {
+                None
+            },
             scene_radius: scene.bounds().radius(),
         }
     }
@@ -144,68 +157,85 @@ impl<'a> Context<'a> {
         }
         let seed = pixel_seed(x, y, s.seed);
         let offset = r2_offset(seed);
+        let env_offset = r2_offset(seed ^ 0x6a09_e667);
         let mut stats = Stats::default();
         let radius = s.radius;
         let needs_hit = matches!(
             s.aov,
             ReferenceAov::IndirectIrradiance | ReferenceAov::Diffuse
         );
+        let env_terms = matches!(s.aov, ReferenceAov::EnvIrradiance | ReferenceAov::Diffuse);
         let (rho, light) = if s.aov == ReferenceAov::Diffuse {
             (albedo(), self.light_irradiance(&hit, &mut rays))
         } else {
             (Vec3::ONE, Vec3::ZERO)
         };
+        let eye = self.camera.eye;
         for i in 0..s.spp {
+            // Cosine-weighted direction: visibility (ao, env), the near hit (indirect).
             let w = cosine_hemisphere(hit.ns, r2(i, offset));
             let below = w.dot(hit.ng) <= 0.0;
-            let sample = if radius == 0.0 {
-                // Nothing is near: V_R = 1 (the surface's own tangent plane included).
-                match s.aov {
-                    ReferenceAov::Ao => Vec3::ONE,
-                    ReferenceAov::EnvIrradiance => self.env.radiance(w),
-                    ReferenceAov::IndirectIrradiance => Vec3::ZERO,
-                    _ => self.env.radiance(w),
-                }
+            let (visible, indirect) = if below {
+                (false, Vec3::ZERO)
+            } else if radius == 0.0 {
+                (true, Vec3::ZERO)
             } else if needs_hit {
-                let near = if below {
-                    None
-                } else {
-                    rays += 1;
-                    self.tracer.closest(
-                        offset_origin(&hit, w, self.camera.eye, self.scene_radius),
-                        w,
-                        radius,
-                        false,
-                    )
-                };
-                let blocked = below || near.is_some();
-                let indirect = near
-                    .map(|h| self.outgoing_diffuse(&h))
-                    .unwrap_or(Vec3::ZERO);
-                match s.aov {
-                    ReferenceAov::IndirectIrradiance => indirect,
-                    _ => {
-                        let env = if blocked {
-                            Vec3::ZERO
-                        } else {
-                            self.env.radiance(w)
-                        };
-                        env + indirect
-                    }
+                rays += 1;
+                match self.tracer.closest(
+                    offset_origin(&hit, w, eye, self.scene_radius),
+                    w,
+                    radius,
+                    false,
+                ) {
+                    Some(near) => (false, self.outgoing_diffuse(&near)),
+                    None => (true, Vec3::ZERO),
                 }
             } else {
-                let visible = !below && {
-                    rays += 1;
+                rays += 1;
+                (
                     !self.tracer.occluded(
-                        offset_origin(&hit, w, self.camera.eye, self.scene_radius),
+                        offset_origin(&hit, w, eye, self.scene_radius),
                         w,
                         radius,
-                    )
-                };
-                match (s.aov, visible) {
-                    (_, false) => Vec3::ZERO,
-                    (ReferenceAov::Ao, true) => Vec3::ONE,
-                    (_, true) => self.env.radiance(w),
+                    ),
+                    Vec3::ZERO,
+                )
+            };
+            let sample = match s.aov {
+                ReferenceAov::Ao => Vec3::splat(if visible { 1.0 } else { 0.0 }),
+                ReferenceAov::IndirectIrradiance => indirect,
+                _ => {
+                    // Environment: cosine sample and environment sample combined by the balance
+                    // heuristic (weights pdf_strategy / (pdf_cos + pdf_env)).
+                    let mut env = Vec3::ZERO;
+                    if visible {
+                        let weight = match &self.env_dist {
+                            Some(d) => {
+                                let pc = w.dot(hit.ns).max(0.0) / PI;
+                                pc / (pc + d.pdf(self.env, w))
+                            }
+                            None => 1.0,
+                        };
+                        env += self.env.radiance(w) * weight;
+                    }
+                    if let (true, Some(d)) = (env_terms, &self.env_dist) {
+                        let (we, pe) = d.sample(self.env, r2(i, env_offset));
+                        let cos = we.dot(hit.ns);
+                        if pe > 0.0 && cos > 0.0 && we.dot(hit.ng) > 0.0 {
+                            let seen = radius == 0.0 || {
+                                rays += 1;
+                                !self.tracer.occluded(
+                                    offset_origin(&hit, we, eye, self.scene_radius),
+                                    we,
+                                    radius,
+                                )
+                            };
+                            if seen {
+                                env += self.env.radiance(we) * (cos / PI) / (cos / PI + pe);
+                            }
+                        }
+                    }
+                    env + indirect
                 }
             };
             stats.push(sample);

@@ -9,6 +9,7 @@
 //! directions below the geometric tangent plane count as blocked (the surface itself is there).
 
 pub mod cache;
+pub mod env_sampling;
 pub mod exr_io;
 pub mod integrate;
 pub mod irradiance;

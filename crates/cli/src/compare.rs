@@ -1,0 +1,215 @@
+//! `nearfield compare`: techniques against the reference for one AOV → DIR/metrics.json,
+//! DIR/report.html and PNGs.
+
+use crate::BadInput;
+use crate::options::{SceneOpts, TechniqueOpts};
+use crate::reference::{ReferenceOpts, parse_aov};
+use anyhow::{Context, Result};
+use clap::Args;
+use nearfield_eval::image_ops;
+use nearfield_eval::metrics::{self, Mask, MaskSettings};
+use nearfield_eval::report::{MethodReport, ReferenceInfo, Report};
+use nearfield_reference::{ReferenceImage, exr_io};
+use nearfield_render::{Aov, GpuContext, Renderer};
+use std::path::PathBuf;
+
+#[derive(Args, Debug)]
+pub struct CompareArgs {
+    #[command(flatten)]
+    pub scene: SceneOpts,
+    #[command(flatten)]
+    pub technique: TechniqueOpts,
+    #[command(flatten)]
+    pub reference: ReferenceOpts,
+    /// Techniques, comma-separated (default: every registered one).
+    #[arg(long)]
+    pub methods: Option<String>,
+    /// AOV to compare: ao, env-irradiance, light-irradiance, indirect-irradiance, diffuse,
+    /// radiance, albedo, normal, depth.
+    #[arg(long, default_value = "ao")]
+    pub aov: String,
+    /// Frames each technique renders before its AOV is read (≥ 1).
+    #[arg(long, default_value_t = 1)]
+    pub frames: u32,
+    /// Use this reference EXR instead of rendering (or loading from the cache) one; it must have
+    /// the image size.
+    #[arg(long = "reference")]
+    pub reference_file: Option<PathBuf>,
+    /// Excluded band at the image edge in pixels. Default: 2 % of the smaller side, at least 2.
+    #[arg(long)]
+    pub border: Option<u32>,
+    /// Output folder.
+    #[arg(long, default_value = "compare")]
+    pub out: PathBuf,
+}
+
+pub fn run(args: CompareArgs) -> Result<()> {
+    let ref_aov = parse_aov(&args.aov)?;
+    let gpu_aov = Aov::parse(&args.aov).expect("every reference AOV is a renderer AOV");
+    let methods: Vec<String> = match &args.methods {
+        Some(m) => m.split(',').map(|s| s.trim().to_string()).collect(),
+        None => nearfield_render::technique::names()
+            .iter()
+            .map(|s| s.to_string())
+            .collect(),
+    };
+    for m in &methods {
+        nearfield_render::technique::find(m)?;
+    }
+    if args.frames == 0 || args.frames > 100_000 {
+        return Err(BadInput(format!("--frames {}: must be in 1..=100000", args.frames)).into());
+    }
+    let size = crate::options::parse_size(&args.scene.size)?;
+    let border = args
+        .border
+        .unwrap_or(((size.0.min(size.1) as f32 * 0.02) as u32).max(2));
+    if 2 * border >= size.0.min(size.1) {
+        return Err(BadInput(format!(
+            "--border {border}: leaves no pixel of a {}x{} image",
+            size.0, size.1
+        ))
+        .into());
+    }
+    // One radius for both sides (default inf), and one seed.
+    let mut params = args.technique.params()?;
+    let radius = *params.radius.get_or_insert(f32::INFINITY);
+    let ref_settings = args
+        .reference
+        .settings(ref_aov, size, radius, args.technique.seed)?;
+    let settings = args.technique.settings(size)?;
+    let reference_file = match &args.reference_file {
+        Some(p) => {
+            let img = exr_io::read(p).map_err(|e| BadInput(e.to_string()))?;
+            if (img.width, img.height) != size {
+                return Err(BadInput(format!(
+                    "{}: reference is {}x{}, the comparison is {}x{}",
+                    p.display(),
+                    img.width,
+                    img.height,
+                    size.0,
+                    size.1
+                ))
+                .into());
+            }
+            Some((img, p.clone()))
+        }
+        None => None,
+    };
+    std::fs::create_dir_all(&args.out)
+        .with_context(|| format!("cannot create {}", args.out.display()))?;
+    let loaded = args.scene.load()?;
+    let ctx = GpuContext::new(args.scene.adapter.as_deref())?;
+    let (reference, ref_info): (ReferenceImage, ReferenceInfo) = match reference_file {
+        Some((img, p)) => (
+            img,
+            ReferenceInfo {
+                path: p.display().to_string(),
+                spp: None,
+                seed: None,
+                image: "reference.png".into(),
+            },
+        ),
+        None => {
+            let (img, cached) =
+                crate::reference::compute(&args.scene, &args.reference, &loaded, &ref_settings)?;
+            (
+                img,
+                ReferenceInfo {
+                    path: cached
+                        .map(|p| p.display().to_string())
+                        .unwrap_or_else(|| "computed, not cached".into()),
+                    spp: Some(ref_settings.spp),
+                    seed: Some(ref_settings.seed),
+                    image: "reference.png".into(),
+                },
+            )
+        }
+    };
+    let (w, h) = size;
+    image_ops::tonemap(&reference.value, w, h).save(args.out.join("reference.png"))?;
+    let ref_srgb = image_ops::tonemap(&reference.value, w, h);
+    let ref_alpha: Vec<f32> = reference.value.iter().map(|p| p[3]).collect();
+    let mask_settings = MaskSettings {
+        border,
+        depth_tolerance: 0.01,
+    };
+    let mut reports = Vec::new();
+    let mut last_mask = None;
+    for method in &methods {
+        let mut r = Renderer::new(
+            &ctx,
+            &loaded.scene,
+            &loaded.env,
+            loaded.camera,
+            method,
+            &params,
+            settings,
+        )?;
+        for _ in 0..args.frames {
+            r.render_frame();
+        }
+        let value = r.read_aov(gpu_aov);
+        let depth = r.read_aov(Aov::Depth);
+        let alpha: Vec<f32> = value.pixels.iter().map(|p| p[3]).collect();
+        let gpu_depth: Vec<f32> = depth.pixels.iter().map(|p| p[0]).collect();
+        let mask = Mask::new(
+            size,
+            &alpha,
+            &gpu_depth,
+            &ref_alpha,
+            &reference.depth,
+            mask_settings,
+        );
+        let mut m = metrics::metrics(&value.pixels, &reference.value, &mask);
+        let srgb = image_ops::tonemap(&value.pixels, w, h);
+        m.flip = Some(metrics::flip_mean(&srgb, &ref_srgb, &mask));
+        let errors = metrics::signed_errors(&value.pixels, &reference.value, &mask);
+        let range = image_ops::error_range(&errors, &mask.valid);
+        let image = format!("{method}.png");
+        let heat = format!("{method}-error.png");
+        srgb.save(args.out.join(&image))?;
+        image_ops::heatmap(&errors, &mask.valid, w, h, range).save(args.out.join(&heat))?;
+        println!(
+            "{method:<10} pixels {:>8}  bias {:+.5}  MAE {:.5}  RMSE {:.5}  rel {:.4}  FLIP {:.4}",
+            m.pixels,
+            m.bias,
+            m.mae,
+            m.rmse,
+            m.relative_error,
+            m.flip.unwrap_or(0.0)
+        );
+        reports.push(MethodReport {
+            name: method.clone(),
+            metrics: m,
+            error_range: range,
+            image,
+            heatmap: heat,
+        });
+        last_mask = Some(mask);
+    }
+    let mask = last_mask.expect("at least one method");
+    let report = Report {
+        scene: args.scene.scene.clone(),
+        aov: args.aov.clone(),
+        size: [w, h],
+        radius: args
+            .technique
+            .radius
+            .clone()
+            .unwrap_or_else(|| "inf".into()),
+        adapter: nearfield_render::context::describe(&ctx.adapter_info()),
+        reference: ref_info,
+        mask: mask_settings,
+        silhouette_pixels: mask.silhouette_pixels,
+        depth_checked: mask.depth_checked,
+        methods: reports,
+    };
+    nearfield_eval::report::write(&args.out, &report)
+        .with_context(|| format!("cannot write the report into {}", args.out.display()))?;
+    eprintln!(
+        "nearfield: wrote {}/report.html and metrics.json (border {border} px, {} silhouette pixels excluded)",
+        args.out.display(),
+        mask.silhouette_pixels
+    );
+    Ok(())
+}

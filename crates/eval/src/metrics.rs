@@ -1,0 +1,253 @@
+//! Masks and error metrics.
+//!
+//! A pixel counts when both images see a surface there, it is not within `border` pixels of the
+//! image edge, and it is not on a silhouette. Silhouette pixels are those where exactly one image
+//! sees a surface or where the two view depths differ by more than `depth_tolerance` (relative);
+//! the silhouette set is dilated by one pixel (8-neighbourhood). Errors are on the mean of the
+//! RGB channels, e = test − reference:
+//! bias = mean e, MAE = mean |e|, RMSE = √(mean e²), relative error = Σ|e| / Σ reference.
+
+use serde::Serialize;
+
+/// How pixels are excluded.
+#[derive(Clone, Copy, Debug, Serialize)]
+pub struct MaskSettings {
+    /// Width of the excluded band at the image edge (pixels).
+    pub border: u32,
+    /// Relative view-depth difference that marks a silhouette, e.g. 0.01.
+    pub depth_tolerance: f32,
+}
+
+/// Which pixels are compared.
+#[derive(Clone, Debug)]
+pub struct Mask {
+    pub width: u32,
+    pub height: u32,
+    pub valid: Vec<bool>,
+    /// Pixels excluded as silhouettes (after dilation).
+    pub silhouette_pixels: usize,
+    /// False when the reference carried no depth, so silhouettes could not be found.
+    pub depth_checked: bool,
+}
+
+impl Mask {
+    /// `*_alpha`: coverage (> 0 = surface); `*_depth`: view depth (reference depth all 0 = unknown).
+    pub fn new(
+        size: (u32, u32),
+        test_alpha: &[f32],
+        test_depth: &[f32],
+        ref_alpha: &[f32],
+        ref_depth: &[f32],
+        settings: MaskSettings,
+    ) -> Self {
+        let (w, h) = size;
+        let n = (w * h) as usize;
+        let depth_checked = ref_depth.iter().any(|&d| d > 0.0);
+        let mut silhouette = vec![false; n];
+        for i in 0..n {
+            let (ts, rs) = (test_alpha[i] > 0.0, ref_alpha[i] > 0.0);
+            silhouette[i] = ts != rs
+                || (ts
+                    && depth_checked
+                    && (test_depth[i] - ref_depth[i]).abs()
+                        > settings.depth_tolerance * ref_depth[i].max(1e-6));
+        }
+        let mut dilated = silhouette.clone();
+        for y in 0..h as i64 {
+            for x in 0..w as i64 {
+                if !silhouette[(y * w as i64 + x) as usize] {
+                    continue;
+                }
+                for dy in -1..=1 {
+                    for dx in -1..=1 {
+                        let (nx, ny) = (x + dx, y + dy);
+                        if nx >= 0 && ny >= 0 && nx < w as i64 && ny < h as i64 {
+                            dilated[(ny * w as i64 + nx) as usize] = true;
+                        }
+                    }
+                }
+            }
+        }
+        let b = settings.border;
+        let mut valid = vec![false; n];
+        let mut silhouette_pixels = 0;
+        for y in 0..h {
+            for x in 0..w {
+                let i = (y * w + x) as usize;
+                let inside = x >= b && y >= b && x + b < w && y + b < h;
+                let surface = test_alpha[i] > 0.0 && ref_alpha[i] > 0.0;
+                if dilated[i] && inside {
+                    silhouette_pixels += 1;
+                }
+                valid[i] = inside && surface && !dilated[i];
+            }
+        }
+        Mask {
+            width: w,
+            height: h,
+            valid,
+            silhouette_pixels,
+            depth_checked,
+        }
+    }
+
+    pub fn count(&self) -> usize {
+        self.valid.iter().filter(|&&v| v).count()
+    }
+}
+
+/// Error metrics over the valid pixels.
+#[derive(Clone, Copy, Debug, Serialize, PartialEq)]
+pub struct Metrics {
+    pub pixels: usize,
+    pub bias: f64,
+    pub mae: f64,
+    pub rmse: f64,
+    pub relative_error: f64,
+    /// Mean FLIP (0..1) over the valid pixels of the tonemapped images; None when not computed.
+    pub flip: Option<f64>,
+}
+
+fn mean_rgb(p: &[f32; 4]) -> f64 {
+    (p[0] as f64 + p[1] as f64 + p[2] as f64) / 3.0
+}
+
+/// Per-pixel signed error (mean of RGB), 0 where the mask excludes the pixel.
+pub fn signed_errors(test: &[[f32; 4]], reference: &[[f32; 4]], mask: &Mask) -> Vec<f32> {
+    test.iter()
+        .zip(reference)
+        .zip(&mask.valid)
+        .map(|((t, r), &v)| {
+            if v {
+                (mean_rgb(t) - mean_rgb(r)) as f32
+            } else {
+                0.0
+            }
+        })
+        .collect()
+}
+
+pub fn metrics(test: &[[f32; 4]], reference: &[[f32; 4]], mask: &Mask) -> Metrics {
+    let (mut n, mut sum, mut abs, mut sq, mut refsum) = (0usize, 0.0, 0.0, 0.0, 0.0);
+    for ((t, r), &v) in test.iter().zip(reference).zip(&mask.valid) {
+        if !v {
+            continue;
+        }
+        let e = mean_rgb(t) - mean_rgb(r);
+        n += 1;
+        sum += e;
+        abs += e.abs();
+        sq += e * e;
+        refsum += mean_rgb(r).abs();
+    }
+    let nf = n.max(1) as f64;
+    Metrics {
+        pixels: n,
+        bias: sum / nf,
+        mae: abs / nf,
+        rmse: (sq / nf).sqrt(),
+        relative_error: if refsum > 0.0 { abs / refsum } else { 0.0 },
+        flip: None,
+    }
+}
+
+/// Mean FLIP over the mask, from two sRGB images of the same size (nv-flip, default viewing
+/// conditions: 67 pixels per degree).
+pub fn flip_mean(test: &image::RgbImage, reference: &image::RgbImage, mask: &Mask) -> f64 {
+    let (w, h) = test.dimensions();
+    let t = nv_flip::FlipImageRgb8::with_data(w, h, test.as_raw());
+    let r = nv_flip::FlipImageRgb8::with_data(w, h, reference.as_raw());
+    let err = nv_flip::flip(r, t, nv_flip::DEFAULT_PIXELS_PER_DEGREE).to_vec();
+    let (mut s, mut n) = (0.0f64, 0usize);
+    for (e, &v) in err.iter().zip(&mask.valid) {
+        if v {
+            s += *e as f64;
+            n += 1;
+        }
+    }
+    s / n.max(1) as f64
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn flat(v: f32, n: usize) -> Vec<[f32; 4]> {
+        vec![[v, v, v, 1.0]; n]
+    }
+
+    #[test]
+    fn metrics_of_a_constant_offset() {
+        let size = (10, 8);
+        let n = 80;
+        let ones = vec![1.0; n];
+        let depth = vec![2.0; n];
+        let mask = Mask::new(
+            size,
+            &ones,
+            &depth,
+            &ones,
+            &depth,
+            MaskSettings {
+                border: 1,
+                depth_tolerance: 0.01,
+            },
+        );
+        // Border 1 leaves 8 × 6.
+        assert_eq!(mask.count(), 48);
+        let m = metrics(&flat(0.6, n), &flat(0.5, n), &mask);
+        assert!(
+            (m.bias - 0.1).abs() < 1e-6
+                && (m.mae - 0.1).abs() < 1e-6
+                && (m.rmse - 0.1).abs() < 1e-6
+        );
+        assert!((m.relative_error - 0.2).abs() < 1e-6);
+    }
+
+    #[test]
+    fn silhouettes_are_dilated() {
+        let size = (7, 7);
+        let n = 49;
+        let ones = vec![1.0; n];
+        let mut test_depth = vec![2.0; n];
+        test_depth[24] = 3.0; // centre pixel disagrees
+        let mask = Mask::new(
+            size,
+            &ones,
+            &test_depth,
+            &ones,
+            &vec![2.0; n],
+            MaskSettings {
+                border: 0,
+                depth_tolerance: 0.01,
+            },
+        );
+        assert_eq!(mask.silhouette_pixels, 9);
+        assert_eq!(mask.count(), 40);
+    }
+
+    #[test]
+    fn identical_images_have_zero_flip() {
+        let img = image::RgbImage::from_fn(16, 16, |x, y| {
+            image::Rgb([(x * 16) as u8, (y * 16) as u8, 90])
+        });
+        let ones = vec![1.0; 256];
+        let mask = Mask::new(
+            (16, 16),
+            &ones,
+            &ones,
+            &ones,
+            &ones,
+            MaskSettings {
+                border: 0,
+                depth_tolerance: 0.01,
+            },
+        );
+        assert_eq!(flip_mean(&img, &img, &mask), 0.0);
+        let mut other = img.clone();
+        for p in other.pixels_mut() {
+            p.0[0] = 255 - p.0[0];
+        }
+        assert!(flip_mean(&other, &img, &mask) > 0.1);
+    }
+}

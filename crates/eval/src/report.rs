@@ -1,0 +1,140 @@
+//! The comparison report: `metrics.json` and a self-contained `report.html` that shows, per
+//! method, its image, the reference, the signed error heat map with its colour bar, and the
+//! numbers. Images are PNG files beside the HTML, referenced by relative paths, so the report
+//! opens from disk in any browser with no server and no network.
+
+use crate::image_ops::diverging;
+use crate::metrics::{MaskSettings, Metrics};
+use serde::Serialize;
+use std::fmt::Write as _;
+use std::path::Path;
+
+/// One method's results.
+#[derive(Clone, Debug, Serialize)]
+pub struct MethodReport {
+    pub name: String,
+    pub metrics: Metrics,
+    /// Heat-map range: the map shows [−range, +range].
+    pub error_range: f32,
+    /// File names (relative to the report) of the method's image and heat map.
+    pub image: String,
+    pub heatmap: String,
+}
+
+/// Everything in metrics.json.
+#[derive(Clone, Debug, Serialize)]
+pub struct Report {
+    pub scene: String,
+    pub aov: String,
+    pub size: [u32; 2],
+    pub radius: String,
+    pub adapter: String,
+    /// Where the reference came from (file or cache path) and its sampling.
+    pub reference: ReferenceInfo,
+    pub mask: MaskSettings,
+    /// Pixels excluded as silhouettes (dilated), and whether depth was available to find them.
+    pub silhouette_pixels: usize,
+    pub depth_checked: bool,
+    pub methods: Vec<MethodReport>,
+}
+
+#[derive(Clone, Debug, Serialize)]
+pub struct ReferenceInfo {
+    pub path: String,
+    pub spp: Option<u32>,
+    pub seed: Option<u32>,
+    pub image: String,
+}
+
+fn escape(s: &str) -> String {
+    s.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+        .replace('"', "&quot;")
+}
+
+/// Writes `dir/metrics.json` and `dir/report.html` (the PNGs are written by the caller).
+pub fn write(dir: &Path, report: &Report) -> std::io::Result<()> {
+    std::fs::write(
+        dir.join("metrics.json"),
+        serde_json::to_string_pretty(report).map_err(std::io::Error::other)?,
+    )?;
+    let stops: Vec<String> = (0..=10)
+        .map(|i| {
+            let t = -1.0 + 0.2 * i as f32;
+            let [r, g, b] = diverging(t);
+            format!("rgb({r},{g},{b}) {}%", i * 10)
+        })
+        .collect();
+    let gradient = stops.join(", ");
+    let mut h = String::new();
+    let _ = write!(
+        h,
+        r#"<!doctype html><html><head><meta charset="utf-8"><title>nearfield compare — {scene} — {aov}</title>
+<style>body{{font-family:sans-serif;margin:1.5em;background:#fafafa}}table{{border-collapse:collapse;margin:1em 0}}
+td,th{{border:1px solid #ccc;padding:4px 8px;text-align:right}}th{{background:#eee}}
+.row{{display:flex;gap:12px;flex-wrap:wrap;align-items:flex-start}}figure{{margin:0}}figcaption{{font-size:90%;color:#444}}
+img{{image-rendering:pixelated;max-width:480px;border:1px solid #999}}.bar{{width:320px;height:14px;border:1px solid #999;background:linear-gradient(to right,{gradient})}}
+.ticks{{display:flex;justify-content:space-between;width:322px;font-size:80%}}</style></head><body>
+<h1>{aov} on {scene}</h1>
+<p>{w}×{hh} pixels, near-field radius {radius}, adapter {adapter}. Reference: {refpath}{spp}.
+Metrics over pixels that both images see as surface, outside a {border}-pixel border band, excluding {sil} silhouette pixels
+(view depth differing by more than {tol}% , dilated by 1){nodepth}. Error e = method − reference on the mean of RGB.</p>
+<table><tr><th>method</th><th>pixels</th><th>bias</th><th>MAE</th><th>RMSE</th><th>relative error</th><th>FLIP</th></tr>"#,
+        scene = escape(&report.scene),
+        aov = escape(&report.aov),
+        w = report.size[0],
+        hh = report.size[1],
+        radius = escape(&report.radius),
+        adapter = escape(&report.adapter),
+        refpath = escape(&report.reference.path),
+        spp = match (report.reference.spp, report.reference.seed) {
+            (Some(s), Some(seed)) => format!(" ({s} spp, seed {seed})"),
+            _ => String::new(),
+        },
+        border = report.mask.border,
+        sil = report.silhouette_pixels,
+        tol = report.mask.depth_tolerance * 100.0,
+        nodepth = if report.depth_checked {
+            ""
+        } else {
+            "; the reference carries no depth, so only coverage silhouettes were excluded"
+        },
+    );
+    for m in &report.methods {
+        let x = &m.metrics;
+        let _ = write!(
+            h,
+            "<tr><th>{}</th><td>{}</td><td>{:+.5}</td><td>{:.5}</td><td>{:.5}</td><td>{:.4}</td><td>{}</td></tr>",
+            escape(&m.name),
+            x.pixels,
+            x.bias,
+            x.mae,
+            x.rmse,
+            x.relative_error,
+            x.flip
+                .map(|f| format!("{f:.4}"))
+                .unwrap_or_else(|| "–".into())
+        );
+    }
+    h.push_str("</table>");
+    for m in &report.methods {
+        let _ = write!(
+            h,
+            r#"<h2>{name}</h2><div class="row">
+<figure><img src="{img}" alt="{name}"><figcaption>{name} (tonemapped)</figcaption></figure>
+<figure><img src="{refimg}" alt="reference"><figcaption>reference (tonemapped)</figcaption></figure>
+<figure><img src="{heat}" alt="error"><figcaption>signed error, method − reference (grey: excluded)
+<div class="bar"></div><div class="ticks"><span>{lo:+.4}</span><span>0</span><span>{hi:+.4}</span></div></figcaption></figure>
+</div>"#,
+            name = escape(&m.name),
+            img = escape(&m.image),
+            refimg = escape(&report.reference.image),
+            heat = escape(&m.heatmap),
+            lo = -m.error_range,
+            hi = m.error_range,
+        );
+    }
+    h.push_str("</body></html>\n");
+    std::fs::write(dir.join("report.html"), h)
+}
