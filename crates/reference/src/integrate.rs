@@ -15,6 +15,7 @@
 //!   punctual lights, cosine-weighted continuation, environment on escape, emission where a path
 //!   hits an emitter; `max_depth` segments (camera segment included), Russian roulette from the
 //!   fourth segment on. Background pixels show the environment (alpha 0).
+//!
 //! The standard error is the sample standard deviation over √N (per channel).
 
 use crate::env_sampling::EnvDistribution;
