@@ -202,6 +202,7 @@ pub fn run(args: CompareArgs) -> Result<()> {
         mask: mask_settings,
         silhouette_pixels: mask.silhouette_pixels,
         depth_checked: mask.depth_checked,
+        reference_noise: metrics::rms_stderr(&reference.stderr, &mask),
         methods: reports,
     };
     nearfield_eval::report::write(&args.out, &report)

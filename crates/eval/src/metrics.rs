@@ -151,6 +151,19 @@ pub fn metrics(test: &[[f32; 4]], reference: &[[f32; 4]], mask: &Mask) -> Metric
     }
 }
 
+/// RMS over the mask of a per-pixel standard error (mean of RGB).
+pub fn rms_stderr(stderr: &[[f32; 3]], mask: &Mask) -> f64 {
+    let (mut s, mut n) = (0.0f64, 0usize);
+    for (e, &v) in stderr.iter().zip(&mask.valid) {
+        if v {
+            let m = (e[0] as f64 + e[1] as f64 + e[2] as f64) / 3.0;
+            s += m * m;
+            n += 1;
+        }
+    }
+    (s / n.max(1) as f64).sqrt()
+}
+
 /// Mean FLIP over the mask, from two sRGB images of the same size (nv-flip, default viewing
 /// conditions: 67 pixels per degree).
 pub fn flip_mean(test: &image::RgbImage, reference: &image::RgbImage, mask: &Mask) -> f64 {

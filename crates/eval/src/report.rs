@@ -35,6 +35,9 @@ pub struct Report {
     /// Pixels excluded as silhouettes (dilated), and whether depth was available to find them.
     pub silhouette_pixels: usize,
     pub depth_checked: bool,
+    /// RMS of the reference's per-pixel standard error (mean of RGB) over the compared pixels:
+    /// errors below this are the reference's own noise.
+    pub reference_noise: f64,
     pub methods: Vec<MethodReport>,
 }
 
@@ -79,7 +82,8 @@ img{{image-rendering:pixelated;max-width:480px;border:1px solid #999}}.bar{{widt
 <h1>{aov} on {scene}</h1>
 <p>{w}×{hh} pixels, near-field radius {radius}, adapter {adapter}. Reference: {refpath}{spp}.
 Metrics over pixels that both images see as surface, outside a {border}-pixel border band, excluding {sil} silhouette pixels
-(view depth differing by more than {tol}% , dilated by 1){nodepth}. Error e = method − reference on the mean of RGB.</p>
+(view depth differing by more than {tol}%, dilated by 1){nodepth}. Error e = method − reference on the mean of RGB.
+The reference's own noise (RMS standard error over these pixels) is {noise:.5}.</p>
 <table><tr><th>method</th><th>pixels</th><th>bias</th><th>MAE</th><th>RMSE</th><th>relative error</th><th>FLIP</th></tr>"#,
         scene = escape(&report.scene),
         aov = escape(&report.aov),
@@ -95,6 +99,7 @@ Metrics over pixels that both images see as surface, outside a {border}-pixel bo
         border = report.mask.border,
         sil = report.silhouette_pixels,
         tol = report.mask.depth_tolerance * 100.0,
+        noise = report.reference_noise,
         nodepth = if report.depth_checked {
             ""
         } else {

@@ -329,7 +329,7 @@ fn error_falls_with_sample_count() {
 
 /// A pixel centre exactly on the floor/wall seam: with light only from behind the wall
 /// (d.z < −0.1: the margin keeps the map's bilinear blur, a texel wide, off the directions in
-/// front of the wall), nothing may leak through to it, and its visibility is at most half.
+/// front of the wall), nothing may leak through to it, and its visibility is one half.
 #[test]
 fn seam_pixels_do_not_leak() {
     let scene = builtin::scene("wall").unwrap();
