@@ -40,6 +40,8 @@ pub struct GpuEnvironment {
     pub radiance_mips: u32,
     pub rotation: f32,
     pub intensity: f32,
+    /// The CPU map, kept to re-project the SH when the rotation changes.
+    source: Environment,
 }
 
 impl GpuEnvironment {
@@ -233,7 +235,21 @@ impl GpuEnvironment {
             radiance_mips,
             rotation: env.rotation,
             intensity: env.intensity,
+            source: env.clone(),
         }
+    }
+
+    /// Turns the environment about +Y: lookups take the new angle from the frame uniforms, the SH
+    /// coefficients are re-projected here. Nothing else needs rebuilding.
+    pub fn set_rotation(&mut self, queue: &wgpu::Queue, rotation: f32) {
+        self.rotation = rotation;
+        self.source.rotation = rotation;
+        self.sh = sh::project_environment(&self.source, 16);
+        let mut padded = [[0f32; 4]; 16];
+        for (p, c) in padded.iter_mut().zip(&self.sh) {
+            *p = [c.x, c.y, c.z, 0.0];
+        }
+        queue.write_buffer(&self.sh_buffer, 0, bytemuck::cast_slice(&padded));
     }
 
     /// `Frame.env_params`: rotation, intensity (already in the SH; textures are raw), specular

@@ -41,5 +41,7 @@ pub fn shader_sources() -> Vec<(&'static str, String)> {
             include_str!("passes/env_prefilter.wgsl").to_string(),
         ),
         ("technique/none", technique::none::source()),
+        ("technique/ssdo", technique::ssdo::source()),
+        ("bilateral_blur", passes::bilateral_blur::source()),
     ]
 }

@@ -102,6 +102,8 @@ impl Renderer {
             &gpu_env,
             &shadows,
         );
+        let mut params = params.clone();
+        params.set.extend(technique::split_spec(technique_name).1);
         let technique = (desc.create)(
             &TechniqueContext {
                 device: &device,
@@ -109,8 +111,10 @@ impl Renderer {
                 frame: &frame_buffer,
                 targets: &targets,
                 env: &gpu_env,
+                scene: &gpu_scene,
+                shadows: &shadows,
             },
-            params,
+            &params,
         )?;
         let composite = passes::composite::new(&device, &frame_buffer, &targets, &gpu_env);
         let tonemap = passes::tonemap::new(&device, &frame_buffer, &targets);
@@ -154,6 +158,12 @@ impl Renderer {
 
     pub fn set_camera(&mut self, camera: Camera) {
         self.camera = camera;
+    }
+
+    /// Turns the environment about +Y (radians) for the next frames; the technique and every
+    /// other pass stay as they are.
+    pub fn set_environment_rotation(&mut self, rotation: f32) {
+        self.env.set_rotation(&self.queue, rotation);
     }
 
     pub fn frame_index(&self) -> u32 {

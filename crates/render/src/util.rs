@@ -6,6 +6,8 @@ use wgpu::{BindGroupLayoutEntry, BindingType, ShaderStages};
 pub const COMMON_WGSL: &str = include_str!("shaders/common.wgsl");
 /// Shared WGSL: environment bindings (1..=4), lat-long lookups and SH irradiance.
 pub const ENV_WGSL: &str = include_str!("shaders/env.wgsl");
+/// Shared WGSL: light table, shadow maps (bindings 13..=16) and light irradiance.
+pub const LIGHTS_WGSL: &str = include_str!("shaders/lights.wgsl");
 
 /// Concatenates WGSL sources (shared preludes first).
 pub fn compose(parts: &[&str]) -> String {

@@ -12,7 +12,7 @@ use wgpu::BindingResource as R;
 pub const SHADER: &str = include_str!("direct_lighting.wgsl");
 
 pub fn source() -> String {
-    util::compose(&[util::COMMON_WGSL, util::ENV_WGSL, SHADER])
+    util::compose(&[util::COMMON_WGSL, util::ENV_WGSL, util::LIGHTS_WGSL, SHADER])
 }
 
 pub fn new(

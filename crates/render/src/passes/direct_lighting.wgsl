@@ -10,111 +10,18 @@
 // analytic fit of the split-sum BRDF integral ("Physically Based Shading on Mobile", 2014) in
 // place of a lookup table. `direct_radiance` is the outgoing diffuse radiance that near-field
 // techniques gather as indirect light (DESIGN.md's L_o): it is kept for the next frame.
+// Lights and shadows come from shaders/lights.wgsl.
 // Shadows: 3×3 PCF of hardware 2×2 comparisons from the shadow-map array, receiver offset along
 // the normal by `frame.post.z` shadow-map texels (see passes/shadow.rs for both biases).
-
-struct GpuLight {
-    // xyz: position (point, spot) or direction of travel (directional); w: kind 0 dir, 1 point, 2 spot.
-    position: vec4<f32>,
-    // xyz: spot axis; w: range (m), 0 = unlimited.
-    direction: vec4<f32>,
-    // rgb: colour × intensity (lux or candela); w: unused.
-    color: vec4<f32>,
-    // cos(inner), cos(outer), first shadow layer (−1: none), shadow texel size: world metres for a
-    // directional light, metres per metre of distance for spot and point lights.
-    cone: vec4<f32>,
-}
 
 @group(0) @binding(8) var gb_normal: texture_2d<f32>;
 @group(0) @binding(9) var gb_albedo: texture_2d<f32>;
 @group(0) @binding(10) var gb_material: texture_2d<f32>;
 @group(0) @binding(11) var gb_emissive: texture_2d<f32>;
 @group(0) @binding(12) var gb_view_depth: texture_2d<f32>;
-@group(0) @binding(13) var<storage, read> lights: array<GpuLight>;
-@group(0) @binding(14) var<storage, read> shadow_clip_from_world: array<mat4x4<f32>>;
-@group(0) @binding(15) var shadow_maps: texture_depth_2d_array;
-@group(0) @binding(16) var shadow_sampler: sampler_comparison;
 @group(0) @binding(17) var out_light_irradiance: texture_storage_2d<rgba16float, write>;
 @group(0) @binding(18) var out_specular: texture_storage_2d<rgba16float, write>;
 @group(0) @binding(19) var out_direct_radiance: texture_storage_2d<rgba16float, write>;
-
-// Unshadowed irradiance on a surface facing the light (Light::normal_irradiance) and the unit
-// direction towards the light.
-struct Incident {
-    irradiance: vec3<f32>,
-    to_light: vec3<f32>,
-}
-
-fn incident(l: GpuLight, p: vec3<f32>) -> Incident {
-    var r: Incident;
-    let kind = u32(l.position.w);
-    if kind == 0u {
-        r.to_light = -l.position.xyz;
-        r.irradiance = l.color.rgb;
-        return r;
-    }
-    let d = l.position.xyz - p;
-    let dist2 = max(dot(d, d), 1e-8);
-    let dist = sqrt(dist2);
-    r.to_light = d / max(dist, 1e-6);
-    var e = l.color.rgb / dist2;
-    if kind == 2u {
-        let t = clamp((dot(l.direction.xyz, -r.to_light) - l.cone.y) / max(l.cone.x - l.cone.y, 1e-4), 0.0, 1.0);
-        e *= t * t;
-    }
-    if l.direction.w > 0.0 {
-        let q = dist / l.direction.w;
-        let w = clamp(1.0 - q * q * q * q, 0.0, 1.0);
-        e *= w * w;
-    }
-    r.irradiance = e;
-    return r;
-}
-
-// Index of the cube face (+X, −X, +Y, −Y, +Z, −Z) that sees direction v.
-fn cube_face(v: vec3<f32>) -> u32 {
-    let a = abs(v);
-    if a.x >= a.y && a.x >= a.z {
-        return select(1u, 0u, v.x > 0.0);
-    }
-    if a.y >= a.z {
-        return select(3u, 2u, v.y > 0.0);
-    }
-    return select(5u, 4u, v.z > 0.0);
-}
-
-fn shadow_visibility(l: GpuLight, p: vec3<f32>, n: vec3<f32>) -> f32 {
-    let first = l.cone.z;
-    if first < 0.0 {
-        return 1.0;
-    }
-    let kind = u32(l.position.w);
-    var layer = u32(first);
-    var texel_world = l.cone.w;
-    if kind != 0u {
-        let from_light = p - l.position.xyz;
-        texel_world *= length(from_light);
-        if kind == 1u {
-            layer += cube_face(from_light);
-        }
-    }
-    let offset_p = p + n * (frame.post.z * texel_world);
-    let c = shadow_clip_from_world[layer] * vec4<f32>(offset_p, 1.0);
-    let ndc = c.xyz / c.w;
-    let uv = vec2<f32>(ndc.x * 0.5 + 0.5, 0.5 - ndc.y * 0.5);
-    if any(uv < vec2<f32>(0.0)) || any(uv > vec2<f32>(1.0)) || ndc.z > 1.0 || ndc.z < 0.0 {
-        return 1.0;
-    }
-    let texel = 1.0 / vec2<f32>(textureDimensions(shadow_maps));
-    var sum = 0.0;
-    for (var j = -1; j <= 1; j++) {
-        for (var i = -1; i <= 1; i++) {
-            let o = vec2<f32>(f32(i), f32(j)) * texel;
-            sum += textureSampleCompareLevel(shadow_maps, shadow_sampler, uv + o, layer, ndc.z);
-        }
-    }
-    return sum / 9.0;
-}
 
 fn d_ggx(n_h: f32, a: f32) -> f32 {
     let a2 = a * a;

@@ -4,6 +4,7 @@
 //! (driven by `crate::gpu_env`).
 
 pub mod aov;
+pub mod bilateral_blur;
 pub mod composite;
 pub mod direct_lighting;
 pub mod gbuffer;

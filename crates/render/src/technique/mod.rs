@@ -6,9 +6,12 @@
 //! viewer, `bench` and `compare` enumerate.
 
 pub mod none;
+pub mod ssdo;
 
 use crate::RenderError;
 use crate::gpu_env::GpuEnvironment;
+use crate::gpu_scene::GpuScene;
+use crate::passes::shadow::ShadowPass;
 use crate::profiler::GpuProfiler;
 use crate::targets::FrameTargets;
 
@@ -31,6 +34,8 @@ pub struct TechniqueContext<'a> {
     pub frame: &'a wgpu::Buffer,
     pub targets: &'a FrameTargets,
     pub env: &'a GpuEnvironment,
+    pub scene: &'a GpuScene,
+    pub shadows: &'a ShadowPass,
 }
 
 /// A created technique: records its passes each frame.
@@ -60,15 +65,33 @@ pub struct TechniqueDesc {
 }
 
 /// Every technique, in the order shown to users.
-pub const REGISTRY: &[TechniqueDesc] = &[none::DESC];
+pub const REGISTRY: &[TechniqueDesc] = &[none::DESC, ssdo::SSAO, ssdo::SSDO];
 
 /// Names of all registered techniques.
 pub fn names() -> Vec<&'static str> {
     REGISTRY.iter().map(|t| t.name).collect()
 }
 
-/// Looks a technique up by name.
-pub fn find(name: &str) -> Result<&'static TechniqueDesc, RenderError> {
+/// Splits a method spec `name` or `name:key=value+key=value` (a technique with settings, as
+/// `bench` and `compare` accept in `--methods`) into the name and its settings.
+pub fn split_spec(spec: &str) -> (&str, Vec<(String, String)>) {
+    match spec.split_once(':') {
+        None => (spec, Vec::new()),
+        Some((name, rest)) => (
+            name,
+            rest.split('+')
+                .map(|kv| match kv.split_once('=') {
+                    Some((k, v)) => (k.trim().to_string(), v.trim().to_string()),
+                    None => (kv.trim().to_string(), String::new()),
+                })
+                .collect(),
+        ),
+    }
+}
+
+/// Looks a technique up by name (or by a `name:key=value` spec).
+pub fn find(spec: &str) -> Result<&'static TechniqueDesc, RenderError> {
+    let name = split_spec(spec).0;
     REGISTRY
         .iter()
         .find(|t| t.name == name)

@@ -1,0 +1,590 @@
+//! `ssao` and `ssdo`: screen-space ambient occlusion, and screen-space directional occlusion with
+//! one indirect bounce (Ritschel et al. 2009 and the SSDO chapter; see ssdo.wgsl for the formulas,
+//! the sources and the deviations).
+//!
+//! Frame: `direct` (sampling: ao, visibility, L_dir, screen-space light occlusion) → bilateral
+//! blur → `resolve` (env-irradiance = visibility × SH irradiance in visibility mode, L_dir in
+//! radiance mode; ao) → `bounce` (sender patches from the blurred direct light) → bilateral blur →
+//! `indirect-irradiance`. `ssao` stops after `resolve`, with A = pow(max(0, 1 − scale·S), contrast)
+//! in place of the visibility. Specular light is never occluded (composite.wgsl).
+
+use super::{Technique, TechniqueContext, TechniqueDesc, TechniqueParams};
+use crate::RenderError;
+use crate::gpu_env::GpuEnvironment;
+use crate::passes::bilateral_blur::{BilateralBlur, BlurChain, BlurSettings};
+use crate::profiler::GpuProfiler;
+use crate::targets::{AO_FORMAT, HDR_FORMAT};
+use crate::util;
+use bytemuck::{Pod, Zeroable};
+use wgpu::BindingResource as R;
+use wgpu::util::DeviceExt;
+
+pub const SHADER: &str = include_str!("ssdo.wgsl");
+
+pub fn source() -> String {
+    util::compose(&[util::COMMON_WGSL, util::ENV_WGSL, util::LIGHTS_WGSL, SHADER])
+}
+
+pub const SSAO: TechniqueDesc = TechniqueDesc {
+    name: "ssao",
+    summary: "normal-oriented hemisphere SSAO (same samples and visibility test as ssdo): ao × SH irradiance",
+    create: create_ssao,
+};
+
+pub const SSDO: TechniqueDesc = TechniqueDesc {
+    name: "ssdo",
+    summary: "screen-space directional occlusion of environment and lights, plus one indirect bounce",
+    create: create_ssdo,
+};
+
+/// How the environment term is formed.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Mode {
+    /// Luminance-weighted visible fraction × SH irradiance (the chapter's visibility mode).
+    Visibility,
+    /// Σ (1/π) L_in V cos θ Δω from the environment at `lod` (radiance mode).
+    Radiance,
+}
+
+/// Sample pattern.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Pattern {
+    /// The chapter's stratified elevation, golden-ratio azimuth, IGN rotation, random λ.
+    Chapter,
+    /// The paper's M×N texture: 4×4 sets of N low-discrepancy samples, one set per pixel.
+    Interleaved,
+}
+
+/// Settings of `ssao` and `ssdo` (`--samples`, `--radius`, `--set key=value`).
+#[derive(Clone, Copy, Debug)]
+pub struct Settings {
+    /// `samples`: directions per pixel N, 1..=256. Default 16.
+    pub samples: u32,
+    /// `radius`: hemisphere radius R in metres, > 0 and finite. Default 0.5.
+    pub radius: f32,
+    /// `mode`: visibility | radiance. Default visibility.
+    pub mode: Mode,
+    /// `bounce`: on | off (ssdo only). Default on.
+    pub bounce: bool,
+    /// `pattern`: chapter | interleaved. Default interleaved.
+    pub pattern: Pattern,
+    /// `lod`: mip of the environment read per sample, 0..=16. Default 5 (32×16 for a 1k map).
+    pub lod: f32,
+    /// `contrast`: exponent on the visibility, 0.1..=8. Default 1.
+    pub contrast: f32,
+    /// `scale`: SSAO's factor on the occluded fraction S, 0..=4. Default 1.
+    pub scale: f32,
+    /// `strength`: bounce strength, 0..=16. Default 1.
+    pub strength: f32,
+    /// `distance_clamp`: smallest sender distance in 1/d² (m), 0..=R. Default 0.1.
+    pub distance_clamp: f32,
+    /// `fade`: where the occluder fade starts, as a fraction of R, 0..=1. Default 0.75.
+    pub fade: f32,
+    /// `light_samples`: points per light segment (0: no screen-space light occlusion), 0..=64.
+    /// Default 8.
+    pub light_samples: u32,
+    /// `blur`: on | off. Default on.
+    pub blur: bool,
+    /// `blur_radius`: half width in pixels, 0..=16. Default 4 (covers the 4×4 interleaving).
+    pub blur_radius: u32,
+    /// `blur_depth`: distance of a blur tap from the centre's tangent plane, relative to the
+    /// centre's view depth, at which the tap's weight falls by e. Default 0.01.
+    pub blur_depth: f32,
+    /// `blur_normal`: exponent on the normals' cosine in the blur. Default 8.
+    pub blur_normal: f32,
+}
+
+impl Default for Settings {
+    fn default() -> Self {
+        Settings {
+            samples: 16,
+            radius: 0.5,
+            mode: Mode::Visibility,
+            bounce: true,
+            pattern: Pattern::Interleaved,
+            lod: 5.0,
+            contrast: 1.0,
+            scale: 1.0,
+            strength: 1.0,
+            distance_clamp: 0.1,
+            fade: 0.75,
+            light_samples: 8,
+            blur: true,
+            blur_radius: 4,
+            blur_depth: 0.01,
+            blur_normal: 8.0,
+        }
+    }
+}
+
+/// Every `--set` key, for error messages and the README.
+pub const KEYS: &[&str] = &[
+    "mode",
+    "bounce",
+    "pattern",
+    "lod",
+    "contrast",
+    "scale",
+    "strength",
+    "distance_clamp",
+    "fade",
+    "light_samples",
+    "blur",
+    "blur_radius",
+    "blur_depth",
+    "blur_normal",
+    "samples",
+    "radius",
+];
+
+fn on_off(key: &str, v: &str) -> Result<bool, String> {
+    match v {
+        "on" | "true" | "1" => Ok(true),
+        "off" | "false" | "0" => Ok(false),
+        _ => Err(format!("{key}={v}: expected on or off")),
+    }
+}
+
+fn number(key: &str, v: &str, lo: f32, hi: f32) -> Result<f32, String> {
+    let x: f32 = v
+        .parse()
+        .map_err(|_| format!("{key}={v}: expected a number"))?;
+    if !(x.is_finite() && x >= lo && x <= hi) {
+        return Err(format!("{key}={v}: must be in {lo}..={hi}"));
+    }
+    Ok(x)
+}
+
+impl Settings {
+    /// Applies `--samples`, `--radius` and `--set` on top of the defaults.
+    pub fn from_params(params: &TechniqueParams) -> Result<Self, String> {
+        let mut s = Settings::default();
+        if let Some(n) = params.samples {
+            s.samples = n;
+        }
+        if let Some(r) = params.radius {
+            s.radius = r;
+        }
+        for (k, v) in &params.set {
+            match k.as_str() {
+                "mode" => {
+                    s.mode = match v.as_str() {
+                        "visibility" => Mode::Visibility,
+                        "radiance" => Mode::Radiance,
+                        _ => return Err(format!("mode={v}: expected visibility or radiance")),
+                    }
+                }
+                "pattern" => {
+                    s.pattern = match v.as_str() {
+                        "chapter" => Pattern::Chapter,
+                        "interleaved" => Pattern::Interleaved,
+                        _ => return Err(format!("pattern={v}: expected chapter or interleaved")),
+                    }
+                }
+                "bounce" => s.bounce = on_off(k, v)?,
+                "blur" => s.blur = on_off(k, v)?,
+                "lod" => s.lod = number(k, v, 0.0, 16.0)?,
+                "contrast" => s.contrast = number(k, v, 0.1, 8.0)?,
+                "scale" => s.scale = number(k, v, 0.0, 4.0)?,
+                "strength" => s.strength = number(k, v, 0.0, 16.0)?,
+                "distance_clamp" => s.distance_clamp = number(k, v, 0.0, 1e6)?,
+                "fade" => s.fade = number(k, v, 0.0, 1.0)?,
+                "light_samples" => s.light_samples = number(k, v, 0.0, 64.0)? as u32,
+                "blur_radius" => s.blur_radius = number(k, v, 0.0, 16.0)? as u32,
+                "blur_depth" => s.blur_depth = number(k, v, 1e-4, 10.0)?,
+                "blur_normal" => s.blur_normal = number(k, v, 0.0, 128.0)?,
+                "samples" => s.samples = number(k, v, 1.0, 256.0)? as u32,
+                "radius" => s.radius = number(k, v, 1e-6, 1e6)?,
+                _ => {
+                    return Err(format!(
+                        "unknown setting '{k}' (known: {})",
+                        KEYS.join(", ")
+                    ));
+                }
+            }
+        }
+        if !(1..=256).contains(&s.samples) {
+            return Err(format!("samples {}: must be in 1..=256", s.samples));
+        }
+        if !(s.radius.is_finite() && s.radius > 0.0) {
+            return Err(format!(
+                "radius {}: screen-space sampling needs a finite radius > 0",
+                s.radius
+            ));
+        }
+        Ok(s)
+    }
+
+    /// The GPU constants (pure).
+    pub fn params(&self, ssdo: bool) -> SsdoParams {
+        SsdoParams {
+            radius: self.radius,
+            samples: self.samples,
+            mode: (self.mode == Mode::Radiance) as u32,
+            technique: ssdo as u32,
+            lod: self.lod,
+            contrast: self.contrast,
+            scale: self.scale,
+            fade: self.fade,
+            strength: self.strength,
+            distance_clamp: self.distance_clamp,
+            pattern: (self.pattern == Pattern::Interleaved) as u32,
+            light_samples: if ssdo { self.light_samples } else { 0 },
+        }
+    }
+}
+
+/// `SsdoParams` in ssdo.wgsl.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable)]
+pub struct SsdoParams {
+    pub radius: f32,
+    pub samples: u32,
+    pub mode: u32,
+    pub technique: u32,
+    pub lod: f32,
+    pub contrast: f32,
+    pub scale: f32,
+    pub fade: f32,
+    pub strength: f32,
+    pub distance_clamp: f32,
+    pub pattern: u32,
+    pub light_samples: u32,
+}
+
+/// The paper's M×N sample texture with M = 4×4 sets: set m, sample i has a stratified elevation
+/// cos θ = 1 − (i + ½)/N (uniform solid angle, so every sample stands for Δω = 2π/N), an azimuth
+/// from the base-2 radical inverse and a length λ/R = v^(1/3) (points uniform in the hemisphere's
+/// volume, as in ssdo.wgsl) from the base-3 radical inverse v of i, each rotated
+/// (Cranley–Patterson) by the m-th point of the R2 sequence so that the 16 sets differ.
+pub fn interleaved_sets(n: u32) -> Vec<[f32; 4]> {
+    fn radical_inverse(mut i: u32, base: u32) -> f32 {
+        let (mut f, mut r) = (1.0 / base as f64, 0.0f64);
+        while i > 0 {
+            r += f * (i % base) as f64;
+            i /= base;
+            f /= base as f64;
+        }
+        r as f32
+    }
+    let g = 1.324_717_957_244_746f64;
+    let mut out = Vec::with_capacity(16 * n as usize);
+    for m in 0..16u32 {
+        let o1 = ((m as f64 + 1.0) / g).fract() as f32;
+        let o2 = ((m as f64 + 1.0) / (g * g)).fract() as f32;
+        for i in 0..n {
+            let cos_e = 1.0 - (i as f32 + 0.5) / n as f32;
+            let sin_e = (1.0 - cos_e * cos_e).max(0.0).sqrt();
+            let phi = std::f32::consts::TAU * (radical_inverse(i, 2) + o1).fract();
+            let lambda = ((radical_inverse(i, 3) + o2).fract())
+                .max(0.5 / n as f32)
+                .cbrt();
+            out.push([sin_e * phi.cos(), sin_e * phi.sin(), cos_e, lambda]);
+        }
+    }
+    out
+}
+
+struct Ssdo {
+    name: &'static str,
+    size: (u32, u32),
+    bounce: bool,
+    direct: wgpu::ComputePipeline,
+    resolve: wgpu::ComputePipeline,
+    bounce_pipeline: wgpu::ComputePipeline,
+    direct_bg: wgpu::BindGroup,
+    resolve_bg: wgpu::BindGroup,
+    bounce_bg: wgpu::BindGroup,
+    blur: BilateralBlur,
+    blur_a: BlurChain,
+    blur_b: BlurChain,
+    blur_indirect: BlurChain,
+    // Keep the technique's own textures alive.
+    _textures: Vec<wgpu::Texture>,
+}
+
+fn create_ssao(
+    ctx: &TechniqueContext,
+    params: &TechniqueParams,
+) -> Result<Box<dyn Technique>, RenderError> {
+    create(ctx, params, false)
+}
+
+fn create_ssdo(
+    ctx: &TechniqueContext,
+    params: &TechniqueParams,
+) -> Result<Box<dyn Technique>, RenderError> {
+    create(ctx, params, true)
+}
+
+fn create(
+    ctx: &TechniqueContext,
+    tp: &TechniqueParams,
+    ssdo: bool,
+) -> Result<Box<dyn Technique>, RenderError> {
+    let name = if ssdo { "ssdo" } else { "ssao" };
+    let settings = Settings::from_params(tp).map_err(|msg| RenderError::Setting {
+        technique: name.into(),
+        msg,
+    })?;
+    let device = ctx.device;
+    let t = ctx.targets;
+    let c = wgpu::ShaderStages::COMPUTE;
+    let texture = |label: &str| {
+        device.create_texture(&wgpu::TextureDescriptor {
+            label: Some(label),
+            size: wgpu::Extent3d {
+                width: t.size.0,
+                height: t.size.1,
+                depth_or_array_layers: 1,
+            },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: HDR_FORMAT,
+            usage: wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::TEXTURE_BINDING,
+            view_formats: &[],
+        })
+    };
+    let textures: Vec<wgpu::Texture> = [
+        "ssdo a",
+        "ssdo b",
+        "ssdo blur scratch",
+        "ssdo a blurred",
+        "ssdo b blurred",
+        "ssdo indirect",
+    ]
+    .iter()
+    .map(|l| texture(l))
+    .collect();
+    let views: Vec<wgpu::TextureView> = textures
+        .iter()
+        .map(|t| t.create_view(&Default::default()))
+        .collect();
+    let (raw_a, raw_b, scratch, blurred_a, blurred_b, raw_indirect) = (
+        &views[0], &views[1], &views[2], &views[3], &views[4], &views[5],
+    );
+
+    let params = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some("ssdo params"),
+        contents: bytemuck::bytes_of(&settings.params(ssdo)),
+        usage: wgpu::BufferUsages::UNIFORM,
+    });
+    let sets = interleaved_sets(settings.samples);
+    let sample_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some("ssdo sample sets"),
+        contents: bytemuck::cast_slice(&sets),
+        usage: wgpu::BufferUsages::STORAGE,
+    });
+    let source = source();
+    let layout = |label: &str, entries: &[wgpu::BindGroupLayoutEntry]| {
+        device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some(label),
+            entries,
+        })
+    };
+    let lights_entries = [
+        util::storage_buffer(13, c),
+        util::storage_buffer(14, c),
+        wgpu::BindGroupLayoutEntry {
+            binding: 15,
+            visibility: c,
+            ty: wgpu::BindingType::Texture {
+                sample_type: wgpu::TextureSampleType::Depth,
+                view_dimension: wgpu::TextureViewDimension::D2Array,
+                multisampled: false,
+            },
+            count: None,
+        },
+        wgpu::BindGroupLayoutEntry {
+            binding: 16,
+            visibility: c,
+            ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Comparison),
+            count: None,
+        },
+    ];
+    let mut direct_entries = vec![
+        util::uniform(0, c),
+        util::uniform(5, c),
+        util::storage_buffer(6, c),
+        util::texture(8, c, true),
+        util::texture(9, c, false),
+    ];
+    direct_entries.extend(GpuEnvironment::layout_entries());
+    direct_entries.extend(lights_entries);
+    direct_entries.extend([
+        util::storage_texture(20, HDR_FORMAT),
+        util::storage_texture(21, HDR_FORMAT),
+        util::storage_texture(22, HDR_FORMAT),
+    ]);
+    let direct_layout = layout("ssdo direct", &direct_entries);
+    let mut resolve_entries = vec![
+        util::uniform(0, c),
+        util::uniform(5, c),
+        util::texture(8, c, true),
+    ];
+    resolve_entries.extend(GpuEnvironment::layout_entries());
+    resolve_entries.extend([
+        util::texture(24, c, true),
+        util::texture(25, c, true),
+        util::storage_texture(26, HDR_FORMAT),
+        util::storage_texture(27, AO_FORMAT),
+    ]);
+    let resolve_layout = layout("ssdo resolve", &resolve_entries);
+    let bounce_layout = layout(
+        "ssdo bounce",
+        &[
+            util::uniform(0, c),
+            util::uniform(5, c),
+            util::storage_buffer(6, c),
+            util::texture(8, c, true),
+            util::texture(9, c, false),
+            util::texture(10, c, true),
+            util::texture(11, c, true),
+            util::texture(28, c, true),
+            util::texture(29, c, true),
+            util::storage_texture(30, HDR_FORMAT),
+        ],
+    );
+    let shadows = ctx.shadows;
+    let mut direct_res = vec![
+        (0, ctx.frame.as_entire_binding()),
+        (5, params.as_entire_binding()),
+        (6, sample_buffer.as_entire_binding()),
+        (8, R::TextureView(&t.normal.view)),
+        (9, R::TextureView(&t.view_depth.view)),
+        (13, ctx.scene.lights.as_entire_binding()),
+        (14, shadows.matrices.as_entire_binding()),
+        (15, R::TextureView(&shadows.array_view)),
+        (16, R::Sampler(&shadows.compare_sampler)),
+        (20, R::TextureView(raw_a)),
+        (21, R::TextureView(raw_b)),
+        (22, R::TextureView(&t.light_irradiance.view)),
+    ];
+    direct_res.extend(ctx.env.bindings());
+    let mut resolve_res = vec![
+        (0, ctx.frame.as_entire_binding()),
+        (5, params.as_entire_binding()),
+        (8, R::TextureView(&t.normal.view)),
+        (24, R::TextureView(blurred_a)),
+        (25, R::TextureView(blurred_b)),
+        (26, R::TextureView(&t.env_irradiance.view)),
+        (27, R::TextureView(&t.ao.view)),
+    ];
+    resolve_res.extend(ctx.env.bindings());
+    let bounce_res = [
+        (0, ctx.frame.as_entire_binding()),
+        (5, params.as_entire_binding()),
+        (6, sample_buffer.as_entire_binding()),
+        (8, R::TextureView(&t.normal.view)),
+        (9, R::TextureView(&t.view_depth.view)),
+        (10, R::TextureView(&t.albedo.view)),
+        (11, R::TextureView(&t.emissive.view)),
+        (28, R::TextureView(&t.env_irradiance.view)),
+        (29, R::TextureView(&t.light_irradiance.view)),
+        (30, R::TextureView(raw_indirect)),
+    ];
+    let blur = BilateralBlur::new(
+        device,
+        BlurSettings {
+            enabled: settings.blur,
+            radius: settings.blur_radius,
+            depth_sigma: settings.blur_depth,
+            normal_power: settings.blur_normal,
+        },
+    );
+    Ok(Box::new(Ssdo {
+        name,
+        size: t.size,
+        bounce: ssdo && settings.bounce,
+        direct: util::compute_pipeline(device, "ssdo direct", &source, "direct", &direct_layout),
+        resolve: util::compute_pipeline(
+            device,
+            "ssdo resolve",
+            &source,
+            "resolve",
+            &resolve_layout,
+        ),
+        bounce_pipeline: util::compute_pipeline(
+            device,
+            "ssdo bounce",
+            &source,
+            "bounce",
+            &bounce_layout,
+        ),
+        direct_bg: util::bind_group(device, "ssdo direct", &direct_layout, &direct_res),
+        resolve_bg: util::bind_group(device, "ssdo resolve", &resolve_layout, &resolve_res),
+        bounce_bg: util::bind_group(device, "ssdo bounce", &bounce_layout, &bounce_res),
+        blur_a: blur.chain(device, ctx.frame, t, raw_a, scratch, blurred_a),
+        blur_b: blur.chain(device, ctx.frame, t, raw_b, scratch, blurred_b),
+        blur_indirect: blur.chain(
+            device,
+            ctx.frame,
+            t,
+            raw_indirect,
+            scratch,
+            &t.indirect_irradiance.view,
+        ),
+        blur,
+        _textures: textures,
+    }))
+}
+
+impl Technique for Ssdo {
+    fn name(&self) -> &'static str {
+        self.name
+    }
+
+    fn encode(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        profiler: &mut GpuProfiler,
+        _frame_index: u32,
+    ) {
+        let (gx, gy) = util::groups_8x8(self.size);
+        let single = |encoder: &mut wgpu::CommandEncoder,
+                      profiler: &mut GpuProfiler,
+                      label: &'static str,
+                      pipeline: &wgpu::ComputePipeline,
+                      bg: &wgpu::BindGroup| {
+            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                label: Some(label),
+                timestamp_writes: profiler.compute(label),
+            });
+            pass.set_pipeline(pipeline);
+            pass.set_bind_group(0, bg, &[]);
+            pass.dispatch_workgroups(gx, gy, 1);
+        };
+        single(encoder, profiler, self.name, &self.direct, &self.direct_bg);
+        {
+            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                label: Some("blur"),
+                timestamp_writes: profiler.compute("blur"),
+            });
+            self.blur.dispatch(&mut pass, &self.blur_a, self.size);
+            self.blur.dispatch(&mut pass, &self.blur_b, self.size);
+        }
+        single(
+            encoder,
+            profiler,
+            "resolve",
+            &self.resolve,
+            &self.resolve_bg,
+        );
+        if self.bounce {
+            single(
+                encoder,
+                profiler,
+                "bounce",
+                &self.bounce_pipeline,
+                &self.bounce_bg,
+            );
+            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                label: Some("blur indirect"),
+                timestamp_writes: profiler.compute("blur indirect"),
+            });
+            self.blur
+                .dispatch(&mut pass, &self.blur_indirect, self.size);
+        }
+    }
+}

@@ -1,0 +1,333 @@
+// ssdo.wgsl — screen-space ambient occlusion (`ssao`) and screen-space directional occlusion with
+// one indirect bounce (`ssdo`). Sources: Ritschel, Grosch & Seidel 2009, "Approximating Dynamic
+// Global Illumination in Image Space" (seed 003: Sec. 3 directional occlusion and indirect
+// bounce, Sec. 4 light segments, M×N interleaved sample sets) and the SSDO chapter of seed 001
+// (tangent frame, stratified elevation + golden-ratio azimuth, interleaved gradient noise, three
+// "visible" conditions, visibility and radiance modes, environment at a blurred mip, bounce from
+// the blurred direct radiance, distance clamp, falloff, strength).
+//
+// Entry points, in frame order: `direct` → (bilateral blur) → `resolve` → `bounce` → (blur).
+// SSAO runs `direct` and `resolve` only; the two techniques share sample generation and the
+// visibility test and differ in what they do with the samples.
+//
+// Deviations, and why:
+// - Visibility test. The paper's rule — a sample point is an occluder when projecting it onto the
+//   surface seen at its pixel moves it towards the viewer — is evaluated against that surface's
+//   tangent plane (position and normal from the G-buffer) rather than its depth at the pixel
+//   centre: the same verdict for curved surfaces at pixel scale, but exact on planes whatever the
+//   view angle (no false occlusion on a flat floor at any radius).
+// - Sample lengths: the paper draws λ ∈ [0, r_max] at random without naming the distribution;
+//   we take λ = r_max·u^(1/3), points uniform in the hemisphere's volume. Uniform λ leaves most
+//   points close to P and misses planar occluders a ray within R would meet (ao 0.78 instead of
+//   0.56 at a tenth of R from a wall); volume-uniform points halve that gap.
+// - The paper's smooth-step fade acts on the blocker's distance from P, from `fade`·R to R: where
+//   the segment from P to the sample crosses the tangent plane of the surface seen (when P is in
+//   front of that plane), else the distance to that surface point (so surfaces far in front of P,
+//   whose pixels a sample may project onto, fade out instead of casting halos).
+// - The bounce's sender cosine uses the direction from the sender to the receiver (the chapter's
+//   listing dots the sender normal with receiver→sender, which rejects front-facing senders).
+
+struct SsdoParams {
+    // Hemisphere radius R (m).
+    radius: f32,
+    // Directions per pixel N.
+    samples: u32,
+    // 0 visibility mode, 1 radiance mode.
+    mode: u32,
+    // 0 ssao, 1 ssdo.
+    technique: u32,
+    // Mip of the box-filtered environment read per sample.
+    lod: f32,
+    // Exponent applied to the visibility (SSDO) or to 1 − scale·S (SSAO).
+    contrast: f32,
+    // SSAO's scale on the occlusion sum S.
+    scale: f32,
+    // Fraction of R where the occluder fade starts.
+    fade: f32,
+    // Bounce strength.
+    strength: f32,
+    // Smallest sender distance used in 1/d² (m).
+    distance_clamp: f32,
+    // 0 chapter pattern, 1 interleaved M×N sets (M = 4×4).
+    pattern: u32,
+    // Points on each light's segment (0: no screen-space light occlusion).
+    light_samples: u32,
+}
+
+@group(0) @binding(5) var<uniform> params: SsdoParams;
+// Interleaved pattern: 16 sets × N samples (xyz: unit direction in the tangent frame, z up;
+// w: λ/R in (0, 1]).
+@group(0) @binding(6) var<storage, read> sample_sets: array<vec4<f32>>;
+@group(0) @binding(8) var gb_normal: texture_2d<f32>;
+@group(0) @binding(9) var gb_view_depth: texture_2d<f32>;
+@group(0) @binding(10) var gb_albedo: texture_2d<f32>;
+@group(0) @binding(11) var gb_emissive: texture_2d<f32>;
+// `direct` outputs: a = (L_dir rgb: Σ (1/π) L_in V cos Δω, visibility after contrast);
+// b = (cosine-weighted ao estimate, 0, 0, 1); light irradiance with screen-space light occlusion.
+@group(0) @binding(20) var out_a: texture_storage_2d<rgba16float, write>;
+@group(0) @binding(21) var out_b: texture_storage_2d<rgba16float, write>;
+@group(0) @binding(22) var out_light_irradiance: texture_storage_2d<rgba16float, write>;
+// `resolve`: blurred a and b → env_irradiance and ao.
+@group(0) @binding(24) var in_a: texture_2d<f32>;
+@group(0) @binding(25) var in_b: texture_2d<f32>;
+@group(0) @binding(26) var out_env_irradiance: texture_storage_2d<rgba16float, write>;
+@group(0) @binding(27) var out_ao: texture_storage_2d<r32float, write>;
+// `bounce`: the resolved (blurred) direct irradiance of senders → raw indirect irradiance.
+@group(0) @binding(28) var env_irradiance: texture_2d<f32>;
+@group(0) @binding(29) var light_irradiance: texture_2d<f32>;
+@group(0) @binding(30) var out_indirect: texture_storage_2d<rgba16float, write>;
+
+struct Surface {
+    p: vec3<f32>,
+    n: vec3<f32>,
+    valid: bool,
+}
+
+fn surface_at(pixel: vec2<u32>) -> Surface {
+    var s: Surface;
+    let nw = textureLoad(gb_normal, pixel, 0);
+    s.valid = nw.w != 0.0;
+    s.n = normalize(nw.xyz);
+    s.p = world_position(pixel, textureLoad(gb_view_depth, pixel, 0).r);
+    return s;
+}
+
+// Interleaved gradient noise (Jimenez 2014), as the chapter uses it: a rotation in [0, π).
+fn interleaved_gradient_noise(pixel: vec2<u32>) -> f32 {
+    let c = vec2<f32>(pixel) + 0.5;
+    return fract(52.9829189 * fract(0.06711056 * c.x + 0.00583715 * c.y));
+}
+
+fn hash(v: u32) -> u32 {
+    let state = v * 747796405u + 2891336453u;
+    let word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
+    return (word >> 22u) ^ word;
+}
+
+// Sample i of pixel `pixel`: xyz unit direction in the tangent frame (z = normal), w = λ/R.
+fn sample_local(i: u32, pixel: vec2<u32>) -> vec4<f32> {
+    let n = params.samples;
+    if params.pattern == 1u {
+        let set_index = (pixel.x % 4u) + 4u * (pixel.y % 4u);
+        return sample_sets[set_index * n + i];
+    }
+    // Chapter: stratified elevation cos = 1 − α, golden-ratio azimuth, IGN rotation.
+    let alpha = (f32(i) + 0.5) / f32(n);
+    let cos_e = 1.0 - alpha;
+    let sin_e = sqrt(max(0.0, 1.0 - cos_e * cos_e));
+    let phi = PI * interleaved_gradient_noise(pixel);
+    let theta = 2.0 * PI * alpha * (7.0 * f32(n) / 9.0) + phi;
+    // Random length λ ∈ (0, 1] per pixel and sample (with the frame seed), λ = u^(1/3): the
+    // sampling points are uniform in the hemisphere's volume.
+    let h = hash(pixel.x * 1973u + pixel.y * 9277u + i * 26699u + frame.counts.z * 103u);
+    let lambda = pow((f32(h >> 8u) + 1.0) / 16777216.0, 1.0 / 3.0);
+    return vec4<f32>(sin_e * cos(theta), sin_e * sin(theta), cos_e, lambda);
+}
+
+struct Frame3 {
+    t: vec3<f32>,
+    b: vec3<f32>,
+}
+
+// The chapter's tangent frame: an up vector never collinear with n.
+fn tangent_frame(n: vec3<f32>) -> Frame3 {
+    let up = select(vec3<f32>(1.0, 0.0, 0.0), vec3<f32>(0.0, 1.0, 0.0), abs(n.y) < 0.999);
+    let t = normalize(cross(up, n));
+    return Frame3(t, cross(n, t));
+}
+
+// How much the point s = p + λω, seen from p, is occluded: 0 visible, up to 1 occluded.
+// Returns the occluder's pixel in `.pixel` for the bounce.
+struct Occlusion {
+    amount: f32,
+    pixel: vec2<u32>,
+    distance: f32,
+}
+
+fn occlusion(p: vec3<f32>, omega: vec3<f32>, lambda: f32) -> Occlusion {
+    var o: Occlusion;
+    o.amount = 0.0;
+    let s = p + omega * lambda;
+    let c = frame.clip_from_world * vec4<f32>(s, 1.0);
+    // Chapter condition 1: outside the screen (or behind the camera) — open.
+    if c.w <= 0.0 {
+        return o;
+    }
+    let ndc = c.xy / c.w;
+    let uv = vec2<f32>(ndc.x * 0.5 + 0.5, 0.5 - ndc.y * 0.5);
+    if any(uv < vec2<f32>(0.0)) || any(uv >= vec2<f32>(1.0)) {
+        return o;
+    }
+    let q = vec2<u32>(uv * frame.size.xy);
+    let surf = surface_at(q);
+    // Chapter condition 2: background — open.
+    if !surf.valid {
+        return o;
+    }
+    // Chapter condition 3 / the paper's rule against the tangent plane at q: the sample is
+    // behind the surface seen there.
+    let above_s = dot(s - surf.p, surf.n);
+    if above_s >= -1e-4 * c.w {
+        return o;
+    }
+    // Blocker distance for the fade: where the segment p → s crosses the tangent plane when p is
+    // in front of it, else (the plane seen is not the blocking face, e.g. the far side of a box)
+    // the distance to the surface point seen.
+    let above_p = dot(p - surf.p, surf.n);
+    var d = distance(surf.p, p);
+    if above_p >= 0.0 {
+        d = above_p / max(above_p - above_s, 1e-12) * lambda;
+    }
+    o.amount = 1.0 - smoothstep(params.fade * params.radius, params.radius, d);
+    o.pixel = q;
+    o.distance = d;
+    return o;
+}
+
+fn luminance(c: vec3<f32>) -> f32 {
+    return dot(c, vec3<f32>(0.2126, 0.7152, 0.0722));
+}
+
+@compute @workgroup_size(8, 8, 1)
+fn direct(@builtin(global_invocation_id) id: vec3<u32>) {
+    let pixel = id.xy;
+    if !in_bounds(pixel) {
+        return;
+    }
+    let here = surface_at(pixel);
+    if !here.valid {
+        textureStore(out_a, pixel, vec4<f32>(0.0));
+        textureStore(out_b, pixel, vec4<f32>(0.0));
+        if params.technique == 1u && params.light_samples > 0u {
+            textureStore(out_light_irradiance, pixel, vec4<f32>(0.0));
+        }
+        return;
+    }
+    let tb = tangent_frame(here.n);
+    let n = params.samples;
+    var ao_num = 0.0;
+    var ao_den = 0.0;
+    var total_light = 0.0;
+    var visible_light = 0.0;
+    var l_dir = vec3<f32>(0.0);
+    for (var i = 0u; i < n; i++) {
+        let s = sample_local(i, pixel);
+        let omega = normalize(tb.t * s.x + tb.b * s.y + here.n * s.z);
+        let lambda = s.w * params.radius;
+        let v = 1.0 - occlusion(here.p, omega, lambda).amount;
+        let cos_theta = max(s.z, 0.0);
+        ao_num += v * cos_theta;
+        ao_den += cos_theta;
+        if params.technique == 1u {
+            let l_in = env_radiance_at(omega, params.lod);
+            let w = luminance(l_in) * cos_theta;
+            total_light += w;
+            visible_light += w * v;
+            // (1/π) L_in V cos θ Δω with Δω = 2π/N.
+            l_dir += l_in * (v * cos_theta * 2.0 / f32(n));
+        }
+    }
+    let ao = select(1.0, ao_num / ao_den, ao_den > 0.0);
+    var visibility: f32;
+    if params.technique == 1u {
+        let fraction = select(1.0, visible_light / total_light, total_light > 0.0);
+        visibility = clamp(pow(fraction, params.contrast), 0.0, 1.0);
+    } else {
+        // SSAO: A = pow(max(0, 1 − scale·S), contrast), S the cosine-weighted occluded fraction.
+        visibility = pow(max(0.0, 1.0 - params.scale * (1.0 - ao)), params.contrast);
+    }
+    textureStore(out_a, pixel, vec4<f32>(l_dir, visibility));
+    textureStore(out_b, pixel, vec4<f32>(ao, 0.0, 0.0, 1.0));
+
+    // Lights (paper Sec. 4): points on a segment of length R towards each light; the light is
+    // blocked in screen space as much as its most occluded point, on top of its shadow map.
+    if params.technique == 1u && params.light_samples > 0u {
+        var irradiance = vec3<f32>(0.0);
+        for (var li = 0u; li < frame.counts.y; li++) {
+            let l = lights[li];
+            let inc = incident(l, here.p);
+            let n_l = dot(here.n, inc.to_light);
+            if n_l <= 0.0 {
+                continue;
+            }
+            var seg_length = params.radius;
+            if u32(l.position.w) != 0u {
+                seg_length = min(seg_length, distance(l.position.xyz, here.p));
+            }
+            var blocked = 0.0;
+            for (var k = 0u; k < params.light_samples; k++) {
+                let t = (f32(k) + 0.5) / f32(params.light_samples) * seg_length;
+                blocked = max(blocked, occlusion(here.p, inc.to_light, t).amount);
+            }
+            irradiance += inc.irradiance * n_l * shadow_visibility(l, here.p, here.n) * (1.0 - blocked);
+        }
+        textureStore(out_light_irradiance, pixel, vec4<f32>(irradiance / PI, 1.0));
+    }
+}
+
+@compute @workgroup_size(8, 8, 1)
+fn resolve(@builtin(global_invocation_id) id: vec3<u32>) {
+    let pixel = id.xy;
+    if !in_bounds(pixel) {
+        return;
+    }
+    let nw = textureLoad(gb_normal, pixel, 0);
+    if nw.w == 0.0 {
+        textureStore(out_env_irradiance, pixel, vec4<f32>(0.0));
+        textureStore(out_ao, pixel, vec4<f32>(0.0));
+        return;
+    }
+    let a = textureLoad(in_a, pixel, 0);
+    var env = a.w * env_irradiance_sh(normalize(nw.xyz));
+    if params.technique == 1u && params.mode == 1u {
+        env = a.rgb;
+    }
+    textureStore(out_env_irradiance, pixel, vec4<f32>(env, 1.0));
+    textureStore(out_ao, pixel, vec4<f32>(textureLoad(in_b, pixel, 0).r));
+}
+
+@compute @workgroup_size(8, 8, 1)
+fn bounce(@builtin(global_invocation_id) id: vec3<u32>) {
+    let pixel = id.xy;
+    if !in_bounds(pixel) {
+        return;
+    }
+    let here = surface_at(pixel);
+    if !here.valid {
+        textureStore(out_indirect, pixel, vec4<f32>(0.0));
+        return;
+    }
+    let tb = tangent_frame(here.n);
+    let n = params.samples;
+    // Sender patch area: the hemisphere's base disc split into N parts.
+    let area = PI * params.radius * params.radius / f32(n);
+    var l_ind = vec3<f32>(0.0);
+    for (var i = 0u; i < n; i++) {
+        let s = sample_local(i, pixel);
+        let omega = normalize(tb.t * s.x + tb.b * s.y + here.n * s.z);
+        let occ = occlusion(here.p, omega, s.w * params.radius);
+        if occ.amount <= 0.0 {
+            continue;
+        }
+        let sender = surface_at(occ.pixel);
+        let to_sender = sender.p - here.p;
+        let d = length(to_sender);
+        if d <= 0.0 {
+            continue;
+        }
+        let dir = to_sender / d;
+        // Back-facing senders (normal away from the receiver) give nothing.
+        let cos_s = max(0.0, dot(sender.n, -dir));
+        let cos_r = max(0.0, dot(here.n, dir));
+        if cos_s <= 0.0 || cos_r <= 0.0 {
+            continue;
+        }
+        // Sender radiance: its blurred direct irradiance × albedo (Lambertian), plus emission.
+        let irradiance = textureLoad(env_irradiance, occ.pixel, 0).rgb + textureLoad(light_irradiance, occ.pixel, 0).rgb;
+        let l_pixel = textureLoad(gb_albedo, occ.pixel, 0).rgb * irradiance + textureLoad(gb_emissive, occ.pixel, 0).rgb;
+        let falloff = max(0.0, 1.0 - d / params.radius);
+        let dc = max(params.distance_clamp, d);
+        l_ind += l_pixel * (area * cos_s * cos_r * params.strength * falloff * occ.amount / (PI * dc * dc));
+    }
+    textureStore(out_indirect, pixel, vec4<f32>(l_ind, 1.0));
+}
