@@ -90,6 +90,11 @@ struct Report {
     adapter: Adapter,
     settings: Settings,
     methods: BTreeMap<String, MethodResult>,
+    /// Methods in the order given.
+    method_order: Vec<String>,
+    /// Per method: median frame time (GPU total, else wall) relative to the first method, in
+    /// percent (the paper's "overhead relative to SSAO" when SSAO is listed first).
+    overhead_pct_vs_first: BTreeMap<String, f64>,
 }
 
 pub fn run(args: BenchArgs) -> Result<()> {
@@ -164,6 +169,12 @@ pub fn run(args: BenchArgs) -> Result<()> {
             },
         );
     }
+    let frame_ms = |m: &MethodResult| m.gpu_total.map(|t| t.median_ms).unwrap_or(m.wall.median_ms);
+    let first = frame_ms(&results[&methods[0]]);
+    let overhead = methods
+        .iter()
+        .map(|m| (m.clone(), 100.0 * (frame_ms(&results[m]) / first - 1.0)))
+        .collect();
     let report = Report {
         adapter: Adapter {
             name: info.name.clone(),
@@ -181,6 +192,8 @@ pub fn run(args: BenchArgs) -> Result<()> {
             shadow_size: settings.shadows.size,
         },
         methods: results,
+        method_order: methods.clone(),
+        overhead_pct_vs_first: overhead,
     };
     print_table(&report);
     if let Some(p) = &args.json {
@@ -208,7 +221,8 @@ fn print_table(r: &Report) {
         "{:<10} {:<12} {:>11} {:>11}",
         "method", "pass", "median ms", "p90 ms"
     );
-    for (name, m) in &r.methods {
+    for name in &r.method_order {
+        let m = &r.methods[name];
         for pass in &m.pass_order {
             let s = m.passes[pass];
             println!(
@@ -226,6 +240,14 @@ fn print_table(r: &Report) {
             "{:<10} {:<12} {:>11.3} {:>11.3}",
             name, "wall", m.wall.median_ms, m.wall.p90_ms
         );
+    }
+    if r.method_order.len() > 1 {
+        for name in &r.method_order {
+            println!(
+                "{:<24} frame time {:+.1} % vs {}",
+                name, r.overhead_pct_vs_first[name], r.method_order[0]
+            );
+        }
     }
 }
 

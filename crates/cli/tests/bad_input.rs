@@ -150,6 +150,11 @@ fn every_bad_input_exits_2_with_one_line() {
         (vec!["compare".into(), "--methods".into(), "magic".into()], "unknown technique"),
         (vec!["compare".into(), "--aov".into(), "motion".into()], "does not compute"),
         (vec!["compare".into(), "--spp".into(), "0".into()], "--spp"),
+        (vec!["render".into(), "--size".into(), "16x16".into(), "--method".into(), "ssdo".into(), "--set".into(), "mode=magic".into()], "mode=magic"),
+        (vec!["render".into(), "--size".into(), "16x16".into(), "--method".into(), "ssdo".into(), "--radius".into(), "inf".into()], "finite radius"),
+        (vec!["render".into(), "--size".into(), "16x16".into(), "--method".into(), "ssao".into(), "--set".into(), "lod=99".into()], "lod=99"),
+        (vec!["render".into(), "--size".into(), "16x16".into(), "--method".into(), "ssdo".into(), "--set".into(), "bounce=maybe".into()], "on or off"),
+        (vec!["bench".into(), "--size".into(), "16x16".into(), "--methods".into(), "ssdo:nosuch=1".into()], "unknown setting"),
     ];
     for (args, needle) in cases {
         let args: Vec<&str> = args.iter().map(String::as_str).collect();
