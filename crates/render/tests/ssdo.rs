@@ -286,8 +286,8 @@ fn ssdo_casts_coloured_shadows_ssao_grey_ones() {
     let ssdo = hue("ssdo", &[("mode", "radiance"), ("samples", "32")]);
     let ssao = hue("ssao", &[("samples", "32")]);
     eprintln!("blue/red next to the box relative to open floor: ssdo {ssdo:.3}, ssao {ssao:.3}");
-    // Measured on lavapipe: ssdo 1.15-1.2, ssao 1.000.
-    assert!(ssdo > 1.1, "ssdo shadow not tinted: {ssdo}");
+    // Measured on lavapipe: ssdo 1.108, ssao 1.000 (the bound leaves room for other adapters).
+    assert!(ssdo > 1.05, "ssdo shadow not tinted: {ssdo}");
     assert!((ssao - 1.0).abs() < 0.02, "ssao shadow not grey: {ssao}");
 }
 
