@@ -1,6 +1,5 @@
 //! `nearfield bench`: per-pass GPU timings (timestamp queries) of one or more techniques.
 
-use crate::BadInput;
 use crate::options::{SceneOpts, TechniqueOpts};
 use anyhow::Result;
 use clap::Args;
@@ -98,19 +97,7 @@ struct Report {
 }
 
 pub fn run(args: BenchArgs) -> Result<()> {
-    let methods: Vec<String> = match &args.methods {
-        Some(m) => m.split(',').map(|s| s.trim().to_string()).collect(),
-        None => nearfield_render::technique::names()
-            .iter()
-            .map(|s| s.to_string())
-            .collect(),
-    };
-    for m in &methods {
-        nearfield_render::technique::find(m)?;
-    }
-    if args.frames == 0 || args.frames > 100_000 {
-        return Err(BadInput(format!("--frames {}: must be in 1..=100000", args.frames)).into());
-    }
+    let methods = crate::options::methods_and_frames(args.methods.as_deref(), args.frames)?;
     if let Some(p) = &args.json {
         crate::render::check_parent_dir(p)?;
     }

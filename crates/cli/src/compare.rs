@@ -46,19 +46,7 @@ pub struct CompareArgs {
 pub fn run(args: CompareArgs) -> Result<()> {
     let ref_aov = parse_aov(&args.aov)?;
     let gpu_aov = Aov::parse(&args.aov).expect("every reference AOV is a renderer AOV");
-    let methods: Vec<String> = match &args.methods {
-        Some(m) => m.split(',').map(|s| s.trim().to_string()).collect(),
-        None => nearfield_render::technique::names()
-            .iter()
-            .map(|s| s.to_string())
-            .collect(),
-    };
-    for m in &methods {
-        nearfield_render::technique::find(m)?;
-    }
-    if args.frames == 0 || args.frames > 100_000 {
-        return Err(BadInput(format!("--frames {}: must be in 1..=100000", args.frames)).into());
-    }
+    let methods = crate::options::methods_and_frames(args.methods.as_deref(), args.frames)?;
     let size = crate::options::parse_size(&args.scene.size)?;
     let border = args
         .border

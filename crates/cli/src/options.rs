@@ -240,3 +240,22 @@ impl TechniqueOpts {
         Ok(s)
     }
 }
+
+/// `--methods M1,M2,...` (default: every registered technique) checked against the registry,
+/// and `--frames` checked: shared by `bench` and `compare`.
+pub fn methods_and_frames(methods: Option<&str>, frames: u32) -> Result<Vec<String>> {
+    let methods: Vec<String> = match methods {
+        Some(m) => m.split(',').map(|s| s.trim().to_string()).collect(),
+        None => nearfield_render::technique::names()
+            .iter()
+            .map(|s| s.to_string())
+            .collect(),
+    };
+    for m in &methods {
+        nearfield_render::technique::find(m)?;
+    }
+    if frames == 0 || frames > 100_000 {
+        return Err(BadInput(format!("--frames {frames}: must be in 1..=100000")).into());
+    }
+    Ok(methods)
+}

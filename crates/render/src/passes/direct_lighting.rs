@@ -33,24 +33,9 @@ pub fn new(
         util::texture(10, c, true),
         util::texture(11, c, true),
         util::texture(12, c, false),
-        util::storage_buffer(13, c),
-        util::storage_buffer(14, c),
-        wgpu::BindGroupLayoutEntry {
-            binding: 15,
-            visibility: c,
-            ty: wgpu::BindingType::Texture {
-                sample_type: wgpu::TextureSampleType::Depth,
-                view_dimension: wgpu::TextureViewDimension::D2Array,
-                multisampled: false,
-            },
-            count: None,
-        },
-        wgpu::BindGroupLayoutEntry {
-            binding: 16,
-            visibility: c,
-            ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Comparison),
-            count: None,
-        },
+    ]);
+    entries.extend(ShadowPass::layout_entries());
+    entries.extend([
         util::storage_texture(17, HDR_FORMAT),
         util::storage_texture(18, HDR_FORMAT),
         util::storage_texture(19, HDR_FORMAT),
@@ -65,16 +50,13 @@ pub fn new(
         .map(|out| {
             let mut r = vec![(0, frame.as_entire_binding())];
             r.extend(env.bindings());
+            r.extend(shadows.bindings(scene));
             r.extend([
                 (8, R::TextureView(&targets.normal.view)),
                 (9, R::TextureView(&targets.albedo.view)),
                 (10, R::TextureView(&targets.material.view)),
                 (11, R::TextureView(&targets.emissive.view)),
                 (12, R::TextureView(&targets.view_depth.view)),
-                (13, scene.lights.as_entire_binding()),
-                (14, shadows.matrices.as_entire_binding()),
-                (15, R::TextureView(&shadows.array_view)),
-                (16, R::Sampler(&shadows.compare_sampler)),
                 (17, R::TextureView(&targets.light_irradiance.view)),
                 (18, R::TextureView(&targets.specular.view)),
                 (19, R::TextureView(&out.view)),

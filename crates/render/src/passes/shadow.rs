@@ -292,6 +292,42 @@ impl ShadowPass {
         }
     }
 
+    /// Layout entries 13..=16 of passes that include shaders/lights.wgsl (light table, shadow
+    /// matrices, shadow maps, comparison sampler).
+    pub fn layout_entries() -> [wgpu::BindGroupLayoutEntry; 4] {
+        let c = wgpu::ShaderStages::COMPUTE;
+        [
+            util::storage_buffer(13, c),
+            util::storage_buffer(14, c),
+            wgpu::BindGroupLayoutEntry {
+                binding: 15,
+                visibility: c,
+                ty: wgpu::BindingType::Texture {
+                    sample_type: wgpu::TextureSampleType::Depth,
+                    view_dimension: wgpu::TextureViewDimension::D2Array,
+                    multisampled: false,
+                },
+                count: None,
+            },
+            wgpu::BindGroupLayoutEntry {
+                binding: 16,
+                visibility: c,
+                ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Comparison),
+                count: None,
+            },
+        ]
+    }
+
+    /// Bindings matching [`Self::layout_entries`].
+    pub fn bindings<'a>(&'a self, scene: &'a GpuScene) -> [(u32, wgpu::BindingResource<'a>); 4] {
+        [
+            (13, scene.lights.as_entire_binding()),
+            (14, self.matrices.as_entire_binding()),
+            (15, wgpu::BindingResource::TextureView(&self.array_view)),
+            (16, wgpu::BindingResource::Sampler(&self.compare_sampler)),
+        ]
+    }
+
     /// Renders every layer (timed together as "shadows").
     pub fn encode(
         &self,

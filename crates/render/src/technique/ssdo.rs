@@ -12,6 +12,7 @@ use super::{Technique, TechniqueContext, TechniqueDesc, TechniqueParams};
 use crate::RenderError;
 use crate::gpu_env::GpuEnvironment;
 use crate::passes::bilateral_blur::{BilateralBlur, BlurChain, BlurSettings};
+use crate::passes::shadow::ShadowPass;
 use crate::profiler::GpuProfiler;
 use crate::targets::{AO_FORMAT, HDR_FORMAT};
 use crate::util;
@@ -383,26 +384,6 @@ fn create(
             entries,
         })
     };
-    let lights_entries = [
-        util::storage_buffer(13, c),
-        util::storage_buffer(14, c),
-        wgpu::BindGroupLayoutEntry {
-            binding: 15,
-            visibility: c,
-            ty: wgpu::BindingType::Texture {
-                sample_type: wgpu::TextureSampleType::Depth,
-                view_dimension: wgpu::TextureViewDimension::D2Array,
-                multisampled: false,
-            },
-            count: None,
-        },
-        wgpu::BindGroupLayoutEntry {
-            binding: 16,
-            visibility: c,
-            ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Comparison),
-            count: None,
-        },
-    ];
     let mut direct_entries = vec![
         util::uniform(0, c),
         util::uniform(5, c),
@@ -411,7 +392,7 @@ fn create(
         util::texture(9, c, false),
     ];
     direct_entries.extend(GpuEnvironment::layout_entries());
-    direct_entries.extend(lights_entries);
+    direct_entries.extend(ShadowPass::layout_entries());
     direct_entries.extend([
         util::storage_texture(20, HDR_FORMAT),
         util::storage_texture(21, HDR_FORMAT),
@@ -453,15 +434,12 @@ fn create(
         (6, sample_buffer.as_entire_binding()),
         (8, R::TextureView(&t.normal.view)),
         (9, R::TextureView(&t.view_depth.view)),
-        (13, ctx.scene.lights.as_entire_binding()),
-        (14, shadows.matrices.as_entire_binding()),
-        (15, R::TextureView(&shadows.array_view)),
-        (16, R::Sampler(&shadows.compare_sampler)),
         (20, R::TextureView(raw_a)),
         (21, R::TextureView(raw_b)),
         (22, R::TextureView(&t.light_irradiance.view)),
     ];
     direct_res.extend(ctx.env.bindings());
+    direct_res.extend(shadows.bindings(ctx.scene));
     let mut resolve_res = vec![
         (0, ctx.frame.as_entire_binding()),
         (5, params.as_entire_binding()),
