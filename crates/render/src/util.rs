@@ -8,6 +8,8 @@ pub const COMMON_WGSL: &str = include_str!("shaders/common.wgsl");
 pub const ENV_WGSL: &str = include_str!("shaders/env.wgsl");
 /// Shared WGSL: light table, shadow maps (bindings 13..=16) and light irradiance.
 pub const LIGHTS_WGSL: &str = include_str!("shaders/lights.wgsl");
+/// Shared WGSL: hemisphere sample patterns and the screen-space visibility test (bindings 6, 8, 9).
+pub const SCREEN_SAMPLES_WGSL: &str = include_str!("shaders/screen_samples.wgsl");
 
 /// Concatenates WGSL sources (shared preludes first).
 pub fn compose(parts: &[&str]) -> String {

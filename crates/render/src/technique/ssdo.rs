@@ -23,7 +23,13 @@ use wgpu::util::DeviceExt;
 pub const SHADER: &str = include_str!("ssdo.wgsl");
 
 pub fn source() -> String {
-    util::compose(&[util::COMMON_WGSL, util::ENV_WGSL, util::LIGHTS_WGSL, SHADER])
+    util::compose(&[
+        util::COMMON_WGSL,
+        util::ENV_WGSL,
+        util::LIGHTS_WGSL,
+        util::SCREEN_SAMPLES_WGSL,
+        SHADER,
+    ])
 }
 
 pub const SSAO: TechniqueDesc = TechniqueDesc {
