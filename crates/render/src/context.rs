@@ -10,6 +10,9 @@ pub struct GpuContext {
     pub queue: wgpu::Queue,
     /// Whether pass timestamps are available (`wgpu::Features::TIMESTAMP_QUERY`).
     pub timestamps: bool,
+    /// Whether shaders may use `pack2x16float`/`unpack2x16float` (`DownlevelFlags::SHADER_F16_IN_F32`;
+    /// on Mesa's Vulkan drivers this needs `Features::SHADER_F16`, requested when offered).
+    pub pack_half: bool,
 }
 
 /// Human-readable adapter description: "NAME (Backend, DeviceType)".
@@ -69,6 +72,13 @@ impl GpuContext {
         if timestamps {
             features |= wgpu::Features::TIMESTAMP_QUERY;
         }
+        if adapter.features().contains(wgpu::Features::SHADER_F16) {
+            features |= wgpu::Features::SHADER_F16;
+        }
+        let pack_half = adapter
+            .get_downlevel_capabilities()
+            .flags
+            .contains(wgpu::DownlevelFlags::SHADER_F16_IN_F32);
         let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
             label: Some("nearfield"),
             required_features: features,
@@ -85,6 +95,7 @@ impl GpuContext {
             device,
             queue,
             timestamps,
+            pack_half,
         })
     }
 

@@ -113,6 +113,7 @@ impl Renderer {
                 env: &gpu_env,
                 scene: &gpu_scene,
                 shadows: &shadows,
+                pack_half: ctx.pack_half,
             },
             &params,
         )?;

@@ -18,12 +18,13 @@ fn every_shader_validates() {
     assert!(sources.len() >= 8);
     for (name, source) in sources {
         let m = module(&source);
-        naga::valid::Validator::new(
-            naga::valid::ValidationFlags::all(),
-            naga::valid::Capabilities::default(),
-        )
-        .validate(&m)
-        .unwrap_or_else(|e| panic!("{name}: {}", e.emit_to_string(&source)));
+        // pack2x16float (s3ho) needs SHADER_FLOAT16_IN_FLOAT32; the renderer checks the adapter's
+        // matching DownlevelFlags::SHADER_F16_IN_F32 before it builds s3ho.
+        let caps = naga::valid::Capabilities::default()
+            | naga::valid::Capabilities::SHADER_FLOAT16_IN_FLOAT32;
+        naga::valid::Validator::new(naga::valid::ValidationFlags::all(), caps)
+            .validate(&m)
+            .unwrap_or_else(|e| panic!("{name}: {}", e.emit_to_string(&source)));
     }
 }
 

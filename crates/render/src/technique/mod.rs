@@ -6,6 +6,7 @@
 //! viewer, `bench` and `compare` enumerate.
 
 pub mod none;
+pub mod s3ho;
 pub mod ssdo;
 
 use crate::RenderError;
@@ -36,6 +37,8 @@ pub struct TechniqueContext<'a> {
     pub env: &'a GpuEnvironment,
     pub scene: &'a GpuScene,
     pub shadows: &'a ShadowPass,
+    /// The device may use pack2x16float / unpack2x16float.
+    pub pack_half: bool,
 }
 
 /// A created technique: records its passes each frame.
@@ -65,7 +68,8 @@ pub struct TechniqueDesc {
 }
 
 /// Every technique, in the order shown to users.
-pub const REGISTRY: &[TechniqueDesc] = &[none::DESC, ssdo::SSAO, ssdo::SSDO];
+pub const REGISTRY: &[TechniqueDesc] =
+    &[none::DESC, ssdo::SSAO, ssdo::SSDO, s3ho::S3HO, s3ho::SSBN];
 
 /// Names of all registered techniques.
 pub fn names() -> Vec<&'static str> {
