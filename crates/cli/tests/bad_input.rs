@@ -155,6 +155,9 @@ fn every_bad_input_exits_2_with_one_line() {
         (vec!["render".into(), "--size".into(), "16x16".into(), "--method".into(), "ssao".into(), "--set".into(), "lod=99".into()], "lod=99"),
         (vec!["render".into(), "--size".into(), "16x16".into(), "--method".into(), "ssdo".into(), "--set".into(), "bounce=maybe".into()], "on or off"),
         (vec!["bench".into(), "--size".into(), "16x16".into(), "--methods".into(), "ssdo:nosuch=1".into()], "unknown setting"),
+        (vec!["render".into(), "--size".into(), "16x16".into(), "--method".into(), "s3ho".into(), "--set".into(), "steps=0".into()], "steps=0"),
+        (vec!["render".into(), "--size".into(), "16x16".into(), "--method".into(), "s3ho".into(), "--set".into(), "lambda=-1".into()], "lambda=-1"),
+        (vec!["render".into(), "--size".into(), "16x16".into(), "--method".into(), "ssbn".into(), "--set".into(), "indirect=maybe".into()], "on or off"),
     ];
     for (args, needle) in cases {
         let args: Vec<&str> = args.iter().map(String::as_str).collect();
