@@ -122,52 +122,8 @@ fn floor_mean(
 
 /// A unit box at the origin on a floor, with `builtin:boxes`' two lights.
 fn one_box() -> Scene {
-    let boxes = builtin::scene("boxes").unwrap();
-    let mut scene = builtin::scene("plane").unwrap();
-    for p in &mut scene.meshes[0].positions {
-        *p *= 0.05;
-    }
-    let mut mesh = nearfield_scene::Mesh {
-        name: "box".into(),
-        ..Default::default()
-    };
-    let v = Vec3::new;
-    for c in [
-        [
-            v(-0.5, 1.0, 0.5),
-            v(0.5, 1.0, 0.5),
-            v(0.5, 1.0, -0.5),
-            v(-0.5, 1.0, -0.5),
-        ],
-        [
-            v(-0.5, 0.0, 0.5),
-            v(0.5, 0.0, 0.5),
-            v(0.5, 1.0, 0.5),
-            v(-0.5, 1.0, 0.5),
-        ],
-        [
-            v(0.5, 0.0, -0.5),
-            v(-0.5, 0.0, -0.5),
-            v(-0.5, 1.0, -0.5),
-            v(0.5, 1.0, -0.5),
-        ],
-        [
-            v(0.5, 0.0, 0.5),
-            v(0.5, 0.0, -0.5),
-            v(0.5, 1.0, -0.5),
-            v(0.5, 1.0, 0.5),
-        ],
-        [
-            v(-0.5, 0.0, -0.5),
-            v(-0.5, 0.0, 0.5),
-            v(-0.5, 1.0, 0.5),
-            v(-0.5, 1.0, -0.5),
-        ],
-    ] {
-        common::push_quad(&mut mesh, c);
-    }
-    scene.meshes.push(mesh);
-    scene.lights = boxes.lights;
+    let mut scene = common::box_on_plane();
+    scene.lights = builtin::scene("boxes").unwrap().lights;
     scene
 }
 

@@ -4,7 +4,7 @@ mod common;
 
 use glam::Vec3;
 use nearfield_render::{Aov, AovImage, GpuContext, RenderSettings, Renderer, TechniqueParams};
-use nearfield_scene::{Camera, Environment, Mesh, Scene, builtin};
+use nearfield_scene::{Camera, Environment, Scene, builtin};
 
 /// What to render: the scene, its environment and view, and the image size.
 struct Shot<'a> {
@@ -49,55 +49,6 @@ fn render_shot(
 
 fn aov(r: &mut Renderer, a: Aov) -> AovImage {
     r.read_aov(a)
-}
-
-/// A unit box standing at the origin on the `plane` scene.
-fn box_on_plane() -> Scene {
-    let mut scene = builtin::scene("plane").unwrap();
-    for p in &mut scene.meshes[0].positions {
-        *p *= 0.05;
-    }
-    let mut mesh = Mesh {
-        name: "box".into(),
-        ..Default::default()
-    };
-    let v = Vec3::new;
-    for c in [
-        [
-            v(-0.5, 1.0, 0.5),
-            v(0.5, 1.0, 0.5),
-            v(0.5, 1.0, -0.5),
-            v(-0.5, 1.0, -0.5),
-        ],
-        [
-            v(-0.5, 0.0, 0.5),
-            v(0.5, 0.0, 0.5),
-            v(0.5, 1.0, 0.5),
-            v(-0.5, 1.0, 0.5),
-        ],
-        [
-            v(0.5, 0.0, -0.5),
-            v(-0.5, 0.0, -0.5),
-            v(-0.5, 1.0, -0.5),
-            v(0.5, 1.0, -0.5),
-        ],
-        [
-            v(0.5, 0.0, 0.5),
-            v(0.5, 0.0, -0.5),
-            v(0.5, 1.0, -0.5),
-            v(0.5, 1.0, 0.5),
-        ],
-        [
-            v(-0.5, 0.0, -0.5),
-            v(-0.5, 0.0, 0.5),
-            v(-0.5, 1.0, 0.5),
-            v(-0.5, 1.0, -0.5),
-        ],
-    ] {
-        common::push_quad(&mut mesh, c);
-    }
-    scene.meshes.push(mesh);
-    scene
 }
 
 /// No false occlusion on a flat surface at any radius: ao = 1 and env-irradiance equal to
@@ -236,7 +187,7 @@ fn wall_ao_follows_the_curve() {
 #[test]
 fn ssdo_casts_coloured_shadows_ssao_grey_ones() {
     let Some(ctx) = common::context() else { return };
-    let scene = box_on_plane();
+    let scene = common::box_on_plane();
     let env = Environment::from_fn("red-blue", 256, 128, |d| {
         if d.x < 0.0 {
             Vec3::new(1.0, 0.05, 0.05)
@@ -296,7 +247,7 @@ fn ssdo_casts_coloured_shadows_ssao_grey_ones() {
 #[test]
 fn environment_changes_need_no_precomputation() {
     let Some(ctx) = common::context() else { return };
-    let scene = box_on_plane();
+    let scene = common::box_on_plane();
     let mut env = Environment::from_fn("red-blue", 256, 128, |d| {
         if d.x < 0.0 {
             Vec3::new(2.0, 0.1, 0.1)

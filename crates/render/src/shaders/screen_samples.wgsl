@@ -128,3 +128,20 @@ fn occlusion(p: vec3<f32>, omega: vec3<f32>, lambda: f32, cfg: SampleConfig) -> 
     return o;
 }
 
+
+// Transfer from a sender patch (a pixel that occludes a sample, SSDO Sec. 3) to the receiver,
+// per unit sender radiance, in irradiance/π units: area · cos θ_s · cos θ_r · falloff /
+// (π · max(d, distance_clamp)²) with falloff 1 − d/R; 0 when either surface faces away.
+fn sender_transfer(receiver: Surface, sender: Surface, area: f32, radius: f32, distance_clamp: f32) -> f32 {
+    let to_sender = sender.p - receiver.p;
+    let d = length(to_sender);
+    if d <= 0.0 {
+        return 0.0;
+    }
+    let dir = to_sender / d;
+    let cos_s = max(0.0, dot(sender.n, -dir));
+    let cos_r = max(0.0, dot(receiver.n, dir));
+    let falloff = max(0.0, 1.0 - d / radius);
+    let dc = max(distance_clamp, d);
+    return area * cos_s * cos_r * falloff / (PI * dc * dc);
+}

@@ -125,3 +125,65 @@ pub fn reject_unknown_keys(
     }
     Ok(())
 }
+
+/// `key=on|off` (also true/false, 1/0).
+pub fn parse_on_off(key: &str, v: &str) -> Result<bool, String> {
+    match v {
+        "on" | "true" | "1" => Ok(true),
+        "off" | "false" | "0" => Ok(false),
+        _ => Err(format!("{key}={v}: expected on or off")),
+    }
+}
+
+/// `key=number` within `lo..=hi`.
+pub fn parse_number(key: &str, v: &str, lo: f32, hi: f32) -> Result<f32, String> {
+    let x: f32 = v
+        .parse()
+        .map_err(|_| format!("{key}={v}: expected a number"))?;
+    if !(x.is_finite() && x >= lo && x <= hi) {
+        return Err(format!("{key}={v}: must be in {lo}..={hi}"));
+    }
+    Ok(x)
+}
+
+/// Records one full-screen compute dispatch (8×8 groups over `size`) as its own timed pass.
+pub fn dispatch_screen(
+    encoder: &mut wgpu::CommandEncoder,
+    profiler: &mut GpuProfiler,
+    label: &'static str,
+    pipeline: &wgpu::ComputePipeline,
+    bind_group: &wgpu::BindGroup,
+    size: (u32, u32),
+) {
+    let (gx, gy) = crate::util::groups_8x8(size);
+    let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+        label: Some(label),
+        timestamp_writes: profiler.compute(label),
+    });
+    pass.set_pipeline(pipeline);
+    pass.set_bind_group(0, bind_group, &[]);
+    pass.dispatch_workgroups(gx, gy, 1);
+}
+
+/// A screen-sized texture a technique owns (storage + sampled).
+pub fn screen_texture(
+    device: &wgpu::Device,
+    size: (u32, u32),
+    label: &str,
+    format: wgpu::TextureFormat,
+) -> wgpu::Texture {
+    device.create_texture(&wgpu::TextureDescriptor {
+        label: Some(label),
+        size: wgpu::Extent3d {
+            width: size.0,
+            height: size.1,
+            depth_or_array_layers: 1,
+        },
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format,
+        usage: wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::TEXTURE_BINDING,
+        view_formats: &[],
+    })
+}

@@ -110,31 +110,17 @@ impl Settings {
         if let Some(r) = params.radius {
             s.radius = r;
         }
-        let number = |k: &str, v: &str, lo: f32, hi: f32| -> Result<f32, String> {
-            let x: f32 = v
-                .parse()
-                .map_err(|_| format!("{k}={v}: expected a number"))?;
-            if !(x.is_finite() && x >= lo && x <= hi) {
-                return Err(format!("{k}={v}: must be in {lo}..={hi}"));
-            }
-            Ok(x)
-        };
-        let on_off = |k: &str, v: &str| match v {
-            "on" | "true" | "1" => Ok(true),
-            "off" | "false" | "0" => Ok(false),
-            _ => Err(format!("{k}={v}: expected on or off")),
-        };
         for (k, v) in &params.set {
             match k.as_str() {
-                "indirect" => s.indirect = on_off(k, v)?,
-                "blur" => s.blur = on_off(k, v)?,
-                "steps" => s.steps = number(k, v, 1.0, 16.0)? as u32,
-                "lambda" => s.lambda = number(k, v, 0.0, 1000.0)?,
-                "fade" => s.fade = number(k, v, 0.0, 1.0)?,
-                "strength" => s.strength = number(k, v, 0.0, 16.0)?,
-                "distance_clamp" => s.distance_clamp = number(k, v, 0.0, 1e6)?,
-                "samples" => s.samples = number(k, v, 1.0, 256.0)? as u32,
-                "radius" => s.radius = number(k, v, 1e-6, 1e6)?,
+                "indirect" => s.indirect = super::parse_on_off(k, v)?,
+                "blur" => s.blur = super::parse_on_off(k, v)?,
+                "steps" => s.steps = super::parse_number(k, v, 1.0, 16.0)? as u32,
+                "lambda" => s.lambda = super::parse_number(k, v, 0.0, 1000.0)?,
+                "fade" => s.fade = super::parse_number(k, v, 0.0, 1.0)?,
+                "strength" => s.strength = super::parse_number(k, v, 0.0, 16.0)?,
+                "distance_clamp" => s.distance_clamp = super::parse_number(k, v, 0.0, 1e6)?,
+                "samples" => s.samples = super::parse_number(k, v, 1.0, 256.0)? as u32,
+                "radius" => s.radius = super::parse_number(k, v, 1e-6, 1e6)?,
                 "pattern" => {
                     s.pattern = match v.as_str() {
                         "chapter" => Pattern::Chapter,
@@ -262,22 +248,7 @@ fn create(
     let device = ctx.device;
     let t = ctx.targets;
     let c = wgpu::ShaderStages::COMPUTE;
-    let texture = |label: &str, format| {
-        device.create_texture(&wgpu::TextureDescriptor {
-            label: Some(label),
-            size: wgpu::Extent3d {
-                width: t.size.0,
-                height: t.size.1,
-                depth_or_array_layers: 1,
-            },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format,
-            usage: wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::TEXTURE_BINDING,
-            view_formats: &[],
-        })
-    };
+    let texture = |label: &str, format| super::screen_texture(device, t.size, label, format);
     let u32x4 = wgpu::TextureFormat::Rgba32Uint;
     let textures = vec![
         texture("s3ho coefficients 0", u32x4),
@@ -483,28 +454,22 @@ impl Technique for S3ho {
         profiler: &mut GpuProfiler,
         _frame_index: u32,
     ) {
-        let (gx, gy) = util::groups_8x8(self.size);
-        let single = |encoder: &mut wgpu::CommandEncoder,
-                      profiler: &mut GpuProfiler,
-                      label: &'static str,
-                      pipeline: &wgpu::ComputePipeline,
-                      bg: &wgpu::BindGroup| {
-            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-                label: Some(label),
-                timestamp_writes: profiler.compute(label),
-            });
-            pass.set_pipeline(pipeline);
-            pass.set_bind_group(0, bg, &[]);
-            pass.dispatch_workgroups(gx, gy, 1);
-        };
-        single(encoder, profiler, self.name, &self.sample, &self.sample_bg);
+        super::dispatch_screen(
+            encoder,
+            profiler,
+            self.name,
+            &self.sample,
+            &self.sample_bg,
+            self.size,
+        );
         if !self.ssbn && self.blur_on {
-            single(
+            super::dispatch_screen(
                 encoder,
                 profiler,
                 "sh filter",
                 &self.filter,
                 &self.filter_bg,
+                self.size,
             );
         }
         if self.ssbn {
@@ -515,7 +480,14 @@ impl Technique for S3ho {
             self.blur.dispatch(&mut pass, &self.blur_bent, self.size);
             self.blur.dispatch(&mut pass, &self.blur_ao, self.size);
         }
-        single(encoder, profiler, "shade", &self.shade, &self.shade_bg);
+        super::dispatch_screen(
+            encoder,
+            profiler,
+            "shade",
+            &self.shade,
+            &self.shade_bg,
+            self.size,
+        );
         if self.indirect {
             let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
                 label: Some("blur indirect"),

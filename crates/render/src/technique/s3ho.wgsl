@@ -191,17 +191,11 @@ fn sample_pass(@builtin(global_invocation_id) id: vec3<u32>) {
             }
             if params.indirect == 1u {
                 let sender = surface_at(occ.pixel);
-                let to_sender = sender.p - here.p;
-                let d = length(to_sender);
-                if d > 0.0 {
-                    let dir = to_sender / d;
-                    let cos_s = max(0.0, dot(sender.n, -dir));
-                    let cos_r = max(0.0, dot(here.n, dir));
-                    let falloff = max(0.0, 1.0 - d / params.radius);
-                    let dc = max(params.distance_clamp, d);
+                let transfer = sender_transfer(here, sender, area, params.radius, params.distance_clamp);
+                if transfer > 0.0 {
                     let rho = textureLoad(gb_albedo, occ.pixel, 0).rgb;
                     let radiance = rho / PI * incident_at(sender.n, sender.p);
-                    indirect += radiance * (area * cos_s * cos_r * falloff * params.strength * (1.0 - v) / (PI * dc * dc));
+                    indirect += radiance * (transfer * params.strength * (1.0 - v));
                 }
             }
         }

@@ -144,24 +144,6 @@ pub const KEYS: &[&str] = &[
     "radius",
 ];
 
-fn on_off(key: &str, v: &str) -> Result<bool, String> {
-    match v {
-        "on" | "true" | "1" => Ok(true),
-        "off" | "false" | "0" => Ok(false),
-        _ => Err(format!("{key}={v}: expected on or off")),
-    }
-}
-
-fn number(key: &str, v: &str, lo: f32, hi: f32) -> Result<f32, String> {
-    let x: f32 = v
-        .parse()
-        .map_err(|_| format!("{key}={v}: expected a number"))?;
-    if !(x.is_finite() && x >= lo && x <= hi) {
-        return Err(format!("{key}={v}: must be in {lo}..={hi}"));
-    }
-    Ok(x)
-}
-
 impl Settings {
     /// Applies `--samples`, `--radius` and `--set` on top of the defaults.
     pub fn from_params(params: &TechniqueParams) -> Result<Self, String> {
@@ -188,20 +170,20 @@ impl Settings {
                         _ => return Err(format!("pattern={v}: expected chapter or interleaved")),
                     }
                 }
-                "bounce" => s.bounce = on_off(k, v)?,
-                "blur" => s.blur = on_off(k, v)?,
-                "lod" => s.lod = number(k, v, 0.0, 16.0)?,
-                "contrast" => s.contrast = number(k, v, 0.1, 8.0)?,
-                "scale" => s.scale = number(k, v, 0.0, 4.0)?,
-                "strength" => s.strength = number(k, v, 0.0, 16.0)?,
-                "distance_clamp" => s.distance_clamp = number(k, v, 0.0, 1e6)?,
-                "fade" => s.fade = number(k, v, 0.0, 1.0)?,
-                "light_samples" => s.light_samples = number(k, v, 0.0, 64.0)? as u32,
-                "blur_radius" => s.blur_radius = number(k, v, 0.0, 16.0)? as u32,
-                "blur_depth" => s.blur_depth = number(k, v, 1e-4, 10.0)?,
-                "blur_normal" => s.blur_normal = number(k, v, 0.0, 128.0)?,
-                "samples" => s.samples = number(k, v, 1.0, 256.0)? as u32,
-                "radius" => s.radius = number(k, v, 1e-6, 1e6)?,
+                "bounce" => s.bounce = super::parse_on_off(k, v)?,
+                "blur" => s.blur = super::parse_on_off(k, v)?,
+                "lod" => s.lod = super::parse_number(k, v, 0.0, 16.0)?,
+                "contrast" => s.contrast = super::parse_number(k, v, 0.1, 8.0)?,
+                "scale" => s.scale = super::parse_number(k, v, 0.0, 4.0)?,
+                "strength" => s.strength = super::parse_number(k, v, 0.0, 16.0)?,
+                "distance_clamp" => s.distance_clamp = super::parse_number(k, v, 0.0, 1e6)?,
+                "fade" => s.fade = super::parse_number(k, v, 0.0, 1.0)?,
+                "light_samples" => s.light_samples = super::parse_number(k, v, 0.0, 64.0)? as u32,
+                "blur_radius" => s.blur_radius = super::parse_number(k, v, 0.0, 16.0)? as u32,
+                "blur_depth" => s.blur_depth = super::parse_number(k, v, 1e-4, 10.0)?,
+                "blur_normal" => s.blur_normal = super::parse_number(k, v, 0.0, 128.0)?,
+                "samples" => s.samples = super::parse_number(k, v, 1.0, 256.0)? as u32,
+                "radius" => s.radius = super::parse_number(k, v, 1e-6, 1e6)?,
                 _ => {
                     return Err(format!(
                         "unknown setting '{k}' (known: {})",
@@ -337,22 +319,7 @@ fn create(
     let device = ctx.device;
     let t = ctx.targets;
     let c = wgpu::ShaderStages::COMPUTE;
-    let texture = |label: &str| {
-        device.create_texture(&wgpu::TextureDescriptor {
-            label: Some(label),
-            size: wgpu::Extent3d {
-                width: t.size.0,
-                height: t.size.1,
-                depth_or_array_layers: 1,
-            },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format: HDR_FORMAT,
-            usage: wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::TEXTURE_BINDING,
-            view_formats: &[],
-        })
-    };
+    let texture = |label: &str| super::screen_texture(device, t.size, label, HDR_FORMAT);
     let textures: Vec<wgpu::Texture> = [
         "ssdo a",
         "ssdo b",
@@ -525,21 +492,14 @@ impl Technique for Ssdo {
         profiler: &mut GpuProfiler,
         _frame_index: u32,
     ) {
-        let (gx, gy) = util::groups_8x8(self.size);
-        let single = |encoder: &mut wgpu::CommandEncoder,
-                      profiler: &mut GpuProfiler,
-                      label: &'static str,
-                      pipeline: &wgpu::ComputePipeline,
-                      bg: &wgpu::BindGroup| {
-            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-                label: Some(label),
-                timestamp_writes: profiler.compute(label),
-            });
-            pass.set_pipeline(pipeline);
-            pass.set_bind_group(0, bg, &[]);
-            pass.dispatch_workgroups(gx, gy, 1);
-        };
-        single(encoder, profiler, self.name, &self.direct, &self.direct_bg);
+        super::dispatch_screen(
+            encoder,
+            profiler,
+            self.name,
+            &self.direct,
+            &self.direct_bg,
+            self.size,
+        );
         {
             let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
                 label: Some("blur"),
@@ -548,20 +508,22 @@ impl Technique for Ssdo {
             self.blur.dispatch(&mut pass, &self.blur_a, self.size);
             self.blur.dispatch(&mut pass, &self.blur_b, self.size);
         }
-        single(
+        super::dispatch_screen(
             encoder,
             profiler,
             "resolve",
             &self.resolve,
             &self.resolve_bg,
+            self.size,
         );
         if self.bounce {
-            single(
+            super::dispatch_screen(
                 encoder,
                 profiler,
                 "bounce",
                 &self.bounce_pipeline,
                 &self.bounce_bg,
+                self.size,
             );
             let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
                 label: Some("blur indirect"),

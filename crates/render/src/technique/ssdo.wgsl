@@ -201,25 +201,14 @@ fn bounce(@builtin(global_invocation_id) id: vec3<u32>) {
         if occ.amount <= 0.0 {
             continue;
         }
-        let sender = surface_at(occ.pixel);
-        let to_sender = sender.p - here.p;
-        let d = length(to_sender);
-        if d <= 0.0 {
-            continue;
-        }
-        let dir = to_sender / d;
-        // Back-facing senders (normal away from the receiver) give nothing.
-        let cos_s = max(0.0, dot(sender.n, -dir));
-        let cos_r = max(0.0, dot(here.n, dir));
-        if cos_s <= 0.0 || cos_r <= 0.0 {
+        let transfer = sender_transfer(here, surface_at(occ.pixel), area, params.radius, params.distance_clamp);
+        if transfer <= 0.0 {
             continue;
         }
         // Sender radiance: its blurred direct irradiance × albedo (Lambertian), plus emission.
         let irradiance = textureLoad(env_irradiance, occ.pixel, 0).rgb + textureLoad(light_irradiance, occ.pixel, 0).rgb;
         let l_pixel = textureLoad(gb_albedo, occ.pixel, 0).rgb * irradiance + textureLoad(gb_emissive, occ.pixel, 0).rgb;
-        let falloff = max(0.0, 1.0 - d / params.radius);
-        let dc = max(params.distance_clamp, d);
-        l_ind += l_pixel * (area * cos_s * cos_r * params.strength * falloff * occ.amount / (PI * dc * dc));
+        l_ind += l_pixel * (transfer * params.strength * occ.amount);
     }
     textureStore(out_indirect, pixel, vec4<f32>(l_ind, 1.0));
 }

@@ -76,3 +76,52 @@ pub fn push_quad(mesh: &mut Mesh, c: [Vec3; 4]) {
     mesh.indices.push([b, b + 1, b + 2]);
     mesh.indices.push([b, b + 2, b + 3]);
 }
+
+/// A unit box standing at the origin on the `plane` scene.
+pub fn box_on_plane() -> Scene {
+    let mut scene = nearfield_scene::builtin::scene("plane").unwrap();
+    for p in &mut scene.meshes[0].positions {
+        *p *= 0.05;
+    }
+    let mut mesh = Mesh {
+        name: "box".into(),
+        ..Default::default()
+    };
+    let v = Vec3::new;
+    for c in [
+        [
+            v(-0.5, 1.0, 0.5),
+            v(0.5, 1.0, 0.5),
+            v(0.5, 1.0, -0.5),
+            v(-0.5, 1.0, -0.5),
+        ],
+        [
+            v(-0.5, 0.0, 0.5),
+            v(0.5, 0.0, 0.5),
+            v(0.5, 1.0, 0.5),
+            v(-0.5, 1.0, 0.5),
+        ],
+        [
+            v(0.5, 0.0, -0.5),
+            v(-0.5, 0.0, -0.5),
+            v(-0.5, 1.0, -0.5),
+            v(0.5, 1.0, -0.5),
+        ],
+        [
+            v(0.5, 0.0, 0.5),
+            v(0.5, 0.0, -0.5),
+            v(0.5, 1.0, -0.5),
+            v(0.5, 1.0, 0.5),
+        ],
+        [
+            v(-0.5, 0.0, -0.5),
+            v(-0.5, 0.0, 0.5),
+            v(-0.5, 1.0, 0.5),
+            v(-0.5, 1.0, -0.5),
+        ],
+    ] {
+        push_quad(&mut mesh, c);
+    }
+    scene.meshes.push(mesh);
+    scene
+}
