@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Installs what a fresh Debian/Ubuntu machine lacks to build and run nearfield:
 # - a Vulkan driver: Mesa's lavapipe (software rasterizer) when no Vulkan ICD is installed;
+# - a C++ compiler (nv-flip, the FLIP metric, builds its C++ core) when none is installed;
 # - a Rust toolchain through rustup when cargo is missing.
-# Idempotent: does nothing when both are present.
+# Idempotent: does nothing when all are present.
 set -euo pipefail
 
 as_root() {
@@ -20,6 +21,13 @@ if ! has_vulkan_driver; then
     export DEBIAN_FRONTEND=noninteractive
     as_root apt-get update -qq
     as_root apt-get install -y -qq --no-install-recommends mesa-vulkan-drivers libvulkan1 >/dev/null
+fi
+
+if ! command -v c++ >/dev/null 2>&1; then
+    echo "setup: no C++ compiler found; installing g++ (for the FLIP metric's C++ core)"
+    export DEBIAN_FRONTEND=noninteractive
+    as_root apt-get update -qq
+    as_root apt-get install -y -qq --no-install-recommends g++ >/dev/null
 fi
 
 if ! command -v cargo >/dev/null 2>&1; then
