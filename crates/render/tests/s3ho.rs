@@ -3,48 +3,17 @@
 mod common;
 
 use glam::Vec3;
-use nearfield_render::{Aov, AovImage, GpuContext, RenderSettings, Renderer, TechniqueParams};
+use nearfield_render::{Aov, AovImage, GpuContext};
 use nearfield_scene::{Camera, Environment, Light, LightKind, Scene, builtin};
-
-struct Shot<'a> {
-    scene: &'a Scene,
-    env: &'a Environment,
-    camera: Camera,
-    size: (u32, u32),
-    seed: u32,
-}
 
 fn run(
     ctx: &GpuContext,
-    shot: &Shot,
+    shot: &common::Shot,
     method: &str,
     set: &[(&str, &str)],
     aovs: &[Aov],
 ) -> Vec<AovImage> {
-    let params = TechniqueParams {
-        samples: None,
-        radius: Some(1.0),
-        set: set
-            .iter()
-            .map(|(k, v)| (k.to_string(), v.to_string()))
-            .collect(),
-    };
-    let settings = RenderSettings {
-        size: shot.size,
-        seed: shot.seed,
-        ..Default::default()
-    };
-    let mut r = Renderer::new(
-        ctx,
-        shot.scene,
-        shot.env,
-        shot.camera,
-        method,
-        &params,
-        settings,
-    )
-    .unwrap();
-    r.render_frame();
+    let mut r = common::render_shot(ctx, shot, method, set, 1.0);
     aovs.iter().map(|&a| r.read_aov(a)).collect()
 }
 
@@ -67,7 +36,7 @@ fn plane_matches_none() {
         ..Default::default()
     }
     .to_environment();
-    let shot = Shot {
+    let shot = common::Shot {
         scene: &scene,
         env: &env,
         camera: scene.default_camera(),
@@ -139,7 +108,7 @@ fn contact_shadows_take_the_colour_of_the_open_side() {
     let cam = Camera::new(Vec3::new(0.0, 2.5, 3.0), Vec3::new(0.0, 0.0, 0.0), 50.0);
     let size = (128, 96);
     let tint = |scene: &Scene| {
-        let shot = Shot {
+        let shot = common::Shot {
             scene,
             env: &env,
             camera: cam,
@@ -189,7 +158,7 @@ fn s3ho_is_less_noisy_than_ssdo_radiance_mode() {
         let noise = |method: &str, set: &[(&str, &str)]| {
             let mut runs = Vec::new();
             for seed in 1..=8 {
-                let shot = Shot {
+                let shot = common::Shot {
                     scene: &scene,
                     env: &env,
                     camera: scene.default_camera(),

@@ -3,49 +3,8 @@
 mod common;
 
 use glam::Vec3;
-use nearfield_render::{Aov, AovImage, GpuContext, RenderSettings, Renderer, TechniqueParams};
-use nearfield_scene::{Camera, Environment, Scene, builtin};
-
-/// What to render: the scene, its environment and view, and the image size.
-struct Shot<'a> {
-    scene: &'a Scene,
-    env: &'a Environment,
-    camera: Camera,
-    size: (u32, u32),
-}
-
-fn render_shot(
-    ctx: &GpuContext,
-    shot: &Shot,
-    method: &str,
-    set: &[(&str, &str)],
-    radius: f32,
-) -> Renderer {
-    let params = TechniqueParams {
-        samples: None,
-        radius: Some(radius),
-        set: set
-            .iter()
-            .map(|(k, v)| (k.to_string(), v.to_string()))
-            .collect(),
-    };
-    let settings = RenderSettings {
-        size: shot.size,
-        ..Default::default()
-    };
-    let mut r = Renderer::new(
-        ctx,
-        shot.scene,
-        shot.env,
-        shot.camera,
-        method,
-        &params,
-        settings,
-    )
-    .unwrap();
-    r.render_frame();
-    r
-}
+use nearfield_render::{Aov, AovImage, Renderer};
+use nearfield_scene::{Camera, Environment, builtin};
 
 fn aov(r: &mut Renderer, a: Aov) -> AovImage {
     r.read_aov(a)
@@ -64,13 +23,14 @@ fn plane_has_no_false_occlusion() {
     .to_environment();
     let cam = scene.default_camera();
     let size = (64, 40);
-    let mut base = render_shot(
+    let mut base = common::render_shot(
         &ctx,
-        &Shot {
+        &common::Shot {
             scene: &scene,
             env: &env,
             camera: cam,
             size,
+            seed: 0,
         },
         "none",
         &[],
@@ -83,13 +43,14 @@ fn plane_has_no_false_occlusion() {
             ("ssdo", vec![]),
             ("ssdo", vec![("pattern", "chapter")]),
         ] {
-            let mut r = render_shot(
+            let mut r = common::render_shot(
                 &ctx,
-                &Shot {
+                &common::Shot {
                     scene: &scene,
                     env: &env,
                     camera: cam,
                     size,
+                    seed: 0,
                 },
                 method,
                 &set,
@@ -124,13 +85,14 @@ fn wall_ao_follows_the_curve() {
     let cam = Camera::new(Vec3::new(0.3, 0.6, 2.4), Vec3::new(0.0, 0.35, 0.0), 60.0);
     let size = (240, 180);
     let radius = 1.0;
-    let mut r = render_shot(
+    let mut r = common::render_shot(
         &ctx,
-        &Shot {
+        &common::Shot {
             scene: &scene,
             env: &env,
             camera: cam,
             size,
+            seed: 0,
         },
         "ssdo",
         &[("samples", "64")],
@@ -198,13 +160,14 @@ fn ssdo_casts_coloured_shadows_ssao_grey_ones() {
     let cam = Camera::new(Vec3::new(0.6, 3.0, 3.0), Vec3::new(0.6, 0.0, 0.0), 50.0);
     let size = (96, 72);
     let hue = |method: &str, set: &[(&str, &str)]| {
-        let mut r = render_shot(
+        let mut r = common::render_shot(
             &ctx,
-            &Shot {
+            &common::Shot {
                 scene: &scene,
                 env: &env,
                 camera: cam,
                 size,
+                seed: 0,
             },
             method,
             set,
@@ -258,13 +221,14 @@ fn environment_changes_need_no_precomputation() {
     let cam = Camera::new(Vec3::new(0.6, 3.0, 3.0), Vec3::new(0.6, 0.0, 0.0), 50.0);
     let size = (64, 48);
     let set = [("mode", "radiance")];
-    let mut r = render_shot(
+    let mut r = common::render_shot(
         &ctx,
-        &Shot {
+        &common::Shot {
             scene: &scene,
             env: &env,
             camera: cam,
             size,
+            seed: 0,
         },
         "ssdo",
         &set,
@@ -276,13 +240,14 @@ fn environment_changes_need_no_precomputation() {
     r.render_frame();
     let after = aov(&mut r, Aov::EnvIrradiance);
     env.rotation = turn;
-    let mut fresh = render_shot(
+    let mut fresh = common::render_shot(
         &ctx,
-        &Shot {
+        &common::Shot {
             scene: &scene,
             env: &env,
             camera: cam,
             size,
+            seed: 0,
         },
         "ssdo",
         &set,
@@ -322,13 +287,14 @@ fn blur_hides_the_interleaving_pattern() {
     let cam = Camera::new(Vec3::new(0.0, 3.0, 0.01), Vec3::ZERO, 60.0);
     let size = (96, 96);
     let periodic = |blur: &str| {
-        let mut r = render_shot(
+        let mut r = common::render_shot(
             &ctx,
-            &Shot {
+            &common::Shot {
                 scene: &scene,
                 env: &env,
                 camera: cam,
                 size,
+                seed: 0,
             },
             "ssdo",
             &[("mode", "radiance"), ("lod", "3"), ("blur", blur)],

@@ -7,7 +7,7 @@
 //! `shade_pass` (env-irradiance, light-irradiance, ao) → s3ho indirect: bilateral blur →
 //! `indirect-irradiance`.
 
-use super::ssdo::{Pattern, interleaved_sets};
+use super::ssdo::{Pattern, check_sampling, interleaved_sets};
 use super::{Technique, TechniqueContext, TechniqueDesc, TechniqueParams};
 use crate::RenderError;
 use crate::gpu_env::GpuEnvironment;
@@ -121,13 +121,7 @@ impl Settings {
                 "distance_clamp" => s.distance_clamp = super::parse_number(k, v, 0.0, 1e6)?,
                 "samples" => s.samples = super::parse_number(k, v, 1.0, 256.0)? as u32,
                 "radius" => s.radius = super::parse_number(k, v, 1e-6, 1e6)?,
-                "pattern" => {
-                    s.pattern = match v.as_str() {
-                        "chapter" => Pattern::Chapter,
-                        "interleaved" => Pattern::Interleaved,
-                        _ => return Err(format!("pattern={v}: expected chapter or interleaved")),
-                    }
-                }
+                "pattern" => s.pattern = Pattern::parse(v)?,
                 _ => {
                     return Err(format!(
                         "unknown setting '{k}' (known: {})",
@@ -136,15 +130,7 @@ impl Settings {
                 }
             }
         }
-        if !(1..=256).contains(&s.samples) {
-            return Err(format!("samples {}: must be in 1..=256", s.samples));
-        }
-        if !(s.radius.is_finite() && s.radius > 0.0) {
-            return Err(format!(
-                "radius {}: screen-space sampling needs a finite radius > 0",
-                s.radius
-            ));
-        }
+        check_sampling(s.samples, s.radius)?;
         Ok(s)
     }
 

@@ -62,6 +62,30 @@ pub enum Pattern {
     Interleaved,
 }
 
+impl Pattern {
+    /// `pattern=chapter|interleaved`.
+    pub fn parse(v: &str) -> Result<Self, String> {
+        match v {
+            "chapter" => Ok(Pattern::Chapter),
+            "interleaved" => Ok(Pattern::Interleaved),
+            _ => Err(format!("pattern={v}: expected chapter or interleaved")),
+        }
+    }
+}
+
+/// Checks the sampling settings every screen-space sampling technique shares.
+pub fn check_sampling(samples: u32, radius: f32) -> Result<(), String> {
+    if !(1..=256).contains(&samples) {
+        return Err(format!("samples {samples}: must be in 1..=256"));
+    }
+    if !(radius.is_finite() && radius > 0.0) {
+        return Err(format!(
+            "radius {radius}: screen-space sampling needs a finite radius > 0"
+        ));
+    }
+    Ok(())
+}
+
 /// Settings of `ssao` and `ssdo` (`--samples`, `--radius`, `--set key=value`).
 #[derive(Clone, Copy, Debug)]
 pub struct Settings {
@@ -163,13 +187,7 @@ impl Settings {
                         _ => return Err(format!("mode={v}: expected visibility or radiance")),
                     }
                 }
-                "pattern" => {
-                    s.pattern = match v.as_str() {
-                        "chapter" => Pattern::Chapter,
-                        "interleaved" => Pattern::Interleaved,
-                        _ => return Err(format!("pattern={v}: expected chapter or interleaved")),
-                    }
-                }
+                "pattern" => s.pattern = Pattern::parse(v)?,
                 "bounce" => s.bounce = super::parse_on_off(k, v)?,
                 "blur" => s.blur = super::parse_on_off(k, v)?,
                 "lod" => s.lod = super::parse_number(k, v, 0.0, 16.0)?,
@@ -192,15 +210,7 @@ impl Settings {
                 }
             }
         }
-        if !(1..=256).contains(&s.samples) {
-            return Err(format!("samples {}: must be in 1..=256", s.samples));
-        }
-        if !(s.radius.is_finite() && s.radius > 0.0) {
-            return Err(format!(
-                "radius {}: screen-space sampling needs a finite radius > 0",
-                s.radius
-            ));
-        }
+        check_sampling(s.samples, s.radius)?;
         Ok(s)
     }
 

@@ -125,3 +125,47 @@ pub fn box_on_plane() -> Scene {
     scene.meshes.push(mesh);
     scene
 }
+
+/// What to render: scene, environment, view, image size and noise seed.
+pub struct Shot<'a> {
+    pub scene: &'a Scene,
+    pub env: &'a Environment,
+    pub camera: Camera,
+    pub size: (u32, u32),
+    pub seed: u32,
+}
+
+/// Renders one frame of `shot` with `method`, radius `radius` and `--set` pairs.
+pub fn render_shot(
+    ctx: &GpuContext,
+    shot: &Shot,
+    method: &str,
+    set: &[(&str, &str)],
+    radius: f32,
+) -> Renderer {
+    let params = TechniqueParams {
+        samples: None,
+        radius: Some(radius),
+        set: set
+            .iter()
+            .map(|(k, v)| (k.to_string(), v.to_string()))
+            .collect(),
+    };
+    let settings = RenderSettings {
+        size: shot.size,
+        seed: shot.seed,
+        ..Default::default()
+    };
+    let mut r = Renderer::new(
+        ctx,
+        shot.scene,
+        shot.env,
+        shot.camera,
+        method,
+        &params,
+        settings,
+    )
+    .unwrap();
+    r.render_frame();
+    r
+}
