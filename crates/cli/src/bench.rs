@@ -24,6 +24,10 @@ pub struct BenchArgs {
     /// Untimed frames first (shader compilation, caches).
     #[arg(long, default_value_t = 5)]
     pub warmup: u32,
+    /// Degrees the camera turns about its target before every frame after the first (timings
+    /// then include reprojection of a moving view).
+    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
+    pub orbit: f32,
     /// Also write the results as JSON.
     #[arg(long)]
     pub json: Option<PathBuf>,
@@ -98,6 +102,7 @@ struct Report {
 
 pub fn run(args: BenchArgs) -> Result<()> {
     let methods = crate::options::methods_and_frames(args.methods.as_deref(), args.frames)?;
+    crate::options::check_orbit(args.orbit)?;
     if let Some(p) = &args.json {
         crate::render::check_parent_dir(p)?;
     }
@@ -118,17 +123,17 @@ pub fn run(args: BenchArgs) -> Result<()> {
             &params,
             settings,
         )?;
-        for _ in 0..args.warmup {
-            r.render_frame();
+        for i in 0..args.warmup {
+            crate::options::orbit_frame(&mut r, i, args.orbit);
         }
         r.wait();
         let mut per_pass: BTreeMap<String, Vec<f64>> = BTreeMap::new();
         let mut order: Vec<String> = Vec::new();
         let mut totals = Vec::new();
         let mut walls = Vec::new();
-        for _ in 0..args.frames {
+        for i in 0..args.frames {
             let t0 = Instant::now();
-            r.render_frame();
+            crate::options::orbit_frame(&mut r, args.warmup + i, args.orbit);
             r.wait();
             walls.push(t0.elapsed().as_secs_f64() * 1e3);
             let timings = r.timings();

@@ -8,7 +8,7 @@ use anyhow::{Context, Result};
 use clap::Args;
 use nearfield_eval::image_ops;
 use nearfield_eval::metrics::{self, Mask, MaskSettings};
-use nearfield_eval::report::{MethodReport, ReferenceInfo, Report};
+use nearfield_eval::report::{ConvergencePoint, MethodReport, ReferenceInfo, Report};
 use nearfield_reference::{ReferenceImage, exr_io};
 use nearfield_render::{Aov, GpuContext, Renderer};
 use std::path::PathBuf;
@@ -25,12 +25,19 @@ pub struct CompareArgs {
     #[arg(long)]
     pub methods: Option<String>,
     /// AOV to compare: ao, env-irradiance, light-irradiance, indirect-irradiance, diffuse,
-    /// radiance, albedo, normal, depth.
+    /// radiance, lambertian (emission + diffuse, against the reference's path-traced radiance,
+    /// which has Lambertian surfaces), albedo, normal, depth.
     #[arg(long, default_value = "ao")]
     pub aov: String,
-    /// Frames each technique renders before its AOV is read (≥ 1).
+    /// Frames each technique renders before its AOV is read (≥ 1). With more than one frame and
+    /// a still camera the report also plots the error after every frame (up to 64 frames;
+    /// beyond, after powers of two and the last).
     #[arg(long, default_value_t = 1)]
     pub frames: u32,
+    /// Degrees the camera turns about its target before every frame after the first; the
+    /// reference is rendered from the last frame's camera.
+    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
+    pub orbit: f32,
     /// Use this reference EXR instead of rendering (or loading from the cache) one; it must have
     /// the image size.
     #[arg(long = "reference")]
@@ -44,9 +51,16 @@ pub struct CompareArgs {
 }
 
 pub fn run(args: CompareArgs) -> Result<()> {
-    let ref_aov = parse_aov(&args.aov)?;
+    // The reference's radiance is Lambertian: it is the truth for the GPU's `lambertian`.
+    let ref_name = if args.aov == "lambertian" {
+        "radiance"
+    } else {
+        args.aov.as_str()
+    };
+    let ref_aov = parse_aov(ref_name)?;
     let gpu_aov = Aov::parse(&args.aov).expect("every reference AOV is a renderer AOV");
     let methods = crate::options::methods_and_frames(args.methods.as_deref(), args.frames)?;
+    crate::options::check_orbit(args.orbit)?;
     let size = crate::options::parse_size(&args.scene.size)?;
     let border = args
         .border
@@ -85,7 +99,10 @@ pub fn run(args: CompareArgs) -> Result<()> {
     };
     std::fs::create_dir_all(&args.out)
         .with_context(|| format!("cannot create {}", args.out.display()))?;
-    let loaded = args.scene.load()?;
+    let mut loaded = args.scene.load()?;
+    let first_camera = loaded.camera;
+    // The reference sees what the last frame sees.
+    loaded.camera = first_camera.orbit(args.orbit * (args.frames - 1) as f32);
     let ctx = GpuContext::new(args.scene.adapter.as_deref())?;
     let (reference, ref_info): (ReferenceImage, ReferenceInfo) = match reference_file {
         Some((img, p)) => (
@@ -128,26 +145,35 @@ pub fn run(args: CompareArgs) -> Result<()> {
             &ctx,
             &loaded.scene,
             &loaded.env,
-            loaded.camera,
+            first_camera,
             method,
             &params,
             settings,
         )?;
-        for _ in 0..args.frames {
-            r.render_frame();
+        let still = args.orbit == 0.0 && args.frames > 1;
+        let mut convergence = Vec::new();
+        let mut mask = None;
+        for i in 0..args.frames {
+            crate::options::orbit_frame(&mut r, i, args.orbit);
+            let n = i + 1;
+            if still && (args.frames <= 64 || n.is_power_of_two() || n == args.frames) {
+                let value = r.read_aov(gpu_aov);
+                let mask = mask.get_or_insert_with(|| {
+                    gpu_mask(&mut r, &value, &ref_alpha, &reference.depth, mask_settings)
+                });
+                let m = metrics::metrics(&value.pixels, &reference.value, mask);
+                convergence.push(ConvergencePoint {
+                    frames: n,
+                    rmse: m.rmse,
+                    relative_error: m.relative_error,
+                });
+            }
         }
         let value = r.read_aov(gpu_aov);
-        let depth = r.read_aov(Aov::Depth);
-        let alpha: Vec<f32> = value.pixels.iter().map(|p| p[3]).collect();
-        let gpu_depth: Vec<f32> = depth.pixels.iter().map(|p| p[0]).collect();
-        let mask = Mask::new(
-            size,
-            &alpha,
-            &gpu_depth,
-            &ref_alpha,
-            &reference.depth,
-            mask_settings,
-        );
+        let mask = match mask {
+            Some(m) => m,
+            None => gpu_mask(&mut r, &value, &ref_alpha, &reference.depth, mask_settings),
+        };
         let mut m = metrics::metrics(&value.pixels, &reference.value, &mask);
         let srgb = image_ops::tonemap(&value.pixels, w, h);
         m.flip = Some(metrics::flip_mean(&srgb, &ref_srgb, &mask));
@@ -172,6 +198,7 @@ pub fn run(args: CompareArgs) -> Result<()> {
             error_range: range,
             image,
             heatmap: heat,
+            convergence,
         });
         last_mask = Some(mask);
     }
@@ -201,4 +228,25 @@ pub fn run(args: CompareArgs) -> Result<()> {
         mask.silhouette_pixels
     );
     Ok(())
+}
+
+/// The comparison mask: GPU and reference coverage and depth (silhouettes excluded).
+fn gpu_mask(
+    r: &mut Renderer,
+    value: &nearfield_render::AovImage,
+    ref_alpha: &[f32],
+    ref_depth: &[f32],
+    settings: MaskSettings,
+) -> Mask {
+    let depth = r.read_aov(Aov::Depth);
+    let alpha: Vec<f32> = value.pixels.iter().map(|p| p[3]).collect();
+    let gpu_depth: Vec<f32> = depth.pixels.iter().map(|p| p[0]).collect();
+    Mask::new(
+        (value.width, value.height),
+        &alpha,
+        &gpu_depth,
+        ref_alpha,
+        ref_depth,
+        settings,
+    )
 }

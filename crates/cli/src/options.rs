@@ -259,3 +259,24 @@ pub fn methods_and_frames(methods: Option<&str>, frames: u32) -> Result<Vec<Stri
     }
     Ok(methods)
 }
+
+/// `--orbit DEG`: turn per frame, finite and within ±180.
+pub fn check_orbit(orbit: f32) -> Result<()> {
+    if !(orbit.is_finite() && orbit.abs() <= 180.0) {
+        return Err(BadInput(format!(
+            "--orbit {orbit}: must be a number of degrees in -180..=180"
+        ))
+        .into());
+    }
+    Ok(())
+}
+
+/// Renders one frame, first turning the camera by `orbit` degrees about its target unless it is
+/// the first frame (`index` 0): what `--frames N --orbit DEG` means everywhere.
+pub fn orbit_frame(renderer: &mut nearfield_render::Renderer, index: u32, orbit: f32) {
+    if index > 0 && orbit != 0.0 {
+        let next = renderer.camera().orbit(orbit);
+        renderer.set_camera(next);
+    }
+    renderer.render_frame();
+}

@@ -9,7 +9,7 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 /// Bumped whenever the reference's results change for the same inputs (invalidates caches).
-const REFERENCE_VERSION: u32 = 2;
+const REFERENCE_VERSION: u32 = 3;
 
 /// Reference options shared by `reference` and `compare`.
 #[derive(Args, Debug, Clone)]

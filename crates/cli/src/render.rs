@@ -19,9 +19,14 @@ pub struct RenderArgs {
     /// Frames to render before output (temporal techniques converge over frames; ≥ 1).
     #[arg(long, default_value_t = 1)]
     pub frames: u32,
+    /// Degrees the camera turns about its target (around its up axis) before every frame after
+    /// the first.
+    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
+    pub orbit: f32,
     /// What to write: final (PNG) or a float AOV (EXR): radiance, albedo, normal, depth, ao,
-    /// env-irradiance, light-irradiance, indirect-irradiance, diffuse, motion, specular,
-    /// direct-radiance.
+    /// env-irradiance, light-irradiance, indirect-irradiance, diffuse, lambertian, motion,
+    /// specular, direct-radiance, or one of the technique's own images (e.g. hbil's
+    /// reprojected, radiance-source, bent-cone, near-history, feedback; all four channels).
     #[arg(long, default_value = "final")]
     pub aov: String,
     /// Output file: .png for `final`, .exr for the others. Default: final.png or AOV.exr.
@@ -87,25 +92,21 @@ pub fn save_atomically(path: &Path, write: impl FnOnce(&Path) -> Result<()>) -> 
 }
 
 pub fn run(args: RenderArgs) -> Result<()> {
-    let aov = Aov::parse(&args.aov).ok_or_else(|| {
-        BadInput(format!(
-            "--aov {}: unknown AOV (known: {})",
-            args.aov,
-            Aov::names().join(", ")
-        ))
-    })?;
+    // An unknown name may still be one of the technique's own images, checked once it exists.
+    let aov = Aov::parse(&args.aov);
     nearfield_render::technique::find(&args.method)?;
     if args.frames == 0 || args.frames > 100_000 {
         return Err(BadInput(format!("--frames {}: must be in 1..=100000", args.frames)).into());
     }
+    crate::options::check_orbit(args.orbit)?;
     let output = args.output.clone().unwrap_or_else(|| {
-        PathBuf::from(if aov == Aov::Final {
+        PathBuf::from(if aov == Some(Aov::Final) {
             "final.png".to_string()
         } else {
-            format!("{}.exr", aov.name())
+            format!("{}.exr", args.aov)
         })
     });
-    check_output(aov, &output)?;
+    check_output(aov.unwrap_or(Aov::Radiance), &output)?;
     let params = args.technique.params()?;
     let size = crate::options::parse_size(&args.scene.size)?;
     let settings = args.technique.settings(size)?;
@@ -120,9 +121,33 @@ pub fn run(args: RenderArgs) -> Result<()> {
         &params,
         settings,
     )?;
-    for _ in 0..args.frames {
-        renderer.render_frame();
+    if aov.is_none() && !renderer.extra_names().contains(&args.aov.as_str()) {
+        let mut known = Aov::names();
+        known.extend(renderer.extra_names());
+        return Err(BadInput(format!(
+            "--aov {}: unknown AOV for {} (known: {})",
+            args.aov,
+            args.method,
+            known.join(", ")
+        ))
+        .into());
     }
+    for i in 0..args.frames {
+        crate::options::orbit_frame(&mut renderer, i, args.orbit);
+    }
+    let Some(aov) = aov else {
+        let img = renderer
+            .read_extra(&args.aov)
+            .expect("the name was checked above");
+        write_exr(&img, &output)?;
+        eprintln!(
+            "nearfield: wrote {} ({} {})",
+            output.display(),
+            args.method,
+            args.aov
+        );
+        return Ok(());
+    };
     if aov == Aov::Final {
         let img = renderer.read_final();
         save_atomically(&output, |tmp| {

@@ -19,6 +19,95 @@ pub struct MethodReport {
     /// File names (relative to the report) of the method's image and heat map.
     pub image: String,
     pub heatmap: String,
+    /// Error after each rendered frame (still camera, more than one frame), else empty.
+    pub convergence: Vec<ConvergencePoint>,
+}
+
+/// The error after `frames` frames.
+#[derive(Clone, Copy, Debug, Serialize)]
+pub struct ConvergencePoint {
+    pub frames: u32,
+    pub rmse: f64,
+    pub relative_error: f64,
+}
+
+const CURVE_COLOURS: [&str; 6] = [
+    "#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#17becf",
+];
+
+/// An inline SVG of relative error against frame count (log2 frame axis) for every method that
+/// has a curve; empty when none has.
+pub fn convergence_svg(methods: &[MethodReport]) -> String {
+    let curves: Vec<&MethodReport> = methods
+        .iter()
+        .filter(|m| !m.convergence.is_empty())
+        .collect();
+    if curves.is_empty() {
+        return String::new();
+    }
+    let (w, h, left, bottom, top, right) = (560.0, 300.0, 60.0, 40.0, 12.0, 130.0);
+    let max_frames = curves
+        .iter()
+        .flat_map(|m| m.convergence.iter().map(|p| p.frames))
+        .max()
+        .unwrap_or(1)
+        .max(2) as f64;
+    let max_err = curves
+        .iter()
+        .flat_map(|m| m.convergence.iter().map(|p| p.relative_error))
+        .fold(0.0f64, f64::max)
+        .max(1e-6)
+        * 1.1;
+    let x = |f: u32| left + (f as f64).log2() / max_frames.log2() * (w - left - right);
+    let y = |e: f64| top + (1.0 - e / max_err) * (h - top - bottom);
+    let mut svg = format!(
+        r##"<svg xmlns="http://www.w3.org/2000/svg" width="{w}" height="{h}" style="background:#fff;border:1px solid #ccc">
+<line x1="{left}" y1="{y0}" x2="{x1}" y2="{y0}" stroke="#000"/><line x1="{left}" y1="{top}" x2="{left}" y2="{y0}" stroke="#000"/>
+<text x="{xm}" y="{yl}" text-anchor="middle" font-size="12">frames (log scale)</text>
+<text x="14" y="{ym}" font-size="12" transform="rotate(-90 14 {ym})" text-anchor="middle">relative error</text>"##,
+        y0 = h - bottom,
+        x1 = w - right,
+        xm = (left + w - right) / 2.0,
+        yl = h - 6.0,
+        ym = (top + h - bottom) / 2.0,
+    );
+    let mut f = 1u32;
+    while f as f64 <= max_frames {
+        let _ = write!(
+            svg,
+            r##"<text x="{:.1}" y="{:.1}" font-size="11" text-anchor="middle">{f}</text>"##,
+            x(f),
+            h - bottom + 14.0
+        );
+        f *= 2;
+    }
+    for i in 0..=4 {
+        let e = max_err * i as f64 / 4.0;
+        let _ = write!(
+            svg,
+            r##"<text x="{:.1}" y="{:.1}" font-size="11" text-anchor="end">{e:.3}</text>"##,
+            left - 4.0,
+            y(e) + 4.0
+        );
+    }
+    for (i, m) in curves.iter().enumerate() {
+        let colour = CURVE_COLOURS[i % CURVE_COLOURS.len()];
+        let points: Vec<String> = m
+            .convergence
+            .iter()
+            .map(|p| format!("{:.1},{:.1}", x(p.frames), y(p.relative_error)))
+            .collect();
+        let _ = write!(
+            svg,
+            r##"<polyline fill="none" stroke="{colour}" stroke-width="2" points="{}"/><text x="{:.1}" y="{:.1}" font-size="12" fill="{colour}">{}</text>"##,
+            points.join(" "),
+            w - right + 8.0,
+            top + 16.0 * (i + 1) as f64,
+            escape(&m.name)
+        );
+    }
+    svg.push_str("</svg>");
+    svg
 }
 
 /// Everything in metrics.json.
@@ -123,6 +212,26 @@ The reference's own noise (RMS standard error over these pixels) is {noise:.5}.<
         );
     }
     h.push_str("</table>");
+    let curve = convergence_svg(&report.methods);
+    if !curve.is_empty() {
+        let _ = write!(
+            h,
+            "<h2>Error against frames</h2><p>Relative error after each frame, same mask as above.</p>{curve}<table><tr><th>method</th><th>frames</th><th>RMSE</th><th>relative error</th></tr>"
+        );
+        for m in &report.methods {
+            for p in &m.convergence {
+                let _ = write!(
+                    h,
+                    "<tr><th>{}</th><td>{}</td><td>{:.5}</td><td>{:.4}</td></tr>",
+                    escape(&m.name),
+                    p.frames,
+                    p.rmse,
+                    p.relative_error
+                );
+            }
+        }
+        h.push_str("</table>");
+    }
     for m in &report.methods {
         let _ = write!(
             h,

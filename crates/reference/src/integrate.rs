@@ -12,7 +12,8 @@
 //! - `light-irradiance` = (1/π) Σ_l E_l(P, n) · [shadow ray reaches the light] — exact, no noise;
 //! - `diffuse` = ρ (env + light + indirect), R as given;
 //! - `radiance`: a path tracer with Lambertian surfaces of albedo ρ, next-event estimation of the
-//!   punctual lights, cosine-weighted continuation, environment on escape, emission where a path
+//!   punctual lights and of the environment (drawn from its energy, balance heuristic against the
+//!   cosine-weighted continuation, which adds the environment on escape), emission where a path
 //!   hits an emitter; `max_depth` segments (camera segment included), Russian roulette from the
 //!   fourth segment on. Background pixels show the environment (alpha 0).
 //!
@@ -84,7 +85,7 @@ impl<'a> Context<'a> {
             irradiance: needs_irradiance.then(|| IrradianceMap::new(env)),
             env_dist: if matches!(
                 settings.aov,
-                ReferenceAov::EnvIrradiance | ReferenceAov::Diffuse
+                ReferenceAov::EnvIrradiance | ReferenceAov::Diffuse | ReferenceAov::Radiance
             ) {
                 EnvDistribution::new(env)
             } else {
@@ -262,8 +263,22 @@ impl<'a> Context<'a> {
             let mut from = self.camera.eye;
             while segments < s.max_depth {
                 let rho = self.scene.base_color(hit.material, hit.uv).truncate();
-                // Next-event estimation: one more segment, to each punctual light.
+                // Next-event estimation: one more segment, to each punctual light …
                 l += throughput * rho * self.light_irradiance_from(&hit, from, &mut rays);
+                // … and to the environment, drawn from its energy and weighted by the balance
+                // heuristic against the cosine-weighted continuation below.
+                if let Some(d) = &self.env_dist {
+                    let (we, pe) = d.sample(self.env, rng.next_vec2());
+                    let cos = we.dot(hit.ns);
+                    if pe > 0.0 && cos > 0.0 && we.dot(hit.ng) > 0.0 {
+                        rays += 1;
+                        let o = offset_origin(&hit, we, from, self.scene_radius);
+                        if !self.tracer.occluded(o, we, f32::INFINITY) {
+                            let pc = cos / PI;
+                            l += throughput * rho * self.env.radiance(we) * (pc / (pc + pe));
+                        }
+                    }
+                }
                 let w = cosine_hemisphere(hit.ns, rng.next_vec2());
                 if w.dot(hit.ng) <= 0.0 {
                     break;
@@ -274,7 +289,14 @@ impl<'a> Context<'a> {
                 let o = offset_origin(&hit, w, from, self.scene_radius);
                 match self.tracer.closest(o, w, f32::INFINITY, false) {
                     None => {
-                        l += throughput * self.env.radiance(w);
+                        let weight = match &self.env_dist {
+                            Some(d) => {
+                                let pc = w.dot(hit.ns).max(0.0) / PI;
+                                pc / (pc + d.pdf(self.env, w))
+                            }
+                            None => 1.0,
+                        };
+                        l += throughput * self.env.radiance(w) * weight;
                         break;
                     }
                     Some(next) => {

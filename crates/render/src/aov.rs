@@ -31,11 +31,14 @@ pub enum Aov {
     /// Outgoing diffuse radiance kept for the next frame: emission + ρ (light + unoccluded env
     /// irradiance).
     DirectRadiance,
+    /// emission + ρ × (env + light + indirect irradiance): the Lambertian part of `radiance`,
+    /// the quantity the reference's path tracer (Lambertian surfaces) computes for `radiance`.
+    Lambertian,
 }
 
 impl Aov {
     /// Every AOV, in the order of their shader ids.
-    pub const ALL: [Aov; 13] = [
+    pub const ALL: [Aov; 14] = [
         Aov::Final,
         Aov::Radiance,
         Aov::Albedo,
@@ -49,6 +52,7 @@ impl Aov {
         Aov::Motion,
         Aov::Specular,
         Aov::DirectRadiance,
+        Aov::Lambertian,
     ];
 
     pub fn name(self) -> &'static str {
@@ -66,6 +70,7 @@ impl Aov {
             Aov::Motion => "motion",
             Aov::Specular => "specular",
             Aov::DirectRadiance => "direct-radiance",
+            Aov::Lambertian => "lambertian",
         }
     }
 

@@ -42,6 +42,8 @@ pub struct FrameUniforms {
     pub view_from_world: [[f32; 4]; 4],
     pub world_from_view: [[f32; 4]; 4],
     pub prev_clip_from_world: [[f32; 4]; 4],
+    pub prev_view_from_world: [[f32; 4]; 4],
+    pub prev_world_from_view: [[f32; 4]; 4],
     /// xyz camera position; w unused.
     pub camera_position: [f32; 4],
     /// width, height, 1/width, 1/height.
@@ -52,8 +54,13 @@ pub struct FrameUniforms {
     pub env_params: [f32; 4],
     /// exposure (EV), tonemap operator, shadow normal offset (texels), unused.
     pub post: [f32; 4],
+    /// Last frame's near, far, aspect, tan(yfov/2).
+    pub prev_projection: [f32; 4],
     /// frame index, light count, seed, selected AOV.
     pub counts: [u32; 4],
+    /// 1 when last frame's buffers may be reused (0 on the first frame and after a camera cut),
+    /// frames since the last cut, unused, unused.
+    pub history: [u32; 4],
 }
 
 /// The camera matrices of one frame.
@@ -91,6 +98,10 @@ pub struct FrameInputs<'a> {
     pub frame_index: u32,
     pub light_count: u32,
     pub seed: u32,
+    /// Last frame's camera (tan(yfov/2) for its projection row).
+    pub previous_tan_half_fov: f32,
+    /// Whether last frame's buffers may be reused, and frames since the last cut.
+    pub history: (bool, u32),
 }
 
 impl FrameUniforms {
@@ -104,6 +115,8 @@ impl FrameUniforms {
             view_from_world: f.current.view_from_world.to_cols_array_2d(),
             world_from_view: world_from_view.to_cols_array_2d(),
             prev_clip_from_world: f.previous.clip_from_world().to_cols_array_2d(),
+            prev_view_from_world: f.previous.view_from_world.to_cols_array_2d(),
+            prev_world_from_view: f.previous.view_from_world.inverse().to_cols_array_2d(),
             camera_position: [eye.x, eye.y, eye.z, 0.0],
             size: [
                 f.size.0 as f32,
@@ -119,7 +132,14 @@ impl FrameUniforms {
             ],
             env_params,
             post,
+            prev_projection: [
+                f.previous.near,
+                f.previous.far,
+                f.size.0 as f32 / f.size.1 as f32,
+                f.previous_tan_half_fov,
+            ],
             counts: [f.frame_index, f.light_count, f.seed, aov],
+            history: [f.history.0 as u32, f.history.1, 0, 0],
         }
     }
 }

@@ -16,6 +16,8 @@ pub const MAX_RADIANCE_WIDTH: u32 = 2048;
 /// Largest value an rgba16float texel can hold; brighter texels (a sun's core) are clamped on
 /// upload. The SH projection is computed in f32 from the unclamped map.
 pub const F16_MAX: f32 = 65000.0;
+/// Size of the pre-convolved diffuse map (lat-long; irradiance varies slowly).
+pub const IRRADIANCE_SIZE: (u32, u32) = (64, 32);
 
 /// `PrefilterParams` in env_prefilter.wgsl.
 #[repr(C)]
@@ -32,6 +34,9 @@ pub struct GpuEnvironment {
     pub radiance: wgpu::Texture,
     pub radiance_view: wgpu::TextureView,
     pub specular_view: wgpu::TextureView,
+    /// The pre-convolved diffuse map, E(n)/π (`Environment::irradiance_map`), lat-long
+    /// `IRRADIANCE_SIZE`, unrotated and without intensity like the other textures.
+    pub irradiance_view: wgpu::TextureView,
     pub sampler: wgpu::Sampler,
     /// 16 × vec4 (rgb SH coefficients, intensity and rotation applied).
     pub sh_buffer: wgpu::Buffer,
@@ -225,7 +230,36 @@ impl GpuEnvironment {
             uniforms.push(params);
         }
         queue.submit([encoder.finish()]);
+        let (iw, ih) = IRRADIANCE_SIZE;
+        let irradiance_half: Vec<u16> = env
+            .irradiance_map(iw, ih)
+            .iter()
+            .flat_map(|c| {
+                let c = c.min(Vec3::splat(F16_MAX));
+                [c.x, c.y, c.z, 1.0].map(|v| half::f16::from_f32(v).to_bits())
+            })
+            .collect();
+        let irradiance = device.create_texture_with_data(
+            queue,
+            &wgpu::TextureDescriptor {
+                label: Some("env irradiance map"),
+                size: wgpu::Extent3d {
+                    width: iw,
+                    height: ih,
+                    depth_or_array_layers: 1,
+                },
+                mip_level_count: 1,
+                sample_count: 1,
+                dimension: wgpu::TextureDimension::D2,
+                format: wgpu::TextureFormat::Rgba16Float,
+                usage: wgpu::TextureUsages::TEXTURE_BINDING,
+                view_formats: &[],
+            },
+            wgpu::util::TextureDataOrder::LayerMajor,
+            bytemuck::cast_slice(&irradiance_half),
+        );
         GpuEnvironment {
+            irradiance_view: irradiance.create_view(&Default::default()),
             radiance,
             radiance_view,
             specular_view: specular.create_view(&Default::default()),

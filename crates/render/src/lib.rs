@@ -43,6 +43,8 @@ pub fn shader_sources() -> Vec<(&'static str, String)> {
         ("technique/none", technique::none::source()),
         ("technique/ssdo", technique::ssdo::source()),
         ("technique/s3ho", technique::s3ho::source()),
+        ("technique/horizon", technique::horizon::source()),
         ("bilateral_blur", passes::bilateral_blur::source()),
+        ("reproject", passes::reproject::source()),
     ]
 }

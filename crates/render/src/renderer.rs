@@ -60,6 +60,10 @@ pub struct Renderer {
     pub profiler: GpuProfiler,
     camera: Camera,
     previous: Option<CameraMatrices>,
+    previous_camera: Option<Camera>,
+    /// The next frame starts without history (set by a cut).
+    cut: bool,
+    frames_since_cut: u32,
     frame_index: u32,
     settings: RenderSettings,
 }
@@ -144,6 +148,9 @@ impl Renderer {
             profiler,
             camera,
             previous: None,
+            previous_camera: None,
+            cut: false,
+            frames_since_cut: 0,
             frame_index: 0,
             settings,
         })
@@ -157,8 +164,22 @@ impl Renderer {
         self.technique.name()
     }
 
+    /// Moves the camera for the next frames. A move that [`Camera::is_cut_to`] calls a cut
+    /// discards the history of temporal techniques; smaller moves reproject it.
     pub fn set_camera(&mut self, camera: Camera) {
+        if self.camera.is_cut_to(&camera) {
+            self.cut = true;
+        }
         self.camera = camera;
+    }
+
+    /// Discards all history: the next frame is rendered as if it were the first.
+    pub fn cut(&mut self) {
+        self.cut = true;
+    }
+
+    pub fn camera(&self) -> &Camera {
+        &self.camera
     }
 
     /// Turns the environment about +Y (radians) for the next frames; the technique and every
@@ -173,6 +194,7 @@ impl Renderer {
 
     fn uniforms(&self, current: CameraMatrices, aov: Aov) -> FrameUniforms {
         let s = &self.settings;
+        let previous_camera = self.previous_camera.as_ref().unwrap_or(&self.camera);
         FrameUniforms::new(
             &FrameInputs {
                 camera: &self.camera,
@@ -182,6 +204,8 @@ impl Renderer {
                 frame_index: self.frame_index,
                 light_count: self.scene.light_count,
                 seed: s.seed,
+                previous_tan_half_fov: (0.5 * previous_camera.yfov).tan(),
+                history: (self.history_valid(), self.frames_since_cut),
             },
             self.env.params(),
             [
@@ -194,9 +218,18 @@ impl Renderer {
         )
     }
 
+    /// Whether the next frame may reuse this one's buffers.
+    fn history_valid(&self) -> bool {
+        self.previous.is_some() && !self.cut
+    }
+
     /// Renders one frame and submits it. Per-pass timings of it are then available from
     /// [`Self::timings`].
     pub fn render_frame(&mut self) {
+        if !self.history_valid() {
+            self.frames_since_cut = 0;
+        }
+        let history = self.history_valid();
         let current = CameraMatrices::new(&self.camera, self.settings.size, self.scene.bounds);
         let u = self.uniforms(current, Aov::Final);
         self.queue
@@ -214,12 +247,22 @@ impl Renderer {
             .encode(&mut encoder, p, &self.targets, &self.scene);
         self.shadows.encode(&mut encoder, p, &self.scene);
         self.direct.encode(&mut encoder, p, size, side);
-        self.technique.encode(&mut encoder, p, self.frame_index);
+        self.technique.encode(
+            &mut encoder,
+            p,
+            technique::FrameInfo {
+                index: self.frame_index,
+                history,
+            },
+        );
         self.composite.encode(&mut encoder, p, size, 0);
         self.tonemap.encode(&mut encoder, p, size, 0);
         p.resolve(&mut encoder);
         self.queue.submit([encoder.finish()]);
         self.previous = Some(current);
+        self.previous_camera = Some(self.camera);
+        self.cut = false;
+        self.frames_since_cut += 1;
         self.frame_index += 1;
     }
 
@@ -258,6 +301,58 @@ impl Renderer {
             width: w,
             height: h,
             pixels: bytemuck::cast_slice::<u8, [f32; 4]>(&bytes).to_vec(),
+        }
+    }
+
+    /// Names of the technique's extra images ([`Technique::extras`]).
+    pub fn extra_names(&self) -> Vec<&'static str> {
+        self.technique
+            .extras(self.last_frame_info())
+            .into_iter()
+            .map(|(n, _)| n)
+            .collect()
+    }
+
+    /// Reads one of the technique's extra images of the last rendered frame (all four channels
+    /// as stored), or `None` when the technique has no image of that name.
+    pub fn read_extra(&self, name: &str) -> Option<AovImage> {
+        let info = self.last_frame_info();
+        let extras = self.technique.extras(info);
+        let texture = extras.iter().find(|(n, _)| *n == name)?.1;
+        let (w, h) = self.settings.size;
+        let encoder = self.device.create_command_encoder(&Default::default());
+        let pixels: Vec<[f32; 4]> = match texture.format() {
+            wgpu::TextureFormat::Rgba16Float => {
+                let bytes = self.read_texture(encoder, texture, 8);
+                bytemuck::cast_slice::<u8, [u16; 4]>(&bytes)
+                    .iter()
+                    .map(|p| p.map(|b| half::f16::from_bits(b).to_f32()))
+                    .collect()
+            }
+            wgpu::TextureFormat::Rgba32Float => {
+                let bytes = self.read_texture(encoder, texture, 16);
+                bytemuck::cast_slice::<u8, [f32; 4]>(&bytes).to_vec()
+            }
+            wgpu::TextureFormat::R32Float => {
+                let bytes = self.read_texture(encoder, texture, 4);
+                bytemuck::cast_slice::<u8, f32>(&bytes)
+                    .iter()
+                    .map(|&v| [v, 0.0, 0.0, 1.0])
+                    .collect()
+            }
+            _ => return None,
+        };
+        Some(AovImage {
+            width: w,
+            height: h,
+            pixels,
+        })
+    }
+
+    fn last_frame_info(&self) -> technique::FrameInfo {
+        technique::FrameInfo {
+            index: self.frame_index.saturating_sub(1),
+            history: self.frames_since_cut > 1,
         }
     }
 

@@ -86,6 +86,14 @@ fn host_and_shader_structs_agree() {
                 offset_of!(FrameUniforms, prev_clip_from_world),
             ),
             (
+                "prev_view_from_world",
+                offset_of!(FrameUniforms, prev_view_from_world),
+            ),
+            (
+                "prev_world_from_view",
+                offset_of!(FrameUniforms, prev_world_from_view),
+            ),
+            (
                 "camera_position",
                 offset_of!(FrameUniforms, camera_position),
             ),
@@ -93,7 +101,12 @@ fn host_and_shader_structs_agree() {
             ("projection", offset_of!(FrameUniforms, projection)),
             ("env_params", offset_of!(FrameUniforms, env_params)),
             ("post", offset_of!(FrameUniforms, post)),
+            (
+                "prev_projection",
+                offset_of!(FrameUniforms, prev_projection),
+            ),
             ("counts", offset_of!(FrameUniforms, counts)),
+            ("history", offset_of!(FrameUniforms, history)),
         ],
     );
     let material = [

@@ -52,6 +52,28 @@ impl Camera {
     }
 
     /// World → view (camera at the origin looking down −Z).
+    /// The camera turned by `degrees` about the axis through `target` along `up` (positive =
+    /// counter-clockwise seen from above); target, up and field of view stay.
+    pub fn orbit(&self, degrees: f32) -> Camera {
+        let axis = self.up.normalize();
+        let rotation = glam::Quat::from_axis_angle(axis, degrees.to_radians());
+        Camera {
+            eye: self.target + rotation * (self.eye - self.target),
+            ..*self
+        }
+    }
+
+    /// Whether going from `self` to `next` is a cut: the view direction turns by more than 30°,
+    /// the eye moves by more than half its distance to the target, or the field of view
+    /// changes by more than 10 %. Reprojected history is discarded across a cut.
+    pub fn is_cut_to(&self, next: &Camera) -> bool {
+        let turn = self.forward().dot(next.forward()).clamp(-1.0, 1.0).acos();
+        let distance = (self.target - self.eye).length().max(1e-6);
+        turn > 30f32.to_radians()
+            || (next.eye - self.eye).length() > 0.5 * distance
+            || (next.yfov / self.yfov - 1.0).abs() > 0.1
+    }
+
     pub fn view_from_world(&self) -> Mat4 {
         glam::camera::rh::view::look_at_mat4(self.eye, self.target, self.up)
     }

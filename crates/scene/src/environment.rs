@@ -231,6 +231,53 @@ impl Environment {
     }
 }
 
+impl Environment {
+    /// The pre-convolved diffuse map: a `width`×`height` lat-long image (unrotated, without
+    /// `intensity`, like `texels`) whose texel in direction n holds E(n)/π = (1/π) ∫ L(ω)
+    /// max(0, n·ω) dω, summed over the map box-filtered to at most 64×32 texels (5.6° texels: E is smooth).
+    pub fn irradiance_map(&self, width: u32, height: u32) -> Vec<Vec3> {
+        let (mut w, mut h, mut t) = (self.width, self.height, self.texels.clone());
+        while w > 64 && h >= 2 && w % 2 == 0 && h % 2 == 0 {
+            let (nw, nh) = (w / 2, h / 2);
+            let mut next = Vec::with_capacity((nw * nh) as usize);
+            for y in 0..nh {
+                for x in 0..nw {
+                    let at = |dx: u32, dy: u32| t[((2 * y + dy) * w + 2 * x + dx) as usize];
+                    next.push(0.25 * (at(0, 0) + at(1, 0) + at(0, 1) + at(1, 1)));
+                }
+            }
+            (w, h, t) = (nw, nh, next);
+        }
+        let small = Environment {
+            name: String::new(),
+            width: w,
+            height: h,
+            texels: t,
+            rotation: 0.0,
+            intensity: 1.0,
+        };
+        let sources: Vec<(Vec3, Vec3)> = (0..h)
+            .flat_map(|y| (0..w).map(move |x| (x, y)))
+            .map(|(x, y)| {
+                let l = small.texels[(y * w + x) as usize] * small.texel_solid_angle(y);
+                (small.texel_direction(x, y), l)
+            })
+            .collect();
+        let mut out = Vec::with_capacity((width * height) as usize);
+        for y in 0..height {
+            for x in 0..width {
+                let n = uv_to_dir(Vec2::new(
+                    (x as f32 + 0.5) / width as f32,
+                    (y as f32 + 0.5) / height as f32,
+                ));
+                let e: Vec3 = sources.iter().map(|(d, l)| *l * n.dot(*d).max(0.0)).sum();
+                out.push(e / PI);
+            }
+        }
+        out
+    }
+}
+
 /// The DESIGN.md convention, unrotated: direction → (u, v).
 pub fn dir_to_uv(d: Vec3) -> Vec2 {
     let d = d.normalize();

@@ -18,6 +18,7 @@ pub fn new(device: &wgpu::Device, frame: &wgpu::Buffer, targets: &FrameTargets) 
     // view depth (10) and ao (13) are r32float: unfilterable.
     entries.extend((8..=18).map(|b| util::texture(b, c, b != 10 && b != 13)));
     entries.push(util::storage_texture(19, AOV_FORMAT));
+    entries.push(util::texture(20, c, true));
     let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
         label: Some("aov"),
         entries: &entries,
@@ -40,6 +41,7 @@ pub fn new(device: &wgpu::Device, frame: &wgpu::Buffer, targets: &FrameTargets) 
                 (17, R::TextureView(&targets.specular.view)),
                 (18, R::TextureView(&direct.view)),
                 (19, R::TextureView(&targets.aov.view)),
+                (20, R::TextureView(&targets.emissive.view)),
             ];
             util::bind_group(device, "aov", &layout, &r)
         })

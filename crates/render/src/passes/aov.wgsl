@@ -6,6 +6,7 @@
 //   6 env-irradiance  7 light-irradiance  8 indirect-irradiance
 //   9 diffuse = ρ · (env-irradiance + light-irradiance + indirect-irradiance)
 //   10 motion (pixels, rg)  11 specular  12 direct-radiance (kept for the next frame)
+//   13 lambertian = emission + ρ · (env-irradiance + light-irradiance + indirect-irradiance)
 
 @group(0) @binding(8) var gb_normal: texture_2d<f32>;
 @group(0) @binding(9) var gb_albedo: texture_2d<f32>;
@@ -18,6 +19,7 @@
 @group(0) @binding(16) var indirect_irradiance: texture_2d<f32>;
 @group(0) @binding(17) var specular: texture_2d<f32>;
 @group(0) @binding(18) var direct_radiance: texture_2d<f32>;
+@group(0) @binding(20) var gb_emissive: texture_2d<f32>;
 @group(0) @binding(19) var out_aov: texture_storage_2d<rgba32float, write>;
 
 @compute @workgroup_size(8, 8, 1)
@@ -66,6 +68,12 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         }
         case 12u: {
             v = textureLoad(direct_radiance, pixel, 0).rgb;
+        }
+        case 13u: {
+            v = textureLoad(gb_emissive, pixel, 0).rgb
+                + textureLoad(gb_albedo, pixel, 0).rgb * (textureLoad(env_irradiance, pixel, 0).rgb
+                + textureLoad(light_irradiance, pixel, 0).rgb
+                + textureLoad(indirect_irradiance, pixel, 0).rgb);
         }
         default: {
         }

@@ -65,12 +65,6 @@ struct GBufferOut {
 }
 
 // Pixel coordinates (x right, y down) of a world point under a clip_from_world matrix.
-fn to_pixel(clip_from_world: mat4x4<f32>, p: vec3<f32>) -> vec2<f32> {
-    let c = clip_from_world * vec4<f32>(p, 1.0);
-    let ndc = c.xy / c.w;
-    return vec2<f32>(ndc.x * 0.5 + 0.5, 0.5 - ndc.y * 0.5) * frame.size.xy;
-}
-
 @fragment
 fn fs_main(in: VertexOut, @builtin(front_facing) front: bool) -> GBufferOut {
     // Gradients first, in uniform control flow; the texture fetches below are conditional.
@@ -104,7 +98,7 @@ fn fs_main(in: VertexOut, @builtin(front_facing) front: bool) -> GBufferOut {
     o.albedo = vec4<f32>(base.rgb, 1.0);
     o.material = vec4<f32>(metallic, roughness, 0.0, 1.0);
     o.emissive = vec4<f32>(emissive, 1.0);
-    o.motion = vec4<f32>(to_pixel(frame.prev_clip_from_world, in.world) - in.clip.xy, 0.0, 0.0);
+    o.motion = vec4<f32>(to_screen(frame.prev_clip_from_world, in.world) - in.clip.xy, 0.0, 0.0);
     o.view_depth = vec4<f32>(-(frame.view_from_world * vec4<f32>(in.world, 1.0)).z, 0.0, 0.0, 0.0);
     return o;
 }

@@ -8,6 +8,7 @@ pub mod bilateral_blur;
 pub mod composite;
 pub mod direct_lighting;
 pub mod gbuffer;
+pub mod reproject;
 pub mod shadow;
 pub mod tonemap;
 

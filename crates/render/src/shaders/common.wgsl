@@ -11,6 +11,8 @@ struct Frame {
     world_from_view: mat4x4<f32>,
     // Last frame's camera, for motion vectors and reprojection.
     prev_clip_from_world: mat4x4<f32>,
+    prev_view_from_world: mat4x4<f32>,
+    prev_world_from_view: mat4x4<f32>,
     // xyz: camera position (world); w: unused.
     camera_position: vec4<f32>,
     // width, height, 1/width, 1/height (pixels).
@@ -22,8 +24,13 @@ struct Frame {
     // exposure (EV), tonemap operator (0 aces, 1 neutral, 2 linear), shadow normal offset
     // (in shadow-map texels), unused.
     post: vec4<f32>,
+    // Last frame's near, far, aspect, tan(yfov / 2).
+    prev_projection: vec4<f32>,
     // frame index, light count, seed, selected AOV (for the AOV pass).
     counts: vec4<u32>,
+    // x: 1 when last frame's buffers may be reused (0 on the first frame and after a camera
+    // cut); y: frames since the last cut.
+    history: vec4<u32>,
 }
 
 @group(0) @binding(0) var<uniform> frame: Frame;
@@ -36,6 +43,21 @@ fn view_position(pixel: vec2<u32>, view_depth: f32) -> vec3<f32> {
     let ndc = vec2<f32>(2.0 * p.x - 1.0, 1.0 - 2.0 * p.y);
     let t = frame.projection.w;
     return vec3<f32>(ndc.x * t * frame.projection.z, ndc.y * t, -1.0) * view_depth;
+}
+
+// Last frame's view-space position of pixel `pixel` at view depth `view_depth`.
+fn prev_view_position(pixel: vec2<u32>, view_depth: f32) -> vec3<f32> {
+    let p = (vec2<f32>(pixel) + 0.5) * frame.size.zw;
+    let ndc = vec2<f32>(2.0 * p.x - 1.0, 1.0 - 2.0 * p.y);
+    let t = frame.prev_projection.w;
+    return vec3<f32>(ndc.x * t * frame.prev_projection.z, ndc.y * t, -1.0) * view_depth;
+}
+
+// Pixel coordinates (continuous, centres at +0.5) of world point `p` through `clip_from_world`.
+fn to_screen(clip_from_world: mat4x4<f32>, p: vec3<f32>) -> vec2<f32> {
+    let c = clip_from_world * vec4<f32>(p, 1.0);
+    let ndc = c.xy / c.w;
+    return vec2<f32>(0.5 * ndc.x + 0.5, 0.5 - 0.5 * ndc.y) * frame.size.xy;
 }
 
 fn world_position(pixel: vec2<u32>, view_depth: f32) -> vec3<f32> {

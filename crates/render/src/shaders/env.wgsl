@@ -63,3 +63,26 @@ fn env_irradiance_sh(n: vec3<f32>) -> vec3<f32> {
     }
     return max(e, vec3<f32>(0.0));
 }
+
+// Irradiance over π through a cone of half-angle α = acos(t) about the unit axis `a` (Mayaux
+// 2016, HBIL Sec. 2.2.4): Ramamoorthi's Â_l with the upper bound θ_max = α in place of π/2,
+//   Â_l(t)/π = 2 ∫_t^1 P_l(μ) μ dμ = 1 − t², (2/3)(1 − t³), (1/4)(1 + 2t² − 3t⁴), t³(1 − t²)
+// for l = 0..3 (the HBIL text's c0, c1, c2 divided by π and by Y_l0's constant; band 3, zero for
+// the full hemisphere, contributes for narrower cones). t = 0 gives env_irradiance_sh.
+fn env_irradiance_cone(a: vec3<f32>, t: f32) -> vec3<f32> {
+    let b = sh_basis(a);
+    let t2 = t * t;
+    let k = vec4<f32>(1.0 - t2, (2.0 / 3.0) * (1.0 - t2 * t), 0.25 * (1.0 + 2.0 * t2 - 3.0 * t2 * t2),
+        t2 * t * (1.0 - t2));
+    var e = env_sh[0].rgb * (b[0] * k.x);
+    for (var i = 1u; i < 4u; i++) {
+        e += env_sh[i].rgb * (b[i] * k.y);
+    }
+    for (var i = 4u; i < 9u; i++) {
+        e += env_sh[i].rgb * (b[i] * k.z);
+    }
+    for (var i = 9u; i < 16u; i++) {
+        e += env_sh[i].rgb * (b[i] * k.w);
+    }
+    return max(e, vec3<f32>(0.0));
+}

@@ -5,6 +5,7 @@
 //! definitions; `crate::targets`). The registry is the one list that the command line, the
 //! viewer, `bench` and `compare` enumerate.
 
+pub mod horizon;
 pub mod none;
 pub mod s3ho;
 pub mod ssdo;
@@ -41,18 +42,38 @@ pub struct TechniqueContext<'a> {
     pub pack_half: bool,
 }
 
+/// What a technique learns about the frame it records.
+#[derive(Clone, Copy, Debug)]
+pub struct FrameInfo {
+    /// Frame number since the renderer was made; `index % 2` selects the ping-pong side: this
+    /// frame's direct radiance is `targets.direct_radiance[index % 2]`, last frame's the other.
+    pub index: u32,
+    /// Last frame's buffers may be reused (false on the first frame and after a camera cut).
+    pub history: bool,
+}
+
+impl FrameInfo {
+    /// This frame's side of every ping-pong pair (0 or 1).
+    pub fn side(&self) -> usize {
+        (self.index % 2) as usize
+    }
+}
+
 /// A created technique: records its passes each frame.
 pub trait Technique {
     fn name(&self) -> &'static str;
-    /// Records this frame's passes. `frame_index` selects the direct-radiance ping-pong side:
-    /// this frame's is `targets.direct_radiance[frame_index % 2]`, last frame's the other.
-    /// Allocates nothing.
+    /// Records this frame's passes. Allocates nothing.
     fn encode(
         &self,
         encoder: &mut wgpu::CommandEncoder,
         profiler: &mut GpuProfiler,
-        frame_index: u32,
+        frame: FrameInfo,
     );
+    /// Technique-specific images of the frame `frame` (full resolution, level 0), by name, for
+    /// inspection and tests (e.g. hbil's reprojected radiance before and after hole filling).
+    fn extras(&self, _frame: FrameInfo) -> Vec<(&'static str, &wgpu::Texture)> {
+        Vec::new()
+    }
 }
 
 /// Builds a technique's pipelines and bind groups.
@@ -68,8 +89,15 @@ pub struct TechniqueDesc {
 }
 
 /// Every technique, in the order shown to users.
-pub const REGISTRY: &[TechniqueDesc] =
-    &[none::DESC, ssdo::SSAO, ssdo::SSDO, s3ho::S3HO, s3ho::SSBN];
+pub const REGISTRY: &[TechniqueDesc] = &[
+    none::DESC,
+    ssdo::SSAO,
+    ssdo::SSDO,
+    s3ho::S3HO,
+    s3ho::SSBN,
+    horizon::GTAO,
+    horizon::HBIL,
+];
 
 /// Names of all registered techniques.
 pub fn names() -> Vec<&'static str> {

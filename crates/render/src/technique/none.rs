@@ -75,7 +75,7 @@ impl Technique for NoneTechnique {
         &self,
         encoder: &mut wgpu::CommandEncoder,
         profiler: &mut GpuProfiler,
-        _frame_index: u32,
+        _frame: super::FrameInfo,
     ) {
         self.pass.encode(encoder, profiler, self.size, 0);
     }

@@ -438,7 +438,7 @@ impl Technique for S3ho {
         &self,
         encoder: &mut wgpu::CommandEncoder,
         profiler: &mut GpuProfiler,
-        _frame_index: u32,
+        _frame: super::FrameInfo,
     ) {
         super::dispatch_screen(
             encoder,

@@ -500,7 +500,7 @@ impl Technique for Ssdo {
         &self,
         encoder: &mut wgpu::CommandEncoder,
         profiler: &mut GpuProfiler,
-        _frame_index: u32,
+        _frame: super::FrameInfo,
     ) {
         super::dispatch_screen(
             encoder,

@@ -1,0 +1,202 @@
+// reproject.wgsl — last frame's radiance in this frame's view (HBIL Sec. 3.2), then hole filling.
+//
+// Scatter (the paper's default): every pixel of last frame is moved to where its surface point
+// lands now (last frame's depth and camera → world → this camera). A point lands only if it lies
+// on the surface this frame sees there (within reject_depth × depth of that surface's tangent
+// plane, normals within acos(reject_normal)); several landing on one pixel are resolved by a
+// depth test on an atomic buffer (the nearest wins). Three passes: scatter_depth (atomicMin of
+// the depth bits: positive floats order like their bit patterns), scatter_color (the winner
+// writes its radiance), scatter_resolve (one pass over this frame's pixels: winner → alpha 1,
+// no winner → hole, alpha 0; and the depth buffer is reset for the next frame).
+// Gather (selectable): every pixel of this frame follows its motion vector into last frame and
+// takes the bilinear mean of the taps that pass the same surface test; none → hole.
+// Push/pull (Kraus 2009, "The Pull-Push Algorithm Revisited"): `push` builds coarser levels,
+// each texel the alpha-weighted mean of its 2×2 children with alpha min(1, Σ alpha); `pull`
+// goes back down, keeping every valid texel and filling the rest from the bilinearly
+// interpolated coarser level: out = a · fine + (1 − a) · coarse. A filled value is thus a convex
+// combination of valid values around the hole.
+
+struct ReprojectParams {
+    reject_depth: f32,
+    reject_normal: f32,
+    _pad0: f32,
+    _pad1: f32,
+}
+
+@group(0) @binding(5) var<uniform> params: ReprojectParams;
+@group(0) @binding(8) var gb_normal: texture_2d<f32>;
+@group(0) @binding(9) var gb_view_depth: texture_2d<f32>;
+@group(0) @binding(10) var prev_geometry: texture_2d<f32>;
+@group(0) @binding(11) var prev_radiance: texture_2d<f32>;
+@group(0) @binding(12) var<storage, read_write> zbuffer: array<atomic<u32>>;
+@group(0) @binding(13) var<storage, read_write> colors: array<vec4<f32>>;
+@group(0) @binding(14) var out_reprojected: texture_storage_2d<rgba16float, write>;
+@group(0) @binding(15) var gb_motion: texture_2d<f32>;
+
+const EMPTY: u32 = 0xffffffffu;
+
+struct Landing {
+    index: u32,
+    depth_bits: u32,
+    ok: bool,
+}
+
+// Where last frame's pixel `pixel` lands in this frame, if it lands on the surface seen there.
+fn land(pixel: vec2<u32>) -> Landing {
+    var l: Landing;
+    l.ok = false;
+    let g = textureLoad(prev_geometry, pixel, 0);
+    if g.w <= 0.0 {
+        return l;
+    }
+    let world = (frame.prev_world_from_view * vec4<f32>(prev_view_position(pixel, g.w), 1.0)).xyz;
+    let d = -(frame.view_from_world * vec4<f32>(world, 1.0)).z;
+    if d <= 0.0 {
+        return l;
+    }
+    let s = floor(to_screen(frame.clip_from_world, world));
+    if any(s < vec2<f32>(0.0)) || any(s >= frame.size.xy) {
+        return l;
+    }
+    let q = vec2<u32>(s);
+    let nw = textureLoad(gb_normal, q, 0);
+    let qd = textureLoad(gb_view_depth, q, 0).r;
+    if nw.w == 0.0 || qd <= 0.0 {
+        return l;
+    }
+    let n = normalize(nw.xyz);
+    if abs(dot(world - world_position(q, qd), n)) > params.reject_depth * qd || dot(g.xyz, n) < params.reject_normal {
+        return l;
+    }
+    l.index = q.y * u32(frame.size.x) + q.x;
+    l.depth_bits = bitcast<u32>(d);
+    l.ok = true;
+    return l;
+}
+
+@compute @workgroup_size(8, 8, 1)
+fn scatter_depth(@builtin(global_invocation_id) id: vec3<u32>) {
+    if !in_bounds(id.xy) {
+        return;
+    }
+    let l = land(id.xy);
+    if l.ok {
+        atomicMin(&zbuffer[l.index], l.depth_bits);
+    }
+}
+
+@compute @workgroup_size(8, 8, 1)
+fn scatter_color(@builtin(global_invocation_id) id: vec3<u32>) {
+    if !in_bounds(id.xy) {
+        return;
+    }
+    let l = land(id.xy);
+    if l.ok && atomicLoad(&zbuffer[l.index]) == l.depth_bits {
+        colors[l.index] = vec4<f32>(textureLoad(prev_radiance, id.xy, 0).rgb, 1.0);
+    }
+}
+
+@compute @workgroup_size(8, 8, 1)
+fn scatter_resolve(@builtin(global_invocation_id) id: vec3<u32>) {
+    let pixel = id.xy;
+    if !in_bounds(pixel) {
+        return;
+    }
+    let i = pixel.y * u32(frame.size.x) + pixel.x;
+    var out = vec4<f32>(0.0);
+    if atomicLoad(&zbuffer[i]) != EMPTY {
+        out = colors[i];
+    }
+    atomicStore(&zbuffer[i], EMPTY);
+    textureStore(out_reprojected, pixel, out);
+}
+
+@compute @workgroup_size(8, 8, 1)
+fn gather(@builtin(global_invocation_id) id: vec3<u32>) {
+    let pixel = id.xy;
+    if !in_bounds(pixel) {
+        return;
+    }
+    let nw = textureLoad(gb_normal, pixel, 0);
+    let depth = textureLoad(gb_view_depth, pixel, 0).r;
+    if nw.w == 0.0 || depth <= 0.0 {
+        textureStore(out_reprojected, pixel, vec4<f32>(0.0));
+        return;
+    }
+    let n = normalize(nw.xyz);
+    let x = world_position(pixel, depth);
+    let prev = vec2<f32>(pixel) + textureLoad(gb_motion, pixel, 0).rg;
+    let base = vec2<i32>(floor(prev));
+    let f = prev - floor(prev);
+    var sum = vec3<f32>(0.0);
+    var weight = 0.0;
+    for (var tap = 0u; tap < 4u; tap++) {
+        let o = vec2<i32>(i32(tap % 2u), i32(tap / 2u));
+        let q = base + o;
+        if any(q < vec2<i32>(0)) || any(q >= vec2<i32>(frame.size.xy)) {
+            continue;
+        }
+        let g = textureLoad(prev_geometry, q, 0);
+        if g.w <= 0.0 {
+            continue;
+        }
+        let p = (frame.prev_world_from_view * vec4<f32>(prev_view_position(vec2<u32>(q), g.w), 1.0)).xyz;
+        if abs(dot(p - x, n)) > params.reject_depth * depth || dot(g.xyz, n) < params.reject_normal {
+            continue;
+        }
+        let w = select(1.0 - f.x, f.x, o.x == 1) * select(1.0 - f.y, f.y, o.y == 1);
+        sum += w * textureLoad(prev_radiance, q, 0).rgb;
+        weight += w;
+    }
+    var out = vec4<f32>(0.0);
+    if weight > 1e-3 {
+        out = vec4<f32>(sum / weight, 1.0);
+    }
+    textureStore(out_reprojected, pixel, out);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Push/pull. Level sizes come from the textures.
+
+@group(0) @binding(16) var fine: texture_2d<f32>;
+@group(0) @binding(17) var level_out: texture_storage_2d<rgba16float, write>;
+@group(0) @binding(18) var coarse: texture_2d<f32>;
+@group(0) @binding(19) var coarse_sampler: sampler;
+
+@compute @workgroup_size(8, 8, 1)
+fn push(@builtin(global_invocation_id) id: vec3<u32>) {
+    let c = id.xy;
+    if any(c >= textureDimensions(level_out)) {
+        return;
+    }
+    let fine_size = textureDimensions(fine);
+    var sum = vec3<f32>(0.0);
+    var alpha = 0.0;
+    for (var k = 0u; k < 4u; k++) {
+        let q = 2u * c + vec2<u32>(k % 2u, k / 2u);
+        if any(q >= fine_size) {
+            continue;
+        }
+        let v = textureLoad(fine, q, 0);
+        sum += v.rgb * v.a;
+        alpha += v.a;
+    }
+    var out = vec4<f32>(0.0);
+    if alpha > 0.0 {
+        out = vec4<f32>(sum / alpha, min(alpha, 1.0));
+    }
+    textureStore(level_out, c, out);
+}
+
+@compute @workgroup_size(8, 8, 1)
+fn pull(@builtin(global_invocation_id) id: vec3<u32>) {
+    let p = id.xy;
+    let size = textureDimensions(level_out);
+    if any(p >= size) {
+        return;
+    }
+    let v = textureLoad(fine, p, 0);
+    let uv = (vec2<f32>(p) + 0.5) / vec2<f32>(size);
+    let c = textureSampleLevel(coarse, coarse_sampler, uv, 0.0);
+    textureStore(level_out, p, vec4<f32>(v.rgb * v.a + c.rgb * (1.0 - v.a), v.a + c.a * (1.0 - v.a)));
+}
