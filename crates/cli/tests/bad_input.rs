@@ -158,6 +158,19 @@ fn every_bad_input_exits_2_with_one_line() {
         (vec!["render".into(), "--size".into(), "16x16".into(), "--method".into(), "s3ho".into(), "--set".into(), "steps=0".into()], "steps=0"),
         (vec!["render".into(), "--size".into(), "16x16".into(), "--method".into(), "s3ho".into(), "--set".into(), "lambda=-1".into()], "lambda=-1"),
         (vec!["render".into(), "--size".into(), "16x16".into(), "--method".into(), "ssbn".into(), "--set".into(), "indirect=maybe".into()], "on or off"),
+        (vec!["render".into(), "--size".into(), "16x16".into(), "--method".into(), "hbil".into(), "--set".into(), "slices=0".into()], "slices=0"),
+        (vec!["render".into(), "--size".into(), "16x16".into(), "--method".into(), "gtao".into(), "--set".into(), "steps=999".into()], "steps=999"),
+        (vec!["render".into(), "--size".into(), "16x16".into(), "--method".into(), "hbil".into(), "--radius".into(), "inf".into()], "finite radius"),
+        (vec!["render".into(), "--size".into(), "16x16".into(), "--method".into(), "hbil".into(), "--set".into(), "reprojection=teleport".into()], "scatter or gather"),
+        (vec!["render".into(), "--size".into(), "16x16".into(), "--method".into(), "hbil".into(), "--set".into(), "far=moon".into()], "sh, envmap or slices"),
+        (vec!["render".into(), "--size".into(), "16x16".into(), "--method".into(), "hbil".into(), "--set".into(), "quality=insane".into()], "low, medium, high, ultra"),
+        (vec!["render".into(), "--size".into(), "16x16".into(), "--method".into(), "hbil".into(), "--set".into(), "temporal=sometimes".into()], "on or off"),
+        (vec!["render".into(), "--size".into(), "16x16".into(), "--method".into(), "hbil".into(), "--set".into(), "reject_a=0.5".into()], "reject_a"),
+        (vec!["render".into(), "--size".into(), "16x16".into(), "--method".into(), "hbil".into(), "--aov".into(), "nosuch".into()], "unknown AOV for hbil"),
+        (vec!["render".into(), "--size".into(), "16x16".into(), "--orbit".into(), "nan".into()], "--orbit"),
+        (vec!["render".into(), "--size".into(), "16x16".into(), "--orbit".into(), "720".into()], "--orbit"),
+        (vec!["bench".into(), "--size".into(), "16x16".into(), "--methods".into(), "gtao".into(), "--orbit".into(), "inf".into()], "--orbit"),
+        (vec!["compare".into(), "--size".into(), "16x16".into(), "--methods".into(), "hbil".into(), "--orbit".into(), "-999".into()], "--orbit"),
     ];
     for (args, needle) in cases {
         let args: Vec<&str> = args.iter().map(String::as_str).collect();

@@ -109,6 +109,30 @@ fn host_and_shader_structs_agree() {
             ("history", offset_of!(FrameUniforms, history)),
         ],
     );
+    use nearfield_render::passes::reproject::ReprojectParams;
+    use nearfield_render::technique::horizon::HorizonParams;
+    macro_rules! offsets {
+        ($t:ty: $($f:ident),*) => { vec![$((stringify!($f), offset_of!($t, $f))),*] };
+    }
+    check(
+        &nearfield_render::technique::horizon::source(),
+        "HorizonParams",
+        size_of::<HorizonParams>(),
+        &offsets!(HorizonParams: radius, slices, steps, falloff, max_pixels, scale, indirect,
+            step_power, reject_a, reject_b, layer_width, layer_height, temporal, max_history, far,
+            fresnel, reject_depth, reject_normal, aperture, far_steps),
+    );
+    check(
+        &nearfield_render::passes::reproject::source(),
+        "ReprojectParams",
+        size_of::<ReprojectParams>(),
+        &[
+            ("reject_depth", offset_of!(ReprojectParams, reject_depth)),
+            ("reject_normal", offset_of!(ReprojectParams, reject_normal)),
+            ("_pad0", offset_of!(ReprojectParams, _pad)),
+            ("_pad1", offset_of!(ReprojectParams, _pad) + 4),
+        ],
+    );
     let material = [
         ("base_color", offset_of!(GpuMaterial, base_color)),
         ("emissive", offset_of!(GpuMaterial, emissive)),

@@ -205,6 +205,25 @@ mod tests {
     use super::*;
 
     #[test]
+    fn orbit_turns_about_the_target_and_small_moves_are_not_cuts() {
+        let c = Camera::new(Vec3::new(0.0, 1.0, 4.0), Vec3::new(0.0, 1.0, 0.0), 45.0);
+        let o = c.orbit(90.0);
+        assert!(
+            (o.eye - Vec3::new(4.0, 1.0, 0.0)).length() < 1e-5,
+            "{}",
+            o.eye
+        );
+        assert_eq!(o.target, c.target);
+        assert!(((o.eye - o.target).length() - 4.0).abs() < 1e-5);
+        assert!(!c.is_cut_to(&c.orbit(10.0)));
+        assert!(c.is_cut_to(&c.orbit(45.0)));
+        assert!(c.is_cut_to(&Camera {
+            yfov: c.yfov * 1.5,
+            ..c
+        }));
+    }
+
+    #[test]
     fn centre_pixel_looks_at_target() {
         let c = Camera::new(Vec3::new(1.0, 2.0, 3.0), Vec3::new(0.0, 0.5, 0.0), 45.0);
         // 2x2 image: the centre is the corner shared by all four pixels.

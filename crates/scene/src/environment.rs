@@ -310,6 +310,30 @@ pub fn rotate_y(d: Vec3, angle: f32) -> Vec3 {
 mod tests {
     use super::*;
 
+    /// A constant sky gives E/π = L everywhere; a sky bright only above the horizon gives
+    /// (1 + n_y)/2 (the cosine lobe's share of the upper hemisphere), within the 5.6° texels.
+    #[test]
+    fn irradiance_map_matches_closed_forms() {
+        let constant = Environment::constant(Vec3::splat(2.0));
+        for e in constant.irradiance_map(16, 8) {
+            assert!((e - Vec3::splat(2.0)).abs().max_element() < 0.01, "{e}");
+        }
+        let upper = Environment::from_fn("upper", 128, 64, |d| {
+            Vec3::splat(if d.y > 0.0 { 1.0 } else { 0.0 })
+        });
+        let (w, h) = (16, 8);
+        let map = upper.irradiance_map(w, h);
+        for y in 0..h {
+            let n = uv_to_dir(Vec2::new(0.5 / w as f32, (y as f32 + 0.5) / h as f32));
+            let want = 0.5 * (1.0 + n.y);
+            assert!(
+                (map[(y * w) as usize].x - want).abs() < 0.02,
+                "row {y}: {} vs {want}",
+                map[(y * w) as usize].x
+            );
+        }
+    }
+
     #[test]
     fn convention_axes() {
         let cases = [

@@ -2,8 +2,8 @@
 //
 // Scatter (the paper's default): every pixel of last frame is moved to where its surface point
 // lands now (last frame's depth and camera → world → this camera). A point lands only if it lies
-// on the surface this frame sees there (within reject_depth × depth of that surface's tangent
-// plane, normals within acos(reject_normal)); several landing on one pixel are resolved by a
+// on the surface this frame sees there (`same_surface` in common.wgsl: near its tangent plane,
+// similar normal, within a few pixel footprints); several landing on one pixel are resolved by a
 // depth test on an atomic buffer (the nearest wins). Three passes: scatter_depth (atomicMin of
 // the depth bits: positive floats order like their bit patterns), scatter_color (the winner
 // writes its radiance), scatter_resolve (one pass over this frame's pixels: winner → alpha 1,
@@ -64,8 +64,7 @@ fn land(pixel: vec2<u32>) -> Landing {
     if nw.w == 0.0 || qd <= 0.0 {
         return l;
     }
-    let n = normalize(nw.xyz);
-    if abs(dot(world - world_position(q, qd), n)) > params.reject_depth * qd || dot(g.xyz, n) < params.reject_normal {
+    if !same_surface(world_position(q, qd), normalize(nw.xyz), qd, world, g.xyz, params.reject_depth, params.reject_normal) {
         return l;
     }
     l.index = q.y * u32(frame.size.x) + q.x;
@@ -141,7 +140,7 @@ fn gather(@builtin(global_invocation_id) id: vec3<u32>) {
             continue;
         }
         let p = (frame.prev_world_from_view * vec4<f32>(prev_view_position(vec2<u32>(q), g.w), 1.0)).xyz;
-        if abs(dot(p - x, n)) > params.reject_depth * depth || dot(g.xyz, n) < params.reject_normal {
+        if !same_surface(x, n, depth, p, g.xyz, params.reject_depth, params.reject_normal) {
             continue;
         }
         let w = select(1.0 - f.x, f.x, o.x == 1) * select(1.0 - f.y, f.y, o.y == 1);

@@ -72,3 +72,20 @@ fn view_ray(pixel: vec2<u32>) -> vec3<f32> {
 fn in_bounds(pixel: vec2<u32>) -> bool {
     return f32(pixel.x) < frame.size.x && f32(pixel.y) < frame.size.y;
 }
+
+// Whether `p` (a point last frame saw, with normal `pn`) is the surface point `x` (normal `n`,
+// view depth `depth`) this frame sees, or close enough to it to stand in for it: within
+// `max_plane` × depth of x's tangent plane, normals within acos(`min_cos`), and no farther from
+// x along the surface than 2.5 pixel footprints (stretched by 1/cos of the viewing angle, at
+// most 10×). The last test tells a neighbouring pixel of the same plane from a point of that
+// plane far behind a silhouette.
+fn same_surface(x: vec3<f32>, n: vec3<f32>, depth: f32, p: vec3<f32>, pn: vec3<f32>, max_plane: f32, min_cos: f32) -> bool {
+    if abs(dot(p - x, n)) > max_plane * depth || dot(pn, n) < min_cos {
+        return false;
+    }
+    let footprint = depth * 2.0 * frame.projection.w * frame.size.w;
+    let facing = max(abs(dot(n, normalize(frame.camera_position.xyz - x))), 0.1);
+    let d = p - x;
+    let reach = 2.5 * footprint / facing;
+    return dot(d, d) <= reach * reach;
+}

@@ -12,7 +12,8 @@
 // frame is ω_o = normalize(eye − x), ω_x = normalize(Y × ω_o) with Y the camera's up vector,
 // ω_y = ω_o × ω_x. Slice φ has the tangent direction D(φ) = cos φ ω_x + sin φ ω_y; the plane
 // spanned by ω_o and D contains the eye, so it projects to a straight screen line through x,
-// which is marched both ways. A sample s on it lies in the slice, and its angle from ω_o is
+// which is marched both ways. A sample s on it lies in the slice (up to the snap to a texel
+// centre, removed by projecting s − x onto the slice plane), and its angle from ω_o is
 // exactly cos θ = (s − x)·ω_o / |s − x| — the local-camera horizon angle that Sec. 1.3 obtains
 // from the camera-space angle β by cos θ = (cos α z + sin α r)/√(r² + z²); computing it from the
 // vector in the local frame is the same correction without the intermediate angles.
@@ -36,8 +37,12 @@
 // Deviation: the paper prints Eq. 6 and Eq. 11 as ½ nx [θ1 − θ0 + sin θ0 cos θ0 − sin θ1 cos θ1];
 // with θ0 ≤ 0 that is not the integral of sin θ |sin θ| (it gives ñx = π/2 for the symmetric
 // horizons ±π/2, where the true value is 0); the G form above is the exact integral and agrees
-// with Jimenez et al.'s per-side â(h). AO = mean_i AO_i, E_near = mean_i Σ ΔE (both already carry
-// the 1/π of DESIGN.md's AOVs), bent normal = normalize(Σ_i D ñx + ω_o ñy).
+// with Jimenez et al.'s per-side â(h). AO = Σ_i AO_i / Σ_i U_i and E_near = Σ_i Σ ΔE / Σ_i U_i
+// (both carry the 1/π of DESIGN.md's AOVs), bent normal = normalize(Σ_i D ñx + ω_o ñy), where
+// U_i = G(θ_front,init) + G(θ_back,init) is slice i's value for an open hemisphere. The paper's
+// mean (1/S) Σ AO_i is unbiased only over uniformly spread φ — a single tilted slice of an open
+// plane gives |n′| (cos γ + γ sin γ) ≠ 1 — so with 2 slices per pixel a plane would read as
+// noise around 1; the ratio (same expectation, since E[U_i] = 1) is exactly 1 there.
 // Near field (Sec. 2.3, 3.4): L_d(x′) is read from the source radiance (this frame's direct
 // radiance on the first frame, else last frame's diffuse radiance reprojected); a sample whose
 // normal faces away from x is replaced by the last accepted one:
@@ -149,6 +154,27 @@ fn layer_pixel(texel: vec2<u32>, layer: u32) -> vec2<u32> {
     return texel * params.scale + vec2<u32>(layer % params.scale, layer / params.scale);
 }
 
+// The surface point seen through layer position `pos` (continuous texel coordinates), taken on
+// the tangent plane (point `centre`, normal `n`) of the texel it falls in;
+// w = 0 when the ray through `pos` misses that plane (it passes above a horizon line: the texel
+// centre is not what the slice sees there, and the sample is skipped).
+fn on_slice_line(pos: vec2<f32>, layer: u32, centre: vec3<f32>, n: vec3<f32>) -> vec4<f32> {
+    let scale = f32(params.scale);
+    let full = (pos - 0.5) * scale + vec2<f32>(f32(layer % params.scale), f32(layer / params.scale)) + 0.5;
+    let uv = full * frame.size.zw;
+    let ndc = vec2<f32>(2.0 * uv.x - 1.0, 1.0 - 2.0 * uv.y);
+    let t = frame.projection.w;
+    let dir_view = vec3<f32>(ndc.x * t * frame.projection.z, ndc.y * t, -1.0);
+    let r = (frame.world_from_view * vec4<f32>(dir_view, 0.0)).xyz;
+    let eye = frame.camera_position.xyz;
+    let denom = dot(n, r);
+    let along = dot(n, centre - eye) / denom;
+    if abs(denom) < 1e-4 * length(r) || along <= 0.0 {
+        return vec4<f32>(centre, 0.0);
+    }
+    return vec4<f32>(eye + r * along, 1.0);
+}
+
 // ½ nx (θ − sin θ cos θ) + ½ ny sin² θ.
 fn slice_g(theta: f32, n: vec2<f32>) -> f32 {
     let s = sin(theta);
@@ -196,6 +222,7 @@ fn horizon(@builtin(global_invocation_id) id: vec3<u32>) {
     let fade_width = max(params.falloff * params.radius, 1e-6);
 
     var ao = 0.0;
+    var unoccluded = 0.0;
     var bent = vec3<f32>(0.0);
     var near = vec3<f32>(0.0);
     var far = vec3<f32>(0.0);
@@ -204,6 +231,8 @@ fn horizon(@builtin(global_invocation_id) id: vec3<u32>) {
         let phi = PI * (f32(k) + (f32(cell) + frame_jitter) / 16.0) / f32(slices);
         let d = cos(phi) * omega_x + sin(phi) * omega_y;
         let np = vec2<f32>(dot(n, d), dot(n, omega_o));
+        // Normal of the slice plane: samples snapped to texel centres are projected back into it.
+        let slice_normal = cross(d, omega_o);
         let gamma = atan2(np.x, np.y);
         // Screen direction of the slice (unit, in pixels).
         var dir = to_screen(frame.clip_from_world, x + d * (0.01 * depth)) - x_screen;
@@ -213,6 +242,7 @@ fn horizon(@builtin(global_invocation_id) id: vec3<u32>) {
         dir = normalize(dir);
         // side 0: front (+dir, θ ≥ 0), side 1: back (−dir, θ ≤ 0).
         var theta_side = array<f32, 2>(min(gamma + 0.5 * PI, PI), max(gamma - 0.5 * PI, -PI));
+        unoccluded += slice_g(theta_side[0], np) + slice_g(theta_side[1], np);
         for (var side = 0u; side < 2u; side++) {
             let side_sign = select(1.0, -1.0, side == 1u);
             let theta_init = theta_side[side];
@@ -222,7 +252,8 @@ fn horizon(@builtin(global_invocation_id) id: vec3<u32>) {
             for (var j = 0u; j < params.steps; j++) {
                 let t = r_layer * pow((f32(j) + step_jitter) / f32(params.steps), params.step_power);
                 let offset = side_sign * dir * max(t, 1.0);
-                let q = vec2<i32>(floor(vec2<f32>(texel) + 0.5 + offset));
+                let pos = vec2<f32>(texel) + 0.5 + offset;
+                let q = vec2<i32>(floor(pos));
                 if any(q < vec2<i32>(0)) || any(q >= layer_size) {
                     break;
                 }
@@ -230,17 +261,24 @@ fn horizon(@builtin(global_invocation_id) id: vec3<u32>) {
                 if qd <= 0.0 {
                     continue;
                 }
-                let s = world_position(layer_pixel(vec2<u32>(q), layer), qd);
-                let v = s - x;
+                let qn = normalize(textureLoad(in_normal, q, layer, 0).xyz);
+                let centre = world_position(layer_pixel(vec2<u32>(q), layer), qd);
+                // The texel centre is off the slice line by up to half a texel: slide along the
+                // sample's tangent plane to the point seen exactly on the line (exact on planes).
+                let on_line = on_slice_line(pos, layer, centre, qn);
+                if on_line.w == 0.0 {
+                    continue;
+                }
+                let v = on_line.xyz - x;
                 let dist = length(v);
                 if dist >= params.radius || dist < 1e-6 {
                     continue;
                 }
-                let cos_s = dot(v, omega_o) / dist;
+                let vs = v - dot(v, slice_normal) * slice_normal;
+                let cos_s = dot(vs, omega_o) / max(length(vs), 1e-9);
                 let fade = clamp((params.radius - dist) / fade_width, 0.0, 1.0);
                 let cos_h = mix(cos(theta_init), cos_s, fade);
                 if params.indirect == 1u {
-                    let qn = textureLoad(in_normal, q, layer, 0).xyz;
                     let accept = smoothstep(params.reject_a, params.reject_b, -dot(qn, v / dist));
                     radiance = mix(radiance, textureLoad(in_radiance, q, layer, 0).rgb, accept);
                 }
@@ -276,12 +314,15 @@ fn horizon(@builtin(global_invocation_id) id: vec3<u32>) {
         let by = slice_g(t1, vec2<f32>(0.0, 1.0)) + slice_g(t0, vec2<f32>(0.0, 1.0));
         bent += d * bx + omega_o * by;
     }
-    ao = clamp(ao / f32(slices), 0.0, 1.0);
-    near /= f32(slices);
+    // Ratio estimator: divide by the same slices' value for an open hemisphere (their mean is 1
+    // over all φ), so that a plane gives exactly 1 with any slice count.
+    let norm = max(unoccluded, 1e-6);
+    ao = clamp(ao / norm, 0.0, 1.0);
+    near /= norm;
     let b = select(n, normalize(bent), dot(bent, bent) > 1e-12);
     textureStore(out_cone, texel, layer, vec4<f32>(b, ao));
     textureStore(out_near, texel, layer, vec4<f32>(near, 1.0));
-    textureStore(out_far, texel, layer, vec4<f32>(far / f32(slices), 1.0));
+    textureStore(out_far, texel, layer, vec4<f32>(far / norm, 1.0));
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -309,12 +350,13 @@ fn merge(@builtin(global_invocation_id) id: vec3<u32>) {
 
 // ---------------------------------------------------------------------------------------------
 // accumulate: running mean over up to `max_history` frames of the bent cone (xyz bent normal,
-// w ao) and the near-field irradiance (w = frames in the mean). Last frame's accumulation is
-// fetched where this surface point was (previous camera), bilinearly from the taps that pass the
-// disocclusion test: the tap's surface point (last frame's depth, last frame's camera) lies
-// within reject_depth × depth of this point's tangent plane and its normal within
-// acos(reject_normal) of this one. No passing tap (or no history: first frame, camera cut,
-// temporal off) restarts the mean at this frame's value.
+// w ao), the near-field irradiance (w = frames in the mean) and the far field. Last frame's
+// accumulation is fetched where this surface point was (previous camera), bilinearly from the
+// taps that pass the disocclusion test `same_surface` (common.wgsl) with the tap's surface point
+// rebuilt from last frame's depth and camera: near this point's tangent plane (reject_depth ×
+// depth), with a normal within acos(reject_normal), and within a few pixel footprints of it.
+// No passing tap (or no history: first frame, camera cut, temporal off) restarts the mean at
+// this frame's value.
 
 @group(0) @binding(16) var gb_normal: texture_2d<f32>;
 @group(0) @binding(17) var gb_view_depth: texture_2d<f32>;
@@ -370,7 +412,7 @@ fn accumulate(@builtin(global_invocation_id) id: vec3<u32>) {
             }
             let pv = prev_view_position(vec2<u32>(q), g.w);
             let p_world = (frame.prev_world_from_view * vec4<f32>(pv, 1.0)).xyz;
-            if abs(dot(p_world - x, n)) > params.reject_depth * depth || dot(g.xyz, n) < params.reject_normal {
+            if !same_surface(x, n, depth, p_world, g.xyz, params.reject_depth, params.reject_normal) {
                 continue;
             }
             let w = select(1.0 - f.x, f.x, o.x == 1) * select(1.0 - f.y, f.y, o.y == 1);
