@@ -25,6 +25,8 @@ pub use error::RenderError;
 pub use frame::Tonemap;
 pub use renderer::{RenderSettings, Renderer};
 pub use technique::TechniqueParams;
+/// The wgpu this crate is built on (for adapter information and the like).
+pub use wgpu;
 
 /// Every WGSL program as compiled (preludes included): (name, source). Tests validate each with
 /// naga.

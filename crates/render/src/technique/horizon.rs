@@ -524,7 +524,7 @@ fn create(
         util::uniform(0, c),
         util::uniform(5, c),
         array_texture(8, false),
-        array_texture(9, true),
+        array_texture(9, false),
         array_texture(10, true),
         array_storage(20, HDR_FORMAT),
         array_storage(21, HDR_FORMAT),
@@ -558,8 +558,7 @@ fn create(
             util::texture(11, c, false),
             util::texture(12, c, true),
             util::texture(13, c, true),
-            array_storage(22, wgpu::TextureFormat::R32Float),
-            array_storage(23, HDR_FORMAT),
+            array_storage(23, geo_format),
             array_storage(24, HDR_FORMAT),
         ],
     );
@@ -579,15 +578,13 @@ fn create(
     let split = if settings.interleaved {
         let layer_size = (p.layer_width, p.layer_height);
         let layered = |label: &str, format| texture(device, label, layer_size, 16, format);
-        let s_depth = layered("split depth", wgpu::TextureFormat::R32Float);
-        let s_normal = layered("split normal", HDR_FORMAT);
+        let s_geometry = layered("split geometry", geo_format);
         let s_radiance = layered("split radiance", HDR_FORMAT);
         let l_cone = layered("split cone", HDR_FORMAT);
         let l_near = layered("split near", HDR_FORMAT);
         let l_far = layered("split far", HDR_FORMAT);
-        let (vd, vn, vr, vc, vnear, vfar) = (
-            array_view(&s_depth),
-            array_view(&s_normal),
+        let (vg, vr, vc, vnear, vfar) = (
+            array_view(&s_geometry),
             array_view(&s_radiance),
             array_view(&l_cone),
             array_view(&l_near),
@@ -604,8 +601,7 @@ fn create(
                     (11, R::TextureView(&t.view_depth.view)),
                     (12, R::TextureView(&t.normal.view)),
                     (13, R::TextureView(radiance)),
-                    (22, R::TextureView(&vd)),
-                    (23, R::TextureView(&vn)),
+                    (23, R::TextureView(&vg)),
                     (24, R::TextureView(&vr)),
                 ],
             )
@@ -630,10 +626,11 @@ fn create(
                     (45, R::TextureView(&view(&raw_far))),
                 ],
             ),
-            horizon_bg: horizon_bg(&vd, &vn, &vr, [&vc, &vnear, &vfar]),
+            // Depth is read from the geometry's w; binding 8 only has to be present.
+            horizon_bg: horizon_bg(&vg, &vg, &vr, [&vc, &vnear, &vfar]),
             layer_size,
         };
-        textures.extend([s_depth, s_normal, s_radiance, l_cone, l_near, l_far]);
+        textures.extend([s_geometry, s_radiance, l_cone, l_near, l_far]);
         Some(s)
     } else {
         let as_array = |t: &wgpu::Texture| array_view(t);
@@ -878,7 +875,8 @@ impl Technique for Horizon {
                     });
                     pass.set_pipeline(&self.horizon_pipeline);
                     pass.set_bind_group(0, &s.horizon_bg, &[]);
-                    pass.dispatch_workgroups(gx, gy, 16);
+                    // The 16 layers stacked vertically (see horizon.wgsl).
+                    pass.dispatch_workgroups(gx, gy * 16, 1);
                 }
                 super::dispatch_screen(
                     encoder,

@@ -109,8 +109,8 @@ fn noise(pixel: vec2<u32>) -> f32 {
 @group(0) @binding(11) var full_depth: texture_2d<f32>;
 @group(0) @binding(12) var full_normal: texture_2d<f32>;
 @group(0) @binding(13) var full_radiance: texture_2d<f32>;
-@group(0) @binding(22) var split_depth: texture_storage_2d_array<r32float, write>;
-@group(0) @binding(23) var split_normal: texture_storage_2d_array<rgba16float, write>;
+// xyz: normal, w: view depth (0 on background) — one fetch per horizon sample.
+@group(0) @binding(23) var split_geometry: texture_storage_2d_array<rgba32float, write>;
 @group(0) @binding(24) var split_radiance: texture_storage_2d_array<rgba16float, write>;
 
 @compute @workgroup_size(8, 8, 1)
@@ -131,8 +131,7 @@ fn split(@builtin(global_invocation_id) id: vec3<u32>) {
                 radiance = textureLoad(full_radiance, pixel, 0);
             }
         }
-        textureStore(split_depth, texel, layer, vec4<f32>(depth, 0.0, 0.0, 0.0));
-        textureStore(split_normal, texel, layer, normal);
+        textureStore(split_geometry, texel, layer, vec4<f32>(normal.xyz, depth));
         if params.indirect == 1u {
             textureStore(split_radiance, texel, layer, radiance);
         }
@@ -140,11 +139,23 @@ fn split(@builtin(global_invocation_id) id: vec3<u32>) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// horizon: one invocation per pixel of one layer (z = layer; a single full-size layer without
-// interleaving).
+// horizon: one invocation per pixel of one layer. The 16 layers are stacked vertically in one
+// 2D dispatch (rows of workgroups [l·G, (l+1)·G) with G = ⌈layer height / 8⌉ serve layer l);
+// without interleaving there is one full-size layer.
+// Inputs: with interleaving `in_normal` is the split geometry (xyz normal, w depth) and
+// `in_depth` is not read; without, they are the G-buffer's normal and view depth.
 
 @group(0) @binding(8) var in_depth: texture_2d_array<f32>;
 @group(0) @binding(9) var in_normal: texture_2d_array<f32>;
+
+// Normal (xyz) and view depth (w) of a layer texel.
+fn geometry(q: vec2<i32>, layer: u32) -> vec4<f32> {
+    let g = textureLoad(in_normal, q, layer, 0);
+    if params.scale == 1u {
+        return vec4<f32>(g.xyz, select(0.0, textureLoad(in_depth, q, layer, 0).r, g.w != 0.0));
+    }
+    return g;
+}
 @group(0) @binding(10) var in_radiance: texture_2d_array<f32>;
 @group(0) @binding(20) var out_cone: texture_storage_2d_array<rgba16float, write>;
 @group(0) @binding(21) var out_near: texture_storage_2d_array<rgba16float, write>;
@@ -184,13 +195,15 @@ fn slice_g(theta: f32, n: vec2<f32>) -> f32 {
 
 @compute @workgroup_size(8, 8, 1)
 fn horizon(@builtin(global_invocation_id) id: vec3<u32>) {
-    let texel = id.xy;
-    let layer = id.z;
+    let rows = ((params.layer_height + 7u) / 8u) * 8u;
+    let texel = vec2<u32>(id.x, id.y % rows);
+    let layer = id.y / rows;
     if texel.x >= params.layer_width || texel.y >= params.layer_height {
         return;
     }
     let pixel = layer_pixel(texel, layer);
-    let depth = textureLoad(in_depth, texel, layer, 0).r;
+    let centre = geometry(vec2<i32>(texel), layer);
+    let depth = centre.w;
     if !in_bounds(pixel) || depth <= 0.0 {
         textureStore(out_cone, texel, layer, vec4<f32>(0.0, 0.0, 0.0, 1.0));
         textureStore(out_near, texel, layer, vec4<f32>(0.0));
@@ -199,7 +212,7 @@ fn horizon(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     // Environment mip of about 32×16 texels (11°) for the arc integration.
     let far_lod = max(frame.env_params.w - 5.0, 0.0);
-    let n = normalize(textureLoad(in_normal, texel, layer, 0).xyz);
+    let n = normalize(centre.xyz);
     let x = world_position(pixel, depth);
     let omega_o = normalize(frame.camera_position.xyz - x);
     let up = normalize(frame.world_from_view[1].xyz);
@@ -257,15 +270,16 @@ fn horizon(@builtin(global_invocation_id) id: vec3<u32>) {
                 if any(q < vec2<i32>(0)) || any(q >= layer_size) {
                     break;
                 }
-                let qd = textureLoad(in_depth, q, layer, 0).r;
+                let qg = geometry(q, layer);
+                let qd = qg.w;
                 if qd <= 0.0 {
                     continue;
                 }
-                let qn = normalize(textureLoad(in_normal, q, layer, 0).xyz);
-                let centre = world_position(layer_pixel(vec2<u32>(q), layer), qd);
+                let qn = normalize(qg.xyz);
+                let q_centre = world_position(layer_pixel(vec2<u32>(q), layer), qd);
                 // The texel centre is off the slice line by up to half a texel: slide along the
                 // sample's tangent plane to the point seen exactly on the line (exact on planes).
-                let on_line = on_slice_line(pos, layer, centre, qn);
+                let on_line = on_slice_line(pos, layer, q_centre, qn);
                 if on_line.w == 0.0 {
                     continue;
                 }
