@@ -124,29 +124,16 @@ fn gather(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     let n = normalize(nw.xyz);
     let x = world_position(pixel, depth);
-    let prev = vec2<f32>(pixel) + textureLoad(gb_motion, pixel, 0).rg;
-    let base = vec2<i32>(floor(prev));
-    let f = prev - floor(prev);
+    // Motion = last − this frame's pixel position of the point.
+    let prev = vec2<f32>(pixel) + 0.5 + textureLoad(gb_motion, pixel, 0).rg;
+    let taps = history_taps(prev_geometry, prev, x, n, depth, params.reject_depth, params.reject_normal);
     var sum = vec3<f32>(0.0);
-    var weight = 0.0;
-    for (var tap = 0u; tap < 4u; tap++) {
-        let o = vec2<i32>(i32(tap % 2u), i32(tap / 2u));
-        let q = base + o;
-        if any(q < vec2<i32>(0)) || any(q >= vec2<i32>(frame.size.xy)) {
-            continue;
+    for (var k = 0u; k < 4u; k++) {
+        if taps.weights[k] > 0.0 {
+            sum += taps.weights[k] * textureLoad(prev_radiance, taps.base + tap_offset(k), 0).rgb;
         }
-        let g = textureLoad(prev_geometry, q, 0);
-        if g.w <= 0.0 {
-            continue;
-        }
-        let p = (frame.prev_world_from_view * vec4<f32>(prev_view_position(vec2<u32>(q), g.w), 1.0)).xyz;
-        if !same_surface(x, n, depth, p, g.xyz, params.reject_depth, params.reject_normal) {
-            continue;
-        }
-        let w = select(1.0 - f.x, f.x, o.x == 1) * select(1.0 - f.y, f.y, o.y == 1);
-        sum += w * textureLoad(prev_radiance, q, 0).rgb;
-        weight += w;
     }
+    let weight = taps.total;
     var out = vec4<f32>(0.0);
     if weight > 1e-3 {
         out = vec4<f32>(sum / weight, 1.0);

@@ -89,3 +89,45 @@ fn same_surface(x: vec3<f32>, n: vec3<f32>, depth: f32, p: vec3<f32>, pn: vec3<f
     let reach = 2.5 * footprint / facing;
     return dot(d, d) <= reach * reach;
 }
+
+// Last frame's bilinear taps around `prev` (continuous pixel position, centres at +0.5) that show
+// the surface point x (normal n, view depth `depth`) by `same_surface`, rebuilt from
+// `prev_geometry` (xyz normal, w view depth) and last frame's camera: the top-left tap and the
+// four bilinear weights, 0 for a rejected tap (tap k sits at base + tap_offset(k)).
+struct HistoryTaps {
+    base: vec2<i32>,
+    weights: vec4<f32>,
+    total: f32,
+}
+
+fn tap_offset(k: u32) -> vec2<i32> {
+    return vec2<i32>(i32(k % 2u), i32(k / 2u));
+}
+
+fn history_taps(prev_geometry: texture_2d<f32>, prev: vec2<f32>, x: vec3<f32>, n: vec3<f32>, depth: f32, max_plane: f32, min_cos: f32) -> HistoryTaps {
+    var t: HistoryTaps;
+    let p = prev - 0.5;
+    t.base = vec2<i32>(floor(p));
+    let f = p - floor(p);
+    t.total = 0.0;
+    for (var k = 0u; k < 4u; k++) {
+        let o = tap_offset(k);
+        let q = t.base + o;
+        t.weights[k] = 0.0;
+        if any(q < vec2<i32>(0)) || any(q >= vec2<i32>(frame.size.xy)) {
+            continue;
+        }
+        let g = textureLoad(prev_geometry, q, 0);
+        if g.w <= 0.0 {
+            continue;
+        }
+        let pw = (frame.prev_world_from_view * vec4<f32>(prev_view_position(vec2<u32>(q), g.w), 1.0)).xyz;
+        if !same_surface(x, n, depth, pw, g.xyz, max_plane, min_cos) {
+            continue;
+        }
+        let w = select(1.0 - f.x, f.x, o.x == 1) * select(1.0 - f.y, f.y, o.y == 1);
+        t.weights[k] = w;
+        t.total += w;
+    }
+    return t;
+}

@@ -375,31 +375,6 @@ fn create_hbil(
     create(ctx, params, true)
 }
 
-fn texture(
-    device: &wgpu::Device,
-    label: &str,
-    size: (u32, u32),
-    layers: u32,
-    format: wgpu::TextureFormat,
-) -> wgpu::Texture {
-    device.create_texture(&wgpu::TextureDescriptor {
-        label: Some(label),
-        size: wgpu::Extent3d {
-            width: size.0,
-            height: size.1,
-            depth_or_array_layers: layers,
-        },
-        mip_level_count: 1,
-        sample_count: 1,
-        dimension: wgpu::TextureDimension::D2,
-        format,
-        usage: wgpu::TextureUsages::STORAGE_BINDING
-            | wgpu::TextureUsages::TEXTURE_BINDING
-            | wgpu::TextureUsages::COPY_SRC,
-        view_formats: &[],
-    })
-}
-
 fn array_view(t: &wgpu::Texture) -> wgpu::TextureView {
     t.create_view(&wgpu::TextureViewDescriptor {
         dimension: Some(wgpu::TextureViewDimension::D2Array),
@@ -453,7 +428,7 @@ fn create(
         contents: bytemuck::bytes_of(&p),
         usage: wgpu::BufferUsages::UNIFORM,
     });
-    let full = |label: &str, format| texture(device, label, size, 1, format);
+    let full = |label: &str, format| super::screen_texture(device, size, label, format);
     let raw_cone = full("horizon cone", HDR_FORMAT);
     let raw_near = full("horizon near", HDR_FORMAT);
     let raw_far = full("horizon far", HDR_FORMAT);
@@ -577,7 +552,8 @@ fn create(
     let mut full_bg = Vec::new();
     let split = if settings.interleaved {
         let layer_size = (p.layer_width, p.layer_height);
-        let layered = |label: &str, format| texture(device, label, layer_size, 16, format);
+        let layered =
+            |label: &str, format| super::layered_texture(device, layer_size, 16, label, format);
         let s_geometry = layered("split geometry", geo_format);
         let s_radiance = layered("split radiance", HDR_FORMAT);
         let l_cone = layered("split cone", HDR_FORMAT);

@@ -407,34 +407,20 @@ fn accumulate(@builtin(global_invocation_id) id: vec3<u32>) {
     var far = textureLoad(raw_far, pixel, 0);
     var near = vec4<f32>(textureLoad(raw_near, pixel, 0).rgb, 1.0);
     if params.temporal == 1u && frame.history.x == 1u {
-        let prev = to_screen(frame.prev_clip_from_world, x) - 0.5;
-        let base = vec2<i32>(floor(prev));
-        let f = prev - floor(prev);
+        let taps = history_taps(prev_geometry, to_screen(frame.prev_clip_from_world, x), x, n, depth, params.reject_depth, params.reject_normal);
         var sum_cone = vec4<f32>(0.0);
         var sum_near = vec4<f32>(0.0);
         var sum_far = vec4<f32>(0.0);
-        var weight = 0.0;
-        for (var tap = 0u; tap < 4u; tap++) {
-            let o = vec2<i32>(i32(tap % 2u), i32(tap / 2u));
-            let q = base + o;
-            if any(q < vec2<i32>(0)) || any(q >= vec2<i32>(frame.size.xy)) {
-                continue;
+        for (var k = 0u; k < 4u; k++) {
+            let w = taps.weights[k];
+            if w > 0.0 {
+                let q = taps.base + tap_offset(k);
+                sum_cone += w * textureLoad(prev_cone, q, 0);
+                sum_near += w * textureLoad(prev_near, q, 0);
+                sum_far += w * textureLoad(prev_far, q, 0);
             }
-            let g = textureLoad(prev_geometry, q, 0);
-            if g.w <= 0.0 {
-                continue;
-            }
-            let pv = prev_view_position(vec2<u32>(q), g.w);
-            let p_world = (frame.prev_world_from_view * vec4<f32>(pv, 1.0)).xyz;
-            if !same_surface(x, n, depth, p_world, g.xyz, params.reject_depth, params.reject_normal) {
-                continue;
-            }
-            let w = select(1.0 - f.x, f.x, o.x == 1) * select(1.0 - f.y, f.y, o.y == 1);
-            sum_cone += w * textureLoad(prev_cone, q, 0);
-            sum_near += w * textureLoad(prev_near, q, 0);
-            sum_far += w * textureLoad(prev_far, q, 0);
-            weight += w;
         }
+        let weight = taps.total;
         if weight > 1e-3 {
             let hist_cone = sum_cone / weight;
             let hist_near = sum_near / weight;

@@ -193,10 +193,22 @@ pub fn dispatch_screen(
     pass.dispatch_workgroups(gx, gy, 1);
 }
 
-/// A screen-sized texture a technique owns (storage + sampled).
+/// A screen-sized texture a technique owns (storage + sampled + copy source).
 pub fn screen_texture(
     device: &wgpu::Device,
     size: (u32, u32),
+    label: &str,
+    format: wgpu::TextureFormat,
+) -> wgpu::Texture {
+    layered_texture(device, size, 1, label, format)
+}
+
+/// A texture array (`layers` layers of `size`) a technique owns (storage + sampled + copy
+/// source).
+pub fn layered_texture(
+    device: &wgpu::Device,
+    size: (u32, u32),
+    layers: u32,
     label: &str,
     format: wgpu::TextureFormat,
 ) -> wgpu::Texture {
@@ -205,13 +217,15 @@ pub fn screen_texture(
         size: wgpu::Extent3d {
             width: size.0,
             height: size.1,
-            depth_or_array_layers: 1,
+            depth_or_array_layers: layers,
         },
         mip_level_count: 1,
         sample_count: 1,
         dimension: wgpu::TextureDimension::D2,
         format,
-        usage: wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::TEXTURE_BINDING,
+        usage: wgpu::TextureUsages::STORAGE_BINDING
+            | wgpu::TextureUsages::TEXTURE_BINDING
+            | wgpu::TextureUsages::COPY_SRC,
         view_formats: &[],
     })
 }
