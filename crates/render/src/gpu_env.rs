@@ -63,19 +63,7 @@ impl GpuEnvironment {
         });
 
         // Level 0 texels as f16, box-downsampled on the CPU if the map is very wide.
-        let (mut w, mut h) = (env.width, env.height);
-        let mut texels: Vec<Vec3> = env.texels.clone();
-        while w > MAX_RADIANCE_WIDTH && h >= 2 {
-            let (nw, nh) = (w / 2, h / 2);
-            let mut next = Vec::with_capacity((nw * nh) as usize);
-            for y in 0..nh {
-                for x in 0..nw {
-                    let t = |dx: u32, dy: u32| texels[((2 * y + dy) * w + 2 * x + dx) as usize];
-                    next.push(0.25 * (t(0, 0) + t(1, 0) + t(0, 1) + t(1, 1)));
-                }
-            }
-            (w, h, texels) = (nw, nh, next);
-        }
+        let (w, h, texels) = env.box_downsampled(MAX_RADIANCE_WIDTH);
         let half: Vec<u16> = texels
             .iter()
             .flat_map(|c| {

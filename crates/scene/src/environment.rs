@@ -232,12 +232,12 @@ impl Environment {
 }
 
 impl Environment {
-    /// The pre-convolved diffuse map: a `width`×`height` lat-long image (unrotated, without
-    /// `intensity`, like `texels`) whose texel in direction n holds E(n)/π = (1/π) ∫ L(ω)
-    /// max(0, n·ω) dω, summed over the map box-filtered to at most 64×32 texels (5.6° texels: E is smooth).
-    pub fn irradiance_map(&self, width: u32, height: u32) -> Vec<Vec3> {
+    /// The texels (unrotated, without intensity) halved by 2×2 box filtering until the width is at
+    /// most `max_width` (or the height reaches 1): (width, height, texels). Odd sides drop their
+    /// last row or column.
+    pub fn box_downsampled(&self, max_width: u32) -> (u32, u32, Vec<Vec3>) {
         let (mut w, mut h, mut t) = (self.width, self.height, self.texels.clone());
-        while w > 64 && h >= 2 && w % 2 == 0 && h % 2 == 0 {
+        while w > max_width && h >= 2 {
             let (nw, nh) = (w / 2, h / 2);
             let mut next = Vec::with_capacity((nw * nh) as usize);
             for y in 0..nh {
@@ -248,6 +248,14 @@ impl Environment {
             }
             (w, h, t) = (nw, nh, next);
         }
+        (w, h, t)
+    }
+
+    /// The pre-convolved diffuse map: a `width`×`height` lat-long image (unrotated, without
+    /// `intensity`, like `texels`) whose texel in direction n holds E(n)/π = (1/π) ∫ L(ω)
+    /// max(0, n·ω) dω, summed over the map box-filtered to at most 64×32 texels (5.6° texels: E is smooth).
+    pub fn irradiance_map(&self, width: u32, height: u32) -> Vec<Vec3> {
+        let (w, h, t) = self.box_downsampled(64);
         let small = Environment {
             name: String::new(),
             width: w,
