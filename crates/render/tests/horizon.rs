@@ -108,7 +108,9 @@ fn plane_is_unoccluded() {
 }
 
 /// `wall`: ao at the base of the wall within 0.05 of 0.5 (the horizon search is exact for V_R
-/// there given enough steps) and following 1 − (acos k − k√(1−k²))/π, k = d/R, away from it.
+/// there given enough steps; full resolution, no blur) and following 1 − (acos k − k√(1−k²))/π,
+/// k = d/R, away from it. With the defaults (interleaved, blurred over 4 pixels, 16 frames) the
+/// blur averages the base with floor farther out: within 0.06.
 #[test]
 fn wall_ao_follows_the_curve() {
     let Some(ctx) = common::context() else { return };
@@ -117,10 +119,15 @@ fn wall_ao_follows_the_curve() {
     let cam = Camera::new(Vec3::new(0.3, 0.6, 2.4), Vec3::new(0.0, 0.35, 0.0), 60.0);
     let size = (240, 180);
     let radius = 1.0;
-    for (method, frames, bound) in [
-        // Measured on lavapipe: base 0.524 / 0.524, mean |ao − curve| 0.0034 / 0.0058.
-        ("gtao:interleaved=off+slices=8+steps=32+falloff=0", 1, 0.01),
-        ("gtao:falloff=0", 16, 0.015),
+    for (method, frames, bound, base_bound) in [
+        // Measured on lavapipe: base 0.503 / 0.554, mean |ao − curve| 0.0032 / 0.0063.
+        (
+            "gtao:interleaved=off+slices=8+steps=32+falloff=0+blur=off",
+            1,
+            0.01,
+            0.05,
+        ),
+        ("gtao:falloff=0", 16, 0.015, 0.06),
     ] {
         let mut r = make(&ctx, &scene, &env, cam, size, method, radius);
         for _ in 0..frames {
@@ -169,7 +176,7 @@ fn wall_ao_follows_the_curve() {
             "{method}: ao at the base (k < 0.01, {base_n} px) {base:.3}; mean |ao − curve| {mean_err:.4}; by 0.1 R band {means:.3?}"
         );
         assert!(
-            base_n > 20 && (base - 0.5).abs() < 0.05,
+            base_n > 20 && (base - 0.5).abs() < base_bound,
             "{method}: base {base}"
         );
         assert!(mean_err < bound, "{method}: mean error {mean_err}");

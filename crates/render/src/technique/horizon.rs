@@ -112,7 +112,8 @@ pub struct Settings {
     /// `blur`: on | off — geometry-aware blur of the raw results (merges the 4×4 block's
     /// directions). Default on.
     pub blur: bool,
-    /// `blur_radius`: half width in pixels, 0..=16. Default 2 (a 5×5 footprint covers a block).
+    /// `blur_radius`: half width in pixels, 0..=16. Default 4 (Gaussian σ = 2: weighs a 4×4
+    /// block nearly evenly, so its 16 interleaved direction sets merge).
     pub blur_radius: u32,
     /// `reject_depth`: history and reprojection reject a point farther than this × view depth
     /// from the current tangent plane, 1e-4..=1. Default 0.02.
@@ -142,7 +143,7 @@ impl Default for Settings {
             reject_a: -0.1,
             reject_b: 0.1,
             blur: true,
-            blur_radius: 2,
+            blur_radius: 4,
             reject_depth: 0.02,
             reject_normal: 0.9,
         }
