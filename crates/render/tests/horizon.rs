@@ -36,6 +36,15 @@ fn make(
     .unwrap()
 }
 
+/// The analytic sky (with its sun) at 256×128 texels: quick to set up, same lighting.
+fn small_sky() -> Environment {
+    nearfield_scene::sky::Sky {
+        width: 256,
+        ..Default::default()
+    }
+    .to_environment()
+}
+
 /// A lone plane: ao = 1 and no indirect light at any radius, with and without interleaving;
 /// gtao's env-irradiance is `none`'s; under a constant white sky hbil's per-slice environment
 /// integral gives env-irradiance = 1 (DESIGN.md's truths).
@@ -43,11 +52,7 @@ fn make(
 fn plane_is_unoccluded() {
     let Some(ctx) = common::context() else { return };
     let scene = builtin::scene("plane").unwrap();
-    let sky = nearfield_scene::sky::Sky {
-        width: 256,
-        ..Default::default()
-    }
-    .to_environment();
+    let sky = small_sky();
     let white = Environment::constant(Vec3::ONE);
     let cam = scene.default_camera();
     let size = (64, 40);
@@ -193,11 +198,7 @@ fn wall_ao_follows_the_curve() {
 fn interleaved_agrees_with_full_resolution() {
     let Some(ctx) = common::context() else { return };
     let scene = builtin::scene("cornell").unwrap();
-    let env = nearfield_scene::sky::Sky {
-        width: 256,
-        ..Default::default()
-    }
-    .to_environment();
+    let env = small_sky();
     let cam = scene.default_camera();
     let size = (256, 144);
     let mean = |method: &str| {
@@ -237,11 +238,7 @@ fn interleaved_agrees_with_full_resolution() {
 fn push_pull_fills_every_hole_from_its_neighbours() {
     let Some(ctx) = common::context() else { return };
     let scene = common::box_on_plane();
-    let env = nearfield_scene::sky::Sky {
-        width: 256,
-        ..Default::default()
-    }
-    .to_environment();
+    let env = small_sky();
     let cam = Camera::new(Vec3::new(1.2, 1.6, 2.6), Vec3::new(0.0, 0.4, 0.0), 50.0);
     let size = (128, 96);
     for mode in ["scatter", "gather"] {
@@ -330,11 +327,7 @@ fn push_pull_fills_every_hole_from_its_neighbours() {
 fn disoccluded_history_is_rejected() {
     let Some(ctx) = common::context() else { return };
     let scene = common::box_on_plane();
-    let env = nearfield_scene::sky::Sky {
-        width: 256,
-        ..Default::default()
-    }
-    .to_environment();
+    let env = small_sky();
     let cam = Camera::new(Vec3::new(1.6, 1.4, 2.4), Vec3::new(0.0, 0.4, 0.0), 50.0);
     let next = cam.orbit(10.0);
     let size = (128, 96);
