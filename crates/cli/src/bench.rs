@@ -115,7 +115,17 @@ pub fn run(args: BenchArgs) -> Result<()> {
     let loaded = args.scene.load()?;
     let ctx = GpuContext::new(args.scene.adapter.as_deref())?;
     let info = ctx.adapter_info();
-    let mut results = BTreeMap::new();
+    // Every method's renderer is made and warmed first; then the timed frames go round the
+    // methods in turn, so that a slow drift of the machine (thermal, other load) touches all of
+    // them alike and their ratios stay fair.
+    struct Timed {
+        renderer: Renderer,
+        per_pass: BTreeMap<String, Vec<f64>>,
+        order: Vec<String>,
+        totals: Vec<f64>,
+        walls: Vec<f64>,
+    }
+    let mut timed = Vec::with_capacity(methods.len());
     for method in &methods {
         let mut r = Renderer::new(
             &ctx,
@@ -130,37 +140,45 @@ pub fn run(args: BenchArgs) -> Result<()> {
             crate::options::orbit_frame(&mut r, i, args.orbit);
         }
         r.wait();
-        let mut per_pass: BTreeMap<String, Vec<f64>> = BTreeMap::new();
-        let mut order: Vec<String> = Vec::new();
-        let mut totals = Vec::new();
-        let mut walls = Vec::new();
-        for i in 0..args.frames {
+        timed.push(Timed {
+            renderer: r,
+            per_pass: BTreeMap::new(),
+            order: Vec::new(),
+            totals: Vec::new(),
+            walls: Vec::new(),
+        });
+    }
+    for i in 0..args.frames {
+        for t in &mut timed {
             let t0 = Instant::now();
-            crate::options::orbit_frame(&mut r, args.warmup + i, args.orbit);
-            r.wait();
-            walls.push(t0.elapsed().as_secs_f64() * 1e3);
-            let timings = r.timings();
+            crate::options::orbit_frame(&mut t.renderer, args.warmup + i, args.orbit);
+            t.renderer.wait();
+            t.walls.push(t0.elapsed().as_secs_f64() * 1e3);
             let mut total = 0.0;
-            for (pass, ms) in timings {
-                if !order.iter().any(|o| o == pass) {
-                    order.push(pass.to_string());
+            for (pass, ms) in t.renderer.timings() {
+                if !t.order.iter().any(|o| o == pass) {
+                    t.order.push(pass.to_string());
                 }
-                per_pass.entry(pass.to_string()).or_default().push(ms);
+                t.per_pass.entry(pass.to_string()).or_default().push(ms);
                 total += ms;
             }
-            totals.push(total);
+            t.totals.push(total);
         }
-        let passes: BTreeMap<String, Stat> = per_pass
+    }
+    let mut results = BTreeMap::new();
+    for (method, mut t) in methods.iter().zip(timed) {
+        let passes: BTreeMap<String, Stat> = t
+            .per_pass
             .into_iter()
             .map(|(k, mut v)| (k, stat(&mut v)))
             .collect();
         results.insert(
             method.clone(),
             MethodResult {
-                gpu_total: ctx.timestamps.then(|| stat(&mut totals)),
+                gpu_total: ctx.timestamps.then(|| stat(&mut t.totals)),
                 passes,
-                pass_order: order,
-                wall: stat(&mut walls),
+                pass_order: t.order,
+                wall: stat(&mut t.walls),
             },
         );
     }
