@@ -167,6 +167,8 @@ fn every_bad_input_exits_2_with_one_line() {
         (vec!["render".into(), "--size".into(), "16x16".into(), "--method".into(), "hbil".into(), "--set".into(), "temporal=sometimes".into()], "on or off"),
         (vec!["render".into(), "--size".into(), "16x16".into(), "--method".into(), "hbil".into(), "--set".into(), "reject_a=0.5".into()], "reject_a"),
         (vec!["render".into(), "--size".into(), "16x16".into(), "--method".into(), "hbil".into(), "--aov".into(), "nosuch".into()], "unknown AOV for hbil"),
+        (vec!["render".into(), "--size".into(), "16x16".into(), "--method".into(), "hbil".into(), "--set".into(), "aperture=wide".into()], "eq12 or matched"),
+        (vec!["render".into(), "--size".into(), "16x16".into(), "--method".into(), "hbil".into(), "--set".into(), "source=magic".into()], "previous or direct"),
         (vec!["render".into(), "--size".into(), "16x16".into(), "--orbit".into(), "nan".into()], "--orbit"),
         (vec!["render".into(), "--size".into(), "16x16".into(), "--orbit".into(), "720".into()], "--orbit"),
         (vec!["bench".into(), "--size".into(), "16x16".into(), "--methods".into(), "gtao".into(), "--orbit".into(), "inf".into()], "--orbit"),

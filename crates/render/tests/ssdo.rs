@@ -121,11 +121,7 @@ fn wall_ao_follows_the_curve() {
                 bands[band].0 += v as f64;
                 bands[band].1 += 1;
             }
-            let want = if k >= 1.0 {
-                1.0
-            } else {
-                1.0 - (k.acos() - k * (1.0 - k * k).sqrt()) / std::f32::consts::PI
-            };
+            let want = common::wall_ao(k);
             worst = worst.max((v - want).abs());
         }
     }

@@ -64,6 +64,16 @@ pub fn world_position(camera: &Camera, size: (u32, u32), depth: &AovImage, x: u3
     camera.eye + d * t
 }
 
+/// The `wall` scene's truth: ao of a floor point at distance k·R from the wall (R the near-field
+/// radius), 1 − (acos k − k√(1−k²))/π for k < 1 and 1 beyond.
+pub fn wall_ao(k: f32) -> f32 {
+    if k >= 1.0 {
+        1.0
+    } else {
+        1.0 - (k.acos() - k * (1.0 - k * k).sqrt()) / std::f32::consts::PI
+    }
+}
+
 /// Appends a planar quad (corners counter-clockwise seen from the front) with its flat normal.
 pub fn push_quad(mesh: &mut Mesh, c: [Vec3; 4]) {
     let n = (c[1] - c[0]).cross(c[2] - c[0]).normalize();
