@@ -266,6 +266,18 @@ impl GpuEnvironment {
     pub fn set_rotation(&mut self, queue: &wgpu::Queue, rotation: f32) {
         self.rotation = rotation;
         self.source.rotation = rotation;
+        self.write_sh(queue);
+    }
+
+    /// Multiplies the radiance by `intensity` (≥ 0): lookups take it from the frame uniforms,
+    /// the SH coefficients are re-projected here.
+    pub fn set_intensity(&mut self, queue: &wgpu::Queue, intensity: f32) {
+        self.intensity = intensity;
+        self.source.intensity = intensity;
+        self.write_sh(queue);
+    }
+
+    fn write_sh(&mut self, queue: &wgpu::Queue) {
         self.sh = sh::project_environment(&self.source, 16);
         let mut padded = [[0f32; 4]; 16];
         for (p, c) in padded.iter_mut().zip(&self.sh) {

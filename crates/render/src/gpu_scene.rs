@@ -201,11 +201,28 @@ impl GpuScene {
 
     /// Writes the light table; `shadow` gives each light's first shadow layer and texel factor.
     pub fn write_lights(&self, queue: &wgpu::Queue, shadow: &[(Option<u32>, f32)]) {
+        self.write_lights_masked(queue, shadow, &[]);
+    }
+
+    /// [`Self::write_lights`] with the lights whose `off` entry is true given no radiance.
+    pub fn write_lights_masked(
+        &self,
+        queue: &wgpu::Queue,
+        shadow: &[(Option<u32>, f32)],
+        off: &[bool],
+    ) {
         let lights: Vec<GpuLight> = self
             .scene_lights
             .iter()
             .zip(shadow)
-            .map(|(l, &(layer, texel))| gpu_light(l, layer, texel))
+            .enumerate()
+            .map(|(i, (l, &(layer, texel)))| {
+                let mut g = gpu_light(l, layer, texel);
+                if off.get(i).copied().unwrap_or(false) {
+                    g.color = [0.0; 4];
+                }
+                g
+            })
             .collect();
         if !lights.is_empty() {
             queue.write_buffer(&self.lights, 0, bytemuck::cast_slice(&lights));

@@ -38,6 +38,7 @@ pub fn shader_sources() -> Vec<(&'static str, String)> {
         ("composite", passes::composite::source()),
         ("tonemap", passes::tonemap::source()),
         ("aov", passes::aov::source()),
+        ("display", passes::display::source()),
         (
             "env_prefilter",
             include_str!("passes/env_prefilter.wgsl").to_string(),

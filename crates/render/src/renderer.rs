@@ -52,11 +52,14 @@ pub struct Renderer {
     frame_buffer: wgpu::Buffer,
     gbuffer: GBufferPass,
     shadows: ShadowPass,
-    direct: ScreenPass,
-    technique: Box<dyn Technique>,
-    composite: ScreenPass,
-    tonemap: ScreenPass,
-    aov: ScreenPass,
+    passes: Passes,
+    /// The technique as named (`name` or `name:key=value+…`) and its parameters, kept to rebuild
+    /// it after a resize or an environment change.
+    technique_spec: String,
+    technique_params: TechniqueParams,
+    pack_half: bool,
+    /// Lights switched off ([`Self::set_light_enabled`]), by index into the scene's lights.
+    lights_off: Vec<bool>,
     pub profiler: GpuProfiler,
     camera: Camera,
     previous: Option<CameraMatrices>,
@@ -79,13 +82,12 @@ impl Renderer {
         params: &TechniqueParams,
         settings: RenderSettings,
     ) -> Result<Self, RenderError> {
-        let desc = technique::find(technique_name)?;
+        technique::find(technique_name)?;
         targets::check_size(settings.size, ctx.device.limits().max_texture_dimension_2d)?;
         camera.validate().map_err(RenderError::Scene)?;
         let device = ctx.device.clone();
         let queue = ctx.queue.clone();
-        let oom = device.push_error_scope(wgpu::ErrorFilter::OutOfMemory);
-        let validation = device.push_error_scope(wgpu::ErrorFilter::Validation);
+        let scopes = ErrorScopes::push(&device);
         let gpu_scene = GpuScene::new(&device, &queue, scene)?;
         let gpu_env = GpuEnvironment::new(&device, &queue, env);
         let targets = FrameTargets::new(&device, settings.size);
@@ -98,39 +100,21 @@ impl Renderer {
         let shadows = ShadowPass::new(&device, &gpu_scene, settings.shadows);
         gpu_scene.write_lights(&queue, &shadows.light_layers);
         let gbuffer = GBufferPass::new(&device, &frame_buffer, &gpu_scene);
-        let direct = passes::direct_lighting::new(
+        let passes = Passes::new(
             &device,
+            &queue,
             &frame_buffer,
             &targets,
             &gpu_scene,
             &gpu_env,
             &shadows,
-        );
-        let mut params = params.clone();
-        params.set.extend(technique::split_spec(technique_name).1);
-        let technique = (desc.create)(
-            &TechniqueContext {
-                device: &device,
-                queue: &queue,
-                frame: &frame_buffer,
-                targets: &targets,
-                env: &gpu_env,
-                scene: &gpu_scene,
-                shadows: &shadows,
-                pack_half: ctx.pack_half,
-            },
-            &params,
+            ctx.pack_half,
+            technique_name,
+            params,
         )?;
-        let composite = passes::composite::new(&device, &frame_buffer, &targets, &gpu_env);
-        let tonemap = passes::tonemap::new(&device, &frame_buffer, &targets);
-        let aov = passes::aov::new(&device, &frame_buffer, &targets);
         let profiler = GpuProfiler::new(&device, &queue, ctx.timestamps);
-        if let Some(e) = pollster::block_on(validation.pop()) {
-            return Err(RenderError::Gpu(e.to_string()));
-        }
-        if let Some(e) = pollster::block_on(oom.pop()) {
-            return Err(RenderError::Gpu(format!("out of GPU memory: {e}")));
-        }
+        scopes.pop()?;
+        let lights_off = vec![false; gpu_scene.scene_lights.len()];
         Ok(Renderer {
             device,
             queue,
@@ -140,11 +124,11 @@ impl Renderer {
             frame_buffer,
             gbuffer,
             shadows,
-            direct,
-            technique,
-            composite,
-            tonemap,
-            aov,
+            passes,
+            technique_spec: technique_name.to_string(),
+            technique_params: params.clone(),
+            pack_half: ctx.pack_half,
+            lights_off,
             profiler,
             camera,
             previous: None,
@@ -156,12 +140,121 @@ impl Renderer {
         })
     }
 
+    /// Rebuilds the screen passes and the technique for the current targets and environment.
+    fn rebuild_passes(&mut self, spec: &str, params: &TechniqueParams) -> Result<(), RenderError> {
+        let scopes = ErrorScopes::push(&self.device);
+        let passes = Passes::new(
+            &self.device,
+            &self.queue,
+            &self.frame_buffer,
+            &self.targets,
+            &self.scene,
+            &self.env,
+            &self.shadows,
+            self.pack_half,
+            spec,
+            params,
+        );
+        scopes.pop()?;
+        self.passes = passes?;
+        self.cut = true;
+        Ok(())
+    }
+
+    /// Replaces the technique (a `name` or `name:key=value+…` spec) and its parameters; scene,
+    /// environment and targets stay. On error the renderer keeps its current technique.
+    pub fn set_technique(
+        &mut self,
+        spec: &str,
+        params: &TechniqueParams,
+    ) -> Result<(), RenderError> {
+        technique::find(spec)?;
+        self.rebuild_passes(spec, params)?;
+        self.technique_spec = spec.to_string();
+        self.technique_params = params.clone();
+        Ok(())
+    }
+
+    /// Changes the image size: new targets, passes rebuilt, history discarded. On error (a size
+    /// the device cannot hold) the renderer keeps its current size.
+    pub fn resize(&mut self, size: (u32, u32)) -> Result<(), RenderError> {
+        if size == self.settings.size {
+            return Ok(());
+        }
+        targets::check_size(size, self.device.limits().max_texture_dimension_2d)?;
+        let old = std::mem::replace(&mut self.targets, FrameTargets::new(&self.device, size));
+        let (spec, params) = (self.technique_spec.clone(), self.technique_params.clone());
+        if let Err(e) = self.rebuild_passes(&spec, &params) {
+            self.targets = old;
+            return Err(e);
+        }
+        self.settings.size = size;
+        self.previous = None;
+        Ok(())
+    }
+
+    /// Replaces the environment (map, intensity and rotation); passes are rebuilt.
+    pub fn set_environment(&mut self, env: &Environment) -> Result<(), RenderError> {
+        let old = std::mem::replace(
+            &mut self.env,
+            GpuEnvironment::new(&self.device, &self.queue, env),
+        );
+        let (spec, params) = (self.technique_spec.clone(), self.technique_params.clone());
+        if let Err(e) = self.rebuild_passes(&spec, &params) {
+            self.env = old;
+            return Err(e);
+        }
+        Ok(())
+    }
+
+    /// Multiplies the environment's radiance by `intensity` (≥ 0) for the next frames.
+    pub fn set_environment_intensity(&mut self, intensity: f32) {
+        self.env.set_intensity(&self.queue, intensity.max(0.0));
+    }
+
+    /// Exposure (EV stops, clamped to −20..=20) and tonemap operator of the next frames.
+    pub fn set_post(&mut self, exposure: f32, tonemap: Tonemap) {
+        self.settings.exposure = exposure.clamp(-20.0, 20.0);
+        self.settings.tonemap = tonemap;
+    }
+
+    pub fn settings(&self) -> &RenderSettings {
+        &self.settings
+    }
+
+    /// The technique spec and parameters in use.
+    pub fn technique(&self) -> (&str, &TechniqueParams) {
+        (&self.technique_spec, &self.technique_params)
+    }
+
+    /// Switches light `index` of the scene on or off (an off light contributes nothing; its
+    /// shadow map is still drawn). Unknown indices are ignored.
+    pub fn set_light_enabled(&mut self, index: usize, on: bool) {
+        if let Some(off) = self.lights_off.get_mut(index) {
+            *off = !on;
+            self.scene.write_lights_masked(
+                &self.queue,
+                &self.shadows.light_layers,
+                &self.lights_off,
+            );
+        }
+    }
+
+    /// Whether light `index` is on.
+    pub fn light_enabled(&self, index: usize) -> bool {
+        !self.lights_off.get(index).copied().unwrap_or(true)
+    }
+
+    pub fn device(&self) -> &wgpu::Device {
+        &self.device
+    }
+
     pub fn size(&self) -> (u32, u32) {
         self.settings.size
     }
 
     pub fn technique_name(&self) -> &'static str {
-        self.technique.name()
+        self.passes.technique.name()
     }
 
     /// Moves the camera for the next frames. A move that [`Camera::is_cut_to`] calls a cut
@@ -246,8 +339,8 @@ impl Renderer {
         self.gbuffer
             .encode(&mut encoder, p, &self.targets, &self.scene);
         self.shadows.encode(&mut encoder, p, &self.scene);
-        self.direct.encode(&mut encoder, p, size, side);
-        self.technique.encode(
+        self.passes.direct.encode(&mut encoder, p, size, side);
+        self.passes.technique.encode(
             &mut encoder,
             p,
             technique::FrameInfo {
@@ -255,8 +348,8 @@ impl Renderer {
                 history,
             },
         );
-        self.composite.encode(&mut encoder, p, size, 0);
-        self.tonemap.encode(&mut encoder, p, size, 0);
+        self.passes.composite.encode(&mut encoder, p, size, 0);
+        self.passes.tonemap.encode(&mut encoder, p, size, 0);
         p.resolve(&mut encoder);
         self.queue.submit([encoder.finish()]);
         self.previous = Some(current);
@@ -276,8 +369,9 @@ impl Renderer {
         let _ = self.device.poll(wgpu::PollType::wait_indefinitely());
     }
 
-    /// Reads one float AOV of the last rendered frame.
-    pub fn read_aov(&mut self, aov: Aov) -> AovImage {
+    /// Writes one float AOV of the last rendered frame into `targets.aov` (rgba32float; see
+    /// aov.wgsl) and submits the work; nothing is read back.
+    pub fn extract_aov(&mut self, aov: Aov) {
         let last = self.frame_index.saturating_sub(1);
         let current = self.previous.unwrap_or_else(|| {
             CameraMatrices::new(&self.camera, self.settings.size, self.scene.bounds)
@@ -289,12 +383,19 @@ impl Renderer {
             .write_buffer(&self.frame_buffer, 0, bytemuck::bytes_of(&u));
         let mut encoder = self.device.create_command_encoder(&Default::default());
         let mut quiet = GpuProfiler::new(&self.device, &self.queue, false);
-        self.aov.encode(
+        self.passes.aov.encode(
             &mut encoder,
             &mut quiet,
             self.settings.size,
             (last % 2) as usize,
         );
+        self.queue.submit([encoder.finish()]);
+    }
+
+    /// Reads one float AOV of the last rendered frame.
+    pub fn read_aov(&mut self, aov: Aov) -> AovImage {
+        self.extract_aov(aov);
+        let encoder = self.device.create_command_encoder(&Default::default());
         let bytes = self.read_texture(encoder, &self.targets.aov.texture, 16);
         let (w, h) = self.settings.size;
         AovImage {
@@ -304,9 +405,20 @@ impl Renderer {
         }
     }
 
+    /// The technique's extra image `name` of the last rendered frame, if it has one.
+    pub fn extra_texture(&self, name: &str) -> Option<&wgpu::Texture> {
+        self.passes
+            .technique
+            .extras(self.last_frame_info())
+            .into_iter()
+            .find(|(n, _)| *n == name)
+            .map(|(_, t)| t)
+    }
+
     /// Names of the technique's extra images ([`Technique::extras`]).
     pub fn extra_names(&self) -> Vec<&'static str> {
-        self.technique
+        self.passes
+            .technique
             .extras(self.last_frame_info())
             .into_iter()
             .map(|(n, _)| n)
@@ -316,9 +428,7 @@ impl Renderer {
     /// Reads one of the technique's extra images of the last rendered frame (all four channels
     /// as stored), or `None` when the technique has no image of that name.
     pub fn read_extra(&self, name: &str) -> Option<AovImage> {
-        let info = self.last_frame_info();
-        let extras = self.technique.extras(info);
-        let texture = extras.iter().find(|(n, _)| *n == name)?.1;
+        let texture = self.extra_texture(name)?;
         let (w, h) = self.settings.size;
         let encoder = self.device.create_command_encoder(&Default::default());
         let pixels: Vec<[f32; 4]> = match texture.format() {
@@ -408,5 +518,81 @@ impl Renderer {
             out.extend_from_slice(&data[start..start + row as usize]);
         }
         out
+    }
+}
+
+/// The passes that bind the frame targets, the environment or the technique: rebuilt together.
+struct Passes {
+    direct: ScreenPass,
+    technique: Box<dyn Technique>,
+    composite: ScreenPass,
+    tonemap: ScreenPass,
+    aov: ScreenPass,
+}
+
+impl Passes {
+    #[allow(clippy::too_many_arguments)]
+    fn new(
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        frame: &wgpu::Buffer,
+        targets: &FrameTargets,
+        scene: &GpuScene,
+        env: &GpuEnvironment,
+        shadows: &ShadowPass,
+        pack_half: bool,
+        spec: &str,
+        params: &TechniqueParams,
+    ) -> Result<Self, RenderError> {
+        let desc = technique::find(spec)?;
+        let direct = passes::direct_lighting::new(device, frame, targets, scene, env, shadows);
+        let mut params = params.clone();
+        params.set.extend(technique::split_spec(spec).1);
+        let params = technique::expand_presets(desc, &params)?;
+        let technique = (desc.create)(
+            &TechniqueContext {
+                device,
+                queue,
+                frame,
+                targets,
+                env,
+                scene,
+                shadows,
+                pack_half,
+            },
+            &params,
+        )?;
+        Ok(Passes {
+            direct,
+            technique,
+            composite: passes::composite::new(device, frame, targets, env),
+            tonemap: passes::tonemap::new(device, frame, targets),
+            aov: passes::aov::new(device, frame, targets),
+        })
+    }
+}
+
+/// Validation and out-of-memory error scopes around resource creation: a failure becomes a
+/// [`RenderError::Gpu`] instead of an uncaptured error.
+struct ErrorScopes {
+    oom: wgpu::ErrorScopeGuard,
+    validation: wgpu::ErrorScopeGuard,
+}
+
+impl ErrorScopes {
+    fn push(device: &wgpu::Device) -> Self {
+        let oom = device.push_error_scope(wgpu::ErrorFilter::OutOfMemory);
+        let validation = device.push_error_scope(wgpu::ErrorFilter::Validation);
+        ErrorScopes { oom, validation }
+    }
+
+    fn pop(self) -> Result<(), RenderError> {
+        if let Some(e) = pollster::block_on(self.validation.pop()) {
+            return Err(RenderError::Gpu(e.to_string()));
+        }
+        if let Some(e) = pollster::block_on(self.oom.pop()) {
+            return Err(RenderError::Gpu(format!("out of GPU memory: {e}")));
+        }
+        Ok(())
     }
 }

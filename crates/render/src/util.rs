@@ -11,6 +11,9 @@ pub const LIGHTS_WGSL: &str = include_str!("shaders/lights.wgsl");
 /// Shared WGSL: hemisphere sample patterns and the screen-space visibility test (bindings 6, 8, 9).
 pub const SCREEN_SAMPLES_WGSL: &str = include_str!("shaders/screen_samples.wgsl");
 
+/// Shared WGSL: tonemap operators and the sRGB transfer function.
+pub const TONEMAP_OPS_WGSL: &str = include_str!("shaders/tonemap_ops.wgsl");
+
 /// Concatenates WGSL sources (shared preludes first).
 pub fn compose(parts: &[&str]) -> String {
     parts.join("\n")

@@ -133,6 +133,13 @@ fn host_and_shader_structs_agree() {
             ("_pad1", offset_of!(ReprojectParams, _pad) + 4),
         ],
     );
+    use nearfield_render::passes::display::DisplayParams;
+    check(
+        &nearfield_render::passes::display::source(),
+        "DisplayParams",
+        size_of::<DisplayParams>(),
+        &offsets!(DisplayParams: size, mode, range),
+    );
     let material = [
         ("base_color", offset_of!(GpuMaterial, base_color)),
         ("emissive", offset_of!(GpuMaterial, emissive)),

@@ -1,12 +1,13 @@
 //! The frame's passes, one `.rs` + one `.wgsl` each, in frame order:
 //! [`gbuffer`] → [`shadow`] → [`direct_lighting`] → (technique) → [`composite`] → [`tonemap`],
-//! and [`aov`] for output. The environment's mip chains come from `env_prefilter.wgsl`
+//! and [`aov`] for output, [`display`] for a window. The environment's mip chains come from `env_prefilter.wgsl`
 //! (driven by `crate::gpu_env`).
 
 pub mod aov;
 pub mod bilateral_blur;
 pub mod composite;
 pub mod direct_lighting;
+pub mod display;
 pub mod gbuffer;
 pub mod reproject;
 pub mod shadow;

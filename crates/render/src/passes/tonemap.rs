@@ -9,7 +9,7 @@ use wgpu::BindingResource as R;
 pub const SHADER: &str = include_str!("tonemap.wgsl");
 
 pub fn source() -> String {
-    util::compose(&[util::COMMON_WGSL, SHADER])
+    util::compose(&[util::COMMON_WGSL, util::TONEMAP_OPS_WGSL, SHADER])
 }
 
 pub fn new(device: &wgpu::Device, frame: &wgpu::Buffer, targets: &FrameTargets) -> ScreenPass {

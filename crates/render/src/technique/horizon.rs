@@ -10,7 +10,9 @@
 //! radiance (DESIGN.md's L_o: one bounce); afterwards it is last frame's diffuse radiance, so
 //! bounces add up over frames (HBIL Eq. 17).
 
-use super::{FrameInfo, Technique, TechniqueContext, TechniqueDesc, TechniqueParams};
+use super::{
+    FrameInfo, Preset, Setting, Technique, TechniqueContext, TechniqueDesc, TechniqueParams,
+};
 use crate::RenderError;
 use crate::gpu_env::GpuEnvironment;
 use crate::passes::bilateral_blur::{BilateralBlur, BlurChain, BlurSettings};
@@ -32,12 +34,16 @@ pub const GTAO: TechniqueDesc = TechniqueDesc {
     name: "gtao",
     summary: "ground-truth AO: horizon search in slices, cosine-weighted AO, bent normal; ao × SH irradiance",
     create: create_gtao,
+    settings: SETTINGS,
+    presets: PRESETS,
 };
 
 pub const HBIL: TechniqueDesc = TechniqueDesc {
     name: "hbil",
     summary: "horizon-based indirect lighting: bent cones, far field through the cone, near-field bounces from reprojected radiance",
     create: create_hbil,
+    settings: SETTINGS,
+    presets: PRESETS,
 };
 
 /// Far-field estimate through the bent cone (hbil).
@@ -150,53 +156,122 @@ impl Default for Settings {
     }
 }
 
-/// `quality` presets: (name, slices, steps).
-pub const PRESETS: &[(&str, u32, u32)] = &[
-    ("low", 1, 8),
-    ("medium", 2, 16),
-    ("high", 4, 16),
-    ("ultra", 8, 32),
+/// `quality` presets: slices and steps.
+pub const PRESETS: &[Preset] = &[
+    Preset {
+        name: "low",
+        set: &[("slices", "1"), ("steps", "8")],
+    },
+    Preset {
+        name: "medium",
+        set: &[("slices", "2"), ("steps", "16")],
+    },
+    Preset {
+        name: "high",
+        set: &[("slices", "4"), ("steps", "16")],
+    },
+    Preset {
+        name: "ultra",
+        set: &[("slices", "8"), ("steps", "32")],
+    },
 ];
 
-/// Every `--set` key, for error messages and the README.
-pub const KEYS: &[&str] = &[
-    "quality",
-    "slices",
-    "steps",
-    "samples",
-    "radius",
-    "interleaved",
-    "reprojection",
-    "far",
-    "aperture",
-    "source",
-    "temporal",
-    "history",
-    "fresnel",
-    "falloff",
-    "step_power",
-    "max_pixels",
-    "reject_a",
-    "reject_b",
-    "blur",
-    "blur_radius",
-    "reject_depth",
-    "reject_normal",
+/// Every `--set` key with its range and default (the fields of [`Settings`]; `samples` is
+/// another name for `steps`).
+pub const SETTINGS: &[Setting] = &[
+    Setting::integer("slices", 1.0, 32.0, "2", "slices per pixel"),
+    Setting::integer("steps", 1.0, 128.0, "16", "samples per side of a slice"),
+    Setting::log("radius", 1e-6, 1e6, "0.5", "near-field radius R (m)"),
+    Setting::toggle(
+        "interleaved",
+        "on",
+        "4×4 deinterleaved quarter-resolution layers",
+    ),
+    Setting::choice(
+        "reprojection",
+        &["scatter", "gather"],
+        "scatter",
+        "last frame's radiance (hbil)",
+    ),
+    Setting::choice(
+        "far",
+        &["sh", "envmap", "slices"],
+        "slices",
+        "far-field light (hbil)",
+    ),
+    Setting::choice(
+        "aperture",
+        &["eq12", "matched"],
+        "matched",
+        "bent-cone aperture (far=sh)",
+    ),
+    Setting::choice(
+        "source",
+        &["previous", "direct"],
+        "previous",
+        "near-field radiance (hbil)",
+    ),
+    Setting::toggle("temporal", "on", "accumulation over frames"),
+    Setting::integer(
+        "history",
+        1.0,
+        1024.0,
+        "32",
+        "frames in the running mean at most",
+    ),
+    Setting::toggle("fresnel", "on", "(1 − F0) on near-field light"),
+    Setting::number(
+        "falloff",
+        0.0,
+        1.0,
+        "0.1",
+        "fade of an occluder's rise before R (fraction)",
+    ),
+    Setting::number(
+        "step_power",
+        1.0,
+        4.0,
+        "2",
+        "exponent of the step distribution",
+    ),
+    Setting::log("max_pixels", 1.0, 8192.0, "256", "longest march (pixels)"),
+    Setting::number(
+        "reject_a",
+        -1.0,
+        1.0,
+        "-0.1",
+        "radiance rejection, lower edge (< reject_b)",
+    ),
+    Setting::number(
+        "reject_b",
+        -1.0,
+        1.0,
+        "0.1",
+        "radiance rejection, upper edge",
+    ),
+    Setting::toggle("blur", "on", "geometry-aware blur of the raw results"),
+    Setting::integer("blur_radius", 0.0, 16.0, "4", "blur half width (pixels)"),
+    Setting::log(
+        "reject_depth",
+        1e-4,
+        1.0,
+        "0.02",
+        "history depth tolerance (× view depth)",
+    ),
+    Setting::number(
+        "reject_normal",
+        -1.0,
+        1.0,
+        "0.9",
+        "history normal tolerance (cosine)",
+    ),
 ];
 
 impl Settings {
-    /// Applies `--samples` (steps), `--radius` and `--set` on top of the defaults; `quality`
-    /// is applied first, so explicit `slices`/`steps` refine a preset.
+    /// Applies `--samples` (steps), `--radius` and `--set` on top of the defaults (`quality`
+    /// was expanded by [`super::expand_presets`] before).
     pub fn from_params(params: &TechniqueParams) -> Result<Self, String> {
         let mut s = Settings::default();
-        for (k, v) in params.set.iter().filter(|(k, _)| k == "quality") {
-            let (_, slices, steps) = PRESETS.iter().find(|p| p.0 == v).ok_or_else(|| {
-                let names: Vec<&str> = PRESETS.iter().map(|p| p.0).collect();
-                format!("{k}={v}: expected {}", names.join(", "))
-            })?;
-            s.slices = *slices;
-            s.steps = *steps;
-        }
         if let Some(n) = params.samples {
             s.steps = n;
         }
@@ -206,9 +281,8 @@ impl Settings {
         use super::{parse_number as num, parse_on_off as on_off};
         for (k, v) in &params.set {
             match k.as_str() {
-                "quality" => {}
-                "slices" => s.slices = num(k, v, 1.0, 32.0)? as u32,
-                "steps" | "samples" => s.steps = num(k, v, 1.0, 128.0)? as u32,
+                "slices" => s.slices = super::parse_integer(k, v, 1, 32)?,
+                "steps" | "samples" => s.steps = super::parse_integer(k, v, 1, 128)?,
                 "radius" => s.radius = num(k, v, 1e-6, 1e6)?,
                 "interleaved" => s.interleaved = on_off(k, v)?,
                 "reprojection" => s.reprojection = ReprojectMode::parse(k, v)?,
@@ -235,7 +309,7 @@ impl Settings {
                     }
                 }
                 "temporal" => s.temporal = on_off(k, v)?,
-                "history" => s.history = num(k, v, 1.0, 1024.0)? as u32,
+                "history" => s.history = super::parse_integer(k, v, 1, 1024)?,
                 "fresnel" => s.fresnel = on_off(k, v)?,
                 "falloff" => s.falloff = num(k, v, 0.0, 1.0)?,
                 "step_power" => s.step_power = num(k, v, 1.0, 4.0)?,
@@ -243,13 +317,13 @@ impl Settings {
                 "reject_a" => s.reject_a = num(k, v, -1.0, 1.0)?,
                 "reject_b" => s.reject_b = num(k, v, -1.0, 1.0)?,
                 "blur" => s.blur = on_off(k, v)?,
-                "blur_radius" => s.blur_radius = num(k, v, 0.0, 16.0)? as u32,
+                "blur_radius" => s.blur_radius = super::parse_integer(k, v, 0, 16)?,
                 "reject_depth" => s.reject_depth = num(k, v, 1e-4, 1.0)?,
                 "reject_normal" => s.reject_normal = num(k, v, -1.0, 1.0)?,
                 _ => {
                     return Err(format!(
-                        "unknown setting '{k}' (known: {})",
-                        KEYS.join(", ")
+                        "unknown setting '{k}' (known: quality, samples, {})",
+                        super::keys(SETTINGS)
                     ));
                 }
             }

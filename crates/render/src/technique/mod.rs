@@ -86,6 +86,223 @@ pub struct TechniqueDesc {
     /// One line for `--help` and the README.
     pub summary: &'static str,
     pub create: CreateFn,
+    /// Every `--set` key with its documented range and default (what the viewer shows as
+    /// sliders, checkboxes and lists; a test checks that the parser agrees with it).
+    pub settings: &'static [Setting],
+    /// Named `quality` presets (`--set quality=NAME`): the settings each one stands for.
+    pub presets: &'static [Preset],
+}
+
+/// The values a setting takes.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum SettingKind {
+    /// A number in `lo..=hi`; `integer`: whole numbers only; `log`: best shown on a log scale.
+    Number {
+        lo: f32,
+        hi: f32,
+        integer: bool,
+        log: bool,
+    },
+    /// on | off.
+    Toggle,
+    /// One of the listed words.
+    Choice(&'static [&'static str]),
+}
+
+/// One `--set key=value` setting of a technique.
+#[derive(Clone, Copy, Debug)]
+pub struct Setting {
+    pub key: &'static str,
+    pub kind: SettingKind,
+    /// The default, as typed after `key=`.
+    pub default: &'static str,
+    /// One line: what it does (units where it has them).
+    pub doc: &'static str,
+}
+
+impl Setting {
+    /// A number setting.
+    pub const fn number(
+        key: &'static str,
+        lo: f32,
+        hi: f32,
+        default: &'static str,
+        doc: &'static str,
+    ) -> Self {
+        let kind = SettingKind::Number {
+            lo,
+            hi,
+            integer: false,
+            log: false,
+        };
+        Setting {
+            key,
+            kind,
+            default,
+            doc,
+        }
+    }
+
+    /// A whole-number setting.
+    pub const fn integer(
+        key: &'static str,
+        lo: f32,
+        hi: f32,
+        default: &'static str,
+        doc: &'static str,
+    ) -> Self {
+        let kind = SettingKind::Number {
+            lo,
+            hi,
+            integer: true,
+            log: false,
+        };
+        Setting {
+            key,
+            kind,
+            default,
+            doc,
+        }
+    }
+
+    /// A number setting best shown on a log scale (radii, distances).
+    pub const fn log(
+        key: &'static str,
+        lo: f32,
+        hi: f32,
+        default: &'static str,
+        doc: &'static str,
+    ) -> Self {
+        let kind = SettingKind::Number {
+            lo,
+            hi,
+            integer: false,
+            log: true,
+        };
+        Setting {
+            key,
+            kind,
+            default,
+            doc,
+        }
+    }
+
+    pub const fn toggle(key: &'static str, default: &'static str, doc: &'static str) -> Self {
+        Setting {
+            key,
+            kind: SettingKind::Toggle,
+            default,
+            doc,
+        }
+    }
+
+    pub const fn choice(
+        key: &'static str,
+        options: &'static [&'static str],
+        default: &'static str,
+        doc: &'static str,
+    ) -> Self {
+        Setting {
+            key,
+            kind: SettingKind::Choice(options),
+            default,
+            doc,
+        }
+    }
+
+    /// Checks a typed value against the documented range; the technique's parser has the
+    /// last word (some settings constrain each other).
+    pub fn check(&self, value: &str) -> Result<(), String> {
+        match self.kind {
+            SettingKind::Number {
+                lo, hi, integer, ..
+            } => {
+                let x = parse_number(self.key, value, lo, hi)?;
+                if integer && x.fract() != 0.0 {
+                    return Err(format!("{}={value}: expected a whole number", self.key));
+                }
+                Ok(())
+            }
+            SettingKind::Toggle => parse_on_off(self.key, value).map(|_| ()),
+            SettingKind::Choice(options) => {
+                if options.contains(&value) {
+                    Ok(())
+                } else {
+                    Err(format!(
+                        "{}={value}: expected {}",
+                        self.key,
+                        options.join(", ")
+                    ))
+                }
+            }
+        }
+    }
+}
+
+/// A named set of settings (`quality=NAME`).
+#[derive(Clone, Copy, Debug)]
+pub struct Preset {
+    pub name: &'static str,
+    pub set: &'static [(&'static str, &'static str)],
+}
+
+/// Replaces `quality=NAME` in `params.set` by the preset's settings, placed first so that
+/// explicit settings (and `--samples`, `--radius`) refine it. A technique without presets keeps
+/// the key (and rejects it as unknown).
+pub fn expand_presets(
+    desc: &TechniqueDesc,
+    params: &TechniqueParams,
+) -> Result<TechniqueParams, RenderError> {
+    if desc.presets.is_empty() {
+        return Ok(params.clone());
+    }
+    let mut preset_set = Vec::new();
+    let mut rest = Vec::new();
+    for (k, v) in &params.set {
+        if k != "quality" {
+            rest.push((k.clone(), v.clone()));
+            continue;
+        }
+        let preset =
+            desc.presets
+                .iter()
+                .find(|p| p.name == v)
+                .ok_or_else(|| RenderError::Setting {
+                    technique: desc.name.into(),
+                    msg: format!(
+                        "quality={v}: expected {}",
+                        desc.presets
+                            .iter()
+                            .map(|p| p.name)
+                            .collect::<Vec<_>>()
+                            .join(", ")
+                    ),
+                })?;
+        preset_set.clear();
+        for (pk, pv) in preset.set {
+            // `--samples` is `steps` for the horizon techniques.
+            let overridden = (matches!(*pk, "samples" | "steps") && params.samples.is_some())
+                || (*pk == "radius" && params.radius.is_some());
+            if !overridden {
+                preset_set.push((pk.to_string(), pv.to_string()));
+            }
+        }
+    }
+    preset_set.extend(rest);
+    Ok(TechniqueParams {
+        samples: params.samples,
+        radius: params.radius,
+        set: preset_set,
+    })
+}
+
+/// The keys of a settings table, for error messages.
+pub fn keys(settings: &[Setting]) -> String {
+    settings
+        .iter()
+        .map(|s| s.key)
+        .collect::<Vec<_>>()
+        .join(", ")
 }
 
 /// Every technique, in the order shown to users.
@@ -172,6 +389,15 @@ pub fn parse_number(key: &str, v: &str, lo: f32, hi: f32) -> Result<f32, String>
         return Err(format!("{key}={v}: must be in {lo}..={hi}"));
     }
     Ok(x)
+}
+
+/// `key=whole number` within `lo..=hi`.
+pub fn parse_integer(key: &str, v: &str, lo: u32, hi: u32) -> Result<u32, String> {
+    let x = parse_number(key, v, lo as f32, hi as f32)?;
+    if x.fract() != 0.0 {
+        return Err(format!("{key}={v}: expected a whole number"));
+    }
+    Ok(x as u32)
 }
 
 /// Records one full-screen compute dispatch (8×8 groups over `size`) as its own timed pass.

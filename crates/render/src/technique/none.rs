@@ -20,6 +20,8 @@ pub const DESC: TechniqueDesc = TechniqueDesc {
     name: "none",
     summary: "no occlusion: ao = 1, unoccluded SH environment irradiance, no indirect light",
     create,
+    settings: &[],
+    presets: &[],
 };
 
 struct NoneTechnique {

@@ -8,7 +8,7 @@
 //! `indirect-irradiance`.
 
 use super::ssdo::{Pattern, check_sampling, interleaved_sets};
-use super::{Technique, TechniqueContext, TechniqueDesc, TechniqueParams};
+use super::{Preset, Setting, Technique, TechniqueContext, TechniqueDesc, TechniqueParams};
 use crate::RenderError;
 use crate::gpu_env::GpuEnvironment;
 use crate::passes::bilateral_blur::{BilateralBlur, BlurChain, BlurSettings};
@@ -36,12 +36,16 @@ pub const S3HO: TechniqueDesc = TechniqueDesc {
     name: "s3ho",
     summary: "screen-space SH occlusion (16 coefficients), SH lighting of environment and lights, indirect extension",
     create: create_s3ho,
+    settings: SETTINGS,
+    presets: PRESETS,
 };
 
 pub const SSBN: TechniqueDesc = TechniqueDesc {
     name: "ssbn",
     summary: "screen-space bent normals and cones: environment through the cone around the bent normal",
     create: create_ssbn,
+    settings: SETTINGS,
+    presets: PRESETS,
 };
 
 /// Settings of `s3ho` and `ssbn`.
@@ -88,17 +92,61 @@ impl Default for Settings {
     }
 }
 
-pub const KEYS: &[&str] = &[
-    "indirect",
-    "steps",
-    "lambda",
-    "blur",
-    "pattern",
-    "fade",
-    "strength",
-    "distance_clamp",
-    "samples",
-    "radius",
+/// Every `--set` key with its range and default (the fields of [`Settings`]).
+pub const SETTINGS: &[Setting] = &[
+    Setting::integer("samples", 1.0, 256.0, "16", "directions per pixel"),
+    Setting::log("radius", 1e-6, 1e6, "0.5", "hemisphere radius d_max (m)"),
+    Setting::integer("steps", 1.0, 16.0, "2", "ray-march steps per direction"),
+    Setting::number(
+        "lambda",
+        0.0,
+        1000.0,
+        "0",
+        "smooth visibility 1 − 1/(1 + λd), 0 = off",
+    ),
+    Setting::toggle("indirect", "on", "the indirect extension (s3ho)"),
+    Setting::choice(
+        "pattern",
+        &["chapter", "interleaved"],
+        "interleaved",
+        "sample sets",
+    ),
+    Setting::number(
+        "fade",
+        0.0,
+        1.0,
+        "0.75",
+        "blocker fade start (fraction of d_max)",
+    ),
+    Setting::number("strength", 0.0, 16.0, "1", "indirect strength"),
+    Setting::log(
+        "distance_clamp",
+        0.0,
+        1e6,
+        "0.1",
+        "smallest sender distance in 1/d² (m)",
+    ),
+    Setting::toggle("blur", "on", "bilateral filter"),
+];
+
+/// `quality` presets: directions per pixel.
+pub const PRESETS: &[Preset] = &[
+    Preset {
+        name: "low",
+        set: &[("samples", "8")],
+    },
+    Preset {
+        name: "medium",
+        set: &[("samples", "16")],
+    },
+    Preset {
+        name: "high",
+        set: &[("samples", "32")],
+    },
+    Preset {
+        name: "ultra",
+        set: &[("samples", "64")],
+    },
 ];
 
 impl Settings {
@@ -114,18 +162,18 @@ impl Settings {
             match k.as_str() {
                 "indirect" => s.indirect = super::parse_on_off(k, v)?,
                 "blur" => s.blur = super::parse_on_off(k, v)?,
-                "steps" => s.steps = super::parse_number(k, v, 1.0, 16.0)? as u32,
+                "steps" => s.steps = super::parse_integer(k, v, 1, 16)?,
                 "lambda" => s.lambda = super::parse_number(k, v, 0.0, 1000.0)?,
                 "fade" => s.fade = super::parse_number(k, v, 0.0, 1.0)?,
                 "strength" => s.strength = super::parse_number(k, v, 0.0, 16.0)?,
                 "distance_clamp" => s.distance_clamp = super::parse_number(k, v, 0.0, 1e6)?,
-                "samples" => s.samples = super::parse_number(k, v, 1.0, 256.0)? as u32,
+                "samples" => s.samples = super::parse_integer(k, v, 1, 256)?,
                 "radius" => s.radius = super::parse_number(k, v, 1e-6, 1e6)?,
                 "pattern" => s.pattern = Pattern::parse(v)?,
                 _ => {
                     return Err(format!(
-                        "unknown setting '{k}' (known: {})",
-                        KEYS.join(", ")
+                        "unknown setting '{k}' (known: quality, {})",
+                        super::keys(SETTINGS)
                     ));
                 }
             }

@@ -8,7 +8,7 @@
 //! `indirect-irradiance`. `ssao` stops after `resolve`, with A = pow(max(0, 1 − scale·S), contrast)
 //! in place of the visibility. Specular light is never occluded (composite.wgsl).
 
-use super::{Technique, TechniqueContext, TechniqueDesc, TechniqueParams};
+use super::{Preset, Setting, Technique, TechniqueContext, TechniqueDesc, TechniqueParams};
 use crate::RenderError;
 use crate::gpu_env::GpuEnvironment;
 use crate::passes::bilateral_blur::{BilateralBlur, BlurChain, BlurSettings};
@@ -36,12 +36,16 @@ pub const SSAO: TechniqueDesc = TechniqueDesc {
     name: "ssao",
     summary: "normal-oriented hemisphere SSAO (same samples and visibility test as ssdo): ao × SH irradiance",
     create: create_ssao,
+    settings: SETTINGS,
+    presets: PRESETS,
 };
 
 pub const SSDO: TechniqueDesc = TechniqueDesc {
     name: "ssdo",
     summary: "screen-space directional occlusion of environment and lights, plus one indirect bounce",
     create: create_ssdo,
+    settings: SETTINGS,
+    presets: PRESETS,
 };
 
 /// How the environment term is formed.
@@ -148,24 +152,90 @@ impl Default for Settings {
     }
 }
 
-/// Every `--set` key, for error messages and the README.
-pub const KEYS: &[&str] = &[
-    "mode",
-    "bounce",
-    "pattern",
-    "lod",
-    "contrast",
-    "scale",
-    "strength",
-    "distance_clamp",
-    "fade",
-    "light_samples",
-    "blur",
-    "blur_radius",
-    "blur_depth",
-    "blur_normal",
-    "samples",
-    "radius",
+/// Every `--set` key with its range and default (the fields of [`Settings`]).
+pub const SETTINGS: &[Setting] = &[
+    Setting::integer("samples", 1.0, 256.0, "16", "directions per pixel N"),
+    Setting::log("radius", 1e-6, 1e6, "0.5", "hemisphere radius R (m)"),
+    Setting::choice(
+        "mode",
+        &["visibility", "radiance"],
+        "visibility",
+        "what a direction carries",
+    ),
+    Setting::toggle("bounce", "on", "one indirect bounce from occluders (ssdo)"),
+    Setting::choice(
+        "pattern",
+        &["chapter", "interleaved"],
+        "interleaved",
+        "sample sets",
+    ),
+    Setting::number("lod", 0.0, 16.0, "5", "environment mip read per sample"),
+    Setting::number("contrast", 0.1, 8.0, "1", "exponent on the visibility"),
+    Setting::number(
+        "scale",
+        0.0,
+        4.0,
+        "1",
+        "SSAO's factor on the occluded fraction",
+    ),
+    Setting::number("strength", 0.0, 16.0, "1", "bounce strength"),
+    Setting::log(
+        "distance_clamp",
+        0.0,
+        1e6,
+        "0.1",
+        "smallest sender distance in 1/d² (m)",
+    ),
+    Setting::number(
+        "fade",
+        0.0,
+        1.0,
+        "0.75",
+        "occluder fade start (fraction of R)",
+    ),
+    Setting::integer(
+        "light_samples",
+        0.0,
+        64.0,
+        "8",
+        "points per light segment (0: off)",
+    ),
+    Setting::toggle("blur", "on", "geometry-aware blur"),
+    Setting::integer("blur_radius", 0.0, 16.0, "4", "blur half width (pixels)"),
+    Setting::log(
+        "blur_depth",
+        1e-4,
+        10.0,
+        "0.01",
+        "blur depth tolerance (× view depth)",
+    ),
+    Setting::number(
+        "blur_normal",
+        0.0,
+        128.0,
+        "8",
+        "exponent on the normals' cosine in the blur",
+    ),
+];
+
+/// `quality` presets: directions per pixel.
+pub const PRESETS: &[Preset] = &[
+    Preset {
+        name: "low",
+        set: &[("samples", "8")],
+    },
+    Preset {
+        name: "medium",
+        set: &[("samples", "16")],
+    },
+    Preset {
+        name: "high",
+        set: &[("samples", "32")],
+    },
+    Preset {
+        name: "ultra",
+        set: &[("samples", "64")],
+    },
 ];
 
 impl Settings {
@@ -196,16 +266,16 @@ impl Settings {
                 "strength" => s.strength = super::parse_number(k, v, 0.0, 16.0)?,
                 "distance_clamp" => s.distance_clamp = super::parse_number(k, v, 0.0, 1e6)?,
                 "fade" => s.fade = super::parse_number(k, v, 0.0, 1.0)?,
-                "light_samples" => s.light_samples = super::parse_number(k, v, 0.0, 64.0)? as u32,
-                "blur_radius" => s.blur_radius = super::parse_number(k, v, 0.0, 16.0)? as u32,
+                "light_samples" => s.light_samples = super::parse_integer(k, v, 0, 64)?,
+                "blur_radius" => s.blur_radius = super::parse_integer(k, v, 0, 16)?,
                 "blur_depth" => s.blur_depth = super::parse_number(k, v, 1e-4, 10.0)?,
                 "blur_normal" => s.blur_normal = super::parse_number(k, v, 0.0, 128.0)?,
-                "samples" => s.samples = super::parse_number(k, v, 1.0, 256.0)? as u32,
+                "samples" => s.samples = super::parse_integer(k, v, 1, 256)?,
                 "radius" => s.radius = super::parse_number(k, v, 1e-6, 1e6)?,
                 _ => {
                     return Err(format!(
-                        "unknown setting '{k}' (known: {})",
-                        KEYS.join(", ")
+                        "unknown setting '{k}' (known: quality, {})",
+                        super::keys(SETTINGS)
                     ));
                 }
             }

@@ -1,0 +1,216 @@
+//! Display (compute): one image — the `final` frame, an AOV or a technique's own image — or two
+//! side by side with a divider (an A/B view), turned into sRGB display bytes: tonemapped colour,
+//! normals as colours, scalars in false colour. See display.wgsl. The viewer shows and saves
+//! [`DisplayPass::output`]; anyone can use it to look at a float image.
+
+use crate::aov::Aov;
+use crate::frame::Tonemap;
+use crate::util;
+use bytemuck::{Pod, Zeroable};
+use wgpu::BindingResource as R;
+
+pub const SHADER: &str = include_str!("display.wgsl");
+
+pub fn source() -> String {
+    util::compose(&[util::TONEMAP_OPS_WGSL, SHADER])
+}
+
+/// The output's format: sRGB-encoded bytes in a unorm texture (storage textures cannot be sRGB);
+/// sample it through [`DisplayPass::srgb_view`] to get linear values back.
+pub const DISPLAY_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
+
+/// How one side's image becomes display bytes (display.wgsl's modes).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum DisplayMode {
+    /// Already display bytes (the `final` image).
+    Encoded = 0,
+    /// Linear radiance or irradiance: exposure, tonemap, sRGB.
+    Colour = 1,
+    /// Linear values in [0, 1] (albedo): sRGB.
+    Linear = 2,
+    /// Unit vectors: 0.5 + 0.5 n.
+    Normal = 3,
+    /// The red channel in false colour over [lo, hi].
+    Scalar = 4,
+    /// Red and green as signed values in [−hi, hi].
+    Vector = 5,
+}
+
+impl DisplayMode {
+    /// The natural mode of an AOV.
+    pub fn for_aov(aov: Aov) -> Self {
+        match aov {
+            Aov::Final => DisplayMode::Encoded,
+            Aov::Albedo => DisplayMode::Linear,
+            Aov::Normal => DisplayMode::Normal,
+            Aov::Depth | Aov::Ao => DisplayMode::Scalar,
+            Aov::Motion => DisplayMode::Vector,
+            Aov::Radiance
+            | Aov::EnvIrradiance
+            | Aov::LightIrradiance
+            | Aov::IndirectIrradiance
+            | Aov::Diffuse
+            | Aov::Specular
+            | Aov::DirectRadiance
+            | Aov::Lambertian => DisplayMode::Colour,
+        }
+    }
+}
+
+/// One side of the display: an image (any float-sampled 2D texture of the display's size or
+/// larger), its mode, and whether its alpha is surface coverage.
+pub struct DisplaySide<'a> {
+    pub view: &'a wgpu::TextureView,
+    pub mode: DisplayMode,
+    pub coverage: bool,
+}
+
+/// Exposure, tonemap and false-colour range shared by both sides.
+#[derive(Clone, Copy, Debug)]
+pub struct DisplayPost {
+    pub exposure: f32,
+    pub tonemap: Tonemap,
+    /// Range of [`DisplayMode::Scalar`] (lo, hi); `hi` is the scale of [`DisplayMode::Vector`].
+    pub range: (f32, f32),
+}
+
+/// `DisplayParams` in display.wgsl.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable)]
+pub struct DisplayParams {
+    pub size: [u32; 4],
+    pub mode: [u32; 4],
+    pub range: [f32; 4],
+}
+
+pub struct DisplayPass {
+    pipeline: wgpu::ComputePipeline,
+    layout: wgpu::BindGroupLayout,
+    params: wgpu::Buffer,
+    /// Display bytes (rgba8unorm, sRGB-encoded), COPY_SRC for screenshots.
+    pub output: wgpu::Texture,
+    /// [`Self::output`] seen as `Rgba8UnormSrgb`: sampling it gives linear colour.
+    pub srgb_view: wgpu::TextureView,
+    storage_view: wgpu::TextureView,
+    size: (u32, u32),
+}
+
+impl DisplayPass {
+    pub fn new(device: &wgpu::Device, size: (u32, u32)) -> Self {
+        let c = wgpu::ShaderStages::COMPUTE;
+        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("display"),
+            entries: &[
+                util::uniform(0, c),
+                util::texture(1, c, false),
+                util::texture(2, c, false),
+                util::storage_texture(3, DISPLAY_FORMAT),
+            ],
+        });
+        let pipeline = util::compute_pipeline(device, "display", &source(), "main", &layout);
+        let params = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("display params"),
+            size: std::mem::size_of::<DisplayParams>() as u64,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let (output, srgb_view, storage_view) = output_texture(device, size);
+        DisplayPass {
+            pipeline,
+            layout,
+            params,
+            output,
+            srgb_view,
+            storage_view,
+            size,
+        }
+    }
+
+    pub fn size(&self) -> (u32, u32) {
+        self.size
+    }
+
+    /// Makes a new output of `size` (the old one is released when no longer referenced).
+    pub fn resize(&mut self, device: &wgpu::Device, size: (u32, u32)) {
+        if size != self.size {
+            (self.output, self.srgb_view, self.storage_view) = output_texture(device, size);
+            self.size = size;
+        }
+    }
+
+    /// Records the display of `a`, or of `a` left of column `split` and `b` right of it.
+    pub fn encode(
+        &self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        encoder: &mut wgpu::CommandEncoder,
+        a: &DisplaySide,
+        b: Option<(&DisplaySide, u32)>,
+        post: DisplayPost,
+    ) {
+        let (w, h) = self.size;
+        let (b_side, split) = match b {
+            Some((side, split)) => (side, split.min(w)),
+            None => (a, w),
+        };
+        let coverage = a.coverage as u32 | ((b_side.coverage as u32) << 1);
+        let p = DisplayParams {
+            size: [w, h, split, 1],
+            mode: [
+                a.mode as u32,
+                b_side.mode as u32,
+                post.tonemap.index(),
+                coverage,
+            ],
+            range: [post.exposure, post.range.0, post.range.1, 0.0],
+        };
+        queue.write_buffer(&self.params, 0, bytemuck::bytes_of(&p));
+        let bind_group = util::bind_group(
+            device,
+            "display",
+            &self.layout,
+            &[
+                (0, self.params.as_entire_binding()),
+                (1, R::TextureView(a.view)),
+                (2, R::TextureView(b_side.view)),
+                (3, R::TextureView(&self.storage_view)),
+            ],
+        );
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some("display"),
+            timestamp_writes: None,
+        });
+        pass.set_pipeline(&self.pipeline);
+        pass.set_bind_group(0, &bind_group, &[]);
+        let (gx, gy) = util::groups_8x8(self.size);
+        pass.dispatch_workgroups(gx, gy, 1);
+    }
+}
+
+fn output_texture(
+    device: &wgpu::Device,
+    size: (u32, u32),
+) -> (wgpu::Texture, wgpu::TextureView, wgpu::TextureView) {
+    let texture = device.create_texture(&wgpu::TextureDescriptor {
+        label: Some("display"),
+        size: wgpu::Extent3d {
+            width: size.0.max(1),
+            height: size.1.max(1),
+            depth_or_array_layers: 1,
+        },
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format: DISPLAY_FORMAT,
+        usage: wgpu::TextureUsages::STORAGE_BINDING
+            | wgpu::TextureUsages::TEXTURE_BINDING
+            | wgpu::TextureUsages::COPY_SRC,
+        view_formats: &[wgpu::TextureFormat::Rgba8UnormSrgb],
+    });
+    let srgb = texture.create_view(&wgpu::TextureViewDescriptor {
+        format: Some(wgpu::TextureFormat::Rgba8UnormSrgb),
+        ..Default::default()
+    });
+    let storage = texture.create_view(&Default::default());
+    (texture, srgb, storage)
+}

@@ -1,0 +1,155 @@
+//! The settings tables (what the viewer and README show) agree with the parsers (what
+//! `--set key=value` accepts): every default, bound and choice is accepted, values outside the
+//! documented range and unknown words are rejected, and the defaults parse to `Default`.
+//! CPU only.
+
+use nearfield_render::TechniqueParams;
+use nearfield_render::technique::{self, SettingKind, TechniqueDesc, horizon, s3ho, ssdo};
+
+type Parse = fn(&TechniqueParams) -> Result<String, String>;
+
+fn parsers() -> Vec<(&'static TechniqueDesc, Parse, String)> {
+    vec![
+        (
+            &ssdo::SSDO,
+            |p| ssdo::Settings::from_params(p).map(|s| format!("{s:?}")),
+            format!("{:?}", ssdo::Settings::default()),
+        ),
+        (
+            &s3ho::S3HO,
+            |p| s3ho::Settings::from_params(p).map(|s| format!("{s:?}")),
+            format!("{:?}", s3ho::Settings::default()),
+        ),
+        (
+            &horizon::HBIL,
+            |p| horizon::Settings::from_params(p).map(|s| format!("{s:?}")),
+            format!("{:?}", horizon::Settings::default()),
+        ),
+    ]
+}
+
+fn with(key: &str, value: &str) -> TechniqueParams {
+    TechniqueParams {
+        set: vec![(key.to_string(), value.to_string())],
+        ..Default::default()
+    }
+}
+
+#[test]
+fn every_technique_with_settings_has_a_table() {
+    for desc in technique::REGISTRY {
+        let has_table = !desc.settings.is_empty();
+        assert_eq!(
+            has_table,
+            desc.name != "none",
+            "{}: settings table present = {has_table}",
+            desc.name
+        );
+    }
+}
+
+#[test]
+fn defaults_in_the_table_parse_to_the_default_settings() {
+    for (desc, parse, default) in parsers() {
+        let all = TechniqueParams {
+            set: desc
+                .settings
+                .iter()
+                .map(|s| (s.key.to_string(), s.default.to_string()))
+                .collect(),
+            ..Default::default()
+        };
+        assert_eq!(parse(&all).unwrap(), default, "{}", desc.name);
+        for s in desc.settings {
+            s.check(s.default).unwrap();
+        }
+    }
+}
+
+#[test]
+fn parser_accepts_exactly_the_documented_range() {
+    // reject_a < reject_b is a constraint between two settings, not a range.
+    let paired = |key: &str| key == "reject_a" || key == "reject_b";
+    for (desc, parse, _) in parsers() {
+        for s in desc.settings {
+            let values: Vec<String> = match s.kind {
+                SettingKind::Number {
+                    lo, hi, integer, ..
+                } => {
+                    let mut v = vec![
+                        lo.to_string(),
+                        hi.to_string(),
+                        (lo - 1.0).to_string(),
+                        (hi * 2.0 + 1.0).to_string(),
+                        "nan".into(),
+                        "x".into(),
+                    ];
+                    if integer {
+                        v.push((lo + 0.5).to_string());
+                    }
+                    v
+                }
+                SettingKind::Toggle => vec!["on".into(), "off".into(), "maybe".into()],
+                SettingKind::Choice(options) => {
+                    let mut v: Vec<String> = options.iter().map(|o| o.to_string()).collect();
+                    v.push("bogus".into());
+                    v
+                }
+            };
+            for v in values {
+                let spec_ok = s.check(&v).is_ok();
+                let parsed = parse(&with(s.key, &v));
+                if paired(s.key) && spec_ok {
+                    continue;
+                }
+                assert_eq!(
+                    parsed.is_ok(),
+                    spec_ok,
+                    "{} {}={v}: table says {spec_ok}, parser says {parsed:?}",
+                    desc.name,
+                    s.key
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn presets_name_settings_of_the_table_with_valid_values() {
+    for desc in technique::REGISTRY {
+        for p in desc.presets {
+            for (k, v) in p.set {
+                let s = desc
+                    .settings
+                    .iter()
+                    .find(|s| s.key == *k)
+                    .unwrap_or_else(|| panic!("{} preset {}: unknown {k}", desc.name, p.name));
+                s.check(v).unwrap();
+            }
+        }
+    }
+}
+
+#[test]
+fn quality_expands_first_and_explicit_settings_refine_it() {
+    let params = TechniqueParams {
+        samples: Some(3),
+        set: vec![
+            ("slices".into(), "5".into()),
+            ("quality".into(), "ultra".into()),
+        ],
+        ..Default::default()
+    };
+    let hbil = technique::expand_presets(&horizon::HBIL, &params).unwrap();
+    let s = horizon::Settings::from_params(&hbil).unwrap();
+    // ultra = 8 slices, 32 steps; the explicit slices=5 and --samples 3 win.
+    assert_eq!((s.slices, s.steps), (5, 3));
+    let ssdo = technique::expand_presets(&ssdo::SSDO, &with("quality", "high")).unwrap();
+    assert_eq!(ssdo::Settings::from_params(&ssdo).unwrap().samples, 32);
+    let bad = technique::expand_presets(&ssdo::SSDO, &with("quality", "insane"));
+    assert!(
+        bad.unwrap_err()
+            .to_string()
+            .contains("low, medium, high, ultra")
+    );
+}
