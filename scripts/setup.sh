@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs what a fresh Debian/Ubuntu machine lacks to build and run nearfield:
 # - a Vulkan driver: Mesa's lavapipe (software rasterizer) when no Vulkan ICD is installed;
+# - a virtual X server (xvfb, xauth) for the viewer's window tests when xvfb-run is missing;
 # - a C++ compiler (nv-flip, the FLIP metric, builds its C++ core) when none is installed;
 # - a Rust toolchain through rustup when cargo is missing.
 # Idempotent: does nothing when all are present.
@@ -21,6 +22,13 @@ if ! has_vulkan_driver; then
     export DEBIAN_FRONTEND=noninteractive
     as_root apt-get update -qq
     as_root apt-get install -y -qq --no-install-recommends mesa-vulkan-drivers libvulkan1 >/dev/null
+fi
+
+if ! command -v xvfb-run >/dev/null 2>&1; then
+    echo "setup: no xvfb-run found; installing xvfb and xauth (the viewer's tests open a window)"
+    export DEBIAN_FRONTEND=noninteractive
+    as_root apt-get update -qq
+    as_root apt-get install -y -qq --no-install-recommends xvfb xauth >/dev/null
 fi
 
 if ! command -v c++ >/dev/null 2>&1; then

@@ -1,5 +1,5 @@
-//! `nearfield`: render, benchmark (and, with later components, compare and view) screen-space
-//! near-field light transport.
+//! `nearfield`: render, compute references, compare, benchmark and view screen-space near-field
+//! light transport.
 //!
 //! Exit status: 0 success, 2 bad arguments or unreadable input (one line on stderr), 1 other
 //! failures.
@@ -9,6 +9,7 @@ mod compare;
 mod options;
 mod reference;
 mod render;
+mod view;
 
 use clap::{Parser, Subcommand};
 use std::io::Write;
@@ -18,7 +19,7 @@ use std::process::ExitCode;
 #[command(
     name = "nearfield",
     version,
-    about = "Screen-space near-field light transport: render, compare, benchmark"
+    about = "Screen-space near-field light transport: render, compare, benchmark, view"
 )]
 struct Cli {
     #[command(subcommand)]
@@ -35,6 +36,8 @@ enum Command {
     Compare(compare::CompareArgs),
     /// Time every pass of one or more techniques (median and p90 over many frames).
     Bench(bench::BenchArgs),
+    /// Interactive viewer: every technique, setting and AOV live, A/B split, timings.
+    View(view::ViewArgs),
 }
 
 /// An error caused by what the user typed or loaded: exit status 2.
@@ -123,6 +126,7 @@ fn main() -> ExitCode {
         Command::Reference(a) => reference::run(a),
         Command::Compare(a) => compare::run(a),
         Command::Bench(a) => bench::run(a),
+        Command::View(a) => view::run(a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -71,6 +71,7 @@ fn exr_with(dir: &Path, name: &str, value: f32) -> String {
 
 #[test]
 fn every_bad_input_exits_2_with_one_line() {
+    let view_script = write(&scratch(), "view.txt", b"aov ao\nteleport home\n");
     let d = scratch();
     let uri = triangle_data_uri();
     let good_gltf = write(&d, "good.gltf", gltf(&uri, "").as_bytes());
@@ -173,6 +174,18 @@ fn every_bad_input_exits_2_with_one_line() {
         (vec!["render".into(), "--size".into(), "16x16".into(), "--orbit".into(), "720".into()], "--orbit"),
         (vec!["bench".into(), "--size".into(), "16x16".into(), "--methods".into(), "gtao".into(), "--orbit".into(), "inf".into()], "--orbit"),
         (vec!["compare".into(), "--size".into(), "16x16".into(), "--methods".into(), "hbil".into(), "--orbit".into(), "-999".into()], "--orbit"),
+        // The viewer checks everything typed before a window opens.
+        (vec!["view".into(), "--frames".into(), "0".into()], "--frames 0"),
+        (vec!["view".into(), "--screenshot".into(), "v.png".into()], "needs --frames"),
+        (vec!["view".into(), "--frames".into(), "2".into(), "--screenshot".into(), "v.jpg".into()], ".png"),
+        (vec!["view".into(), "--script".into(), "/nonexistent/view.txt".into()], "--script"),
+        (vec!["view".into(), "--script".into(), view_script.clone()], "line 2: unknown command 'teleport'"),
+        (vec!["view".into(), "--method".into(), "magic".into()], "unknown technique"),
+        (vec!["view".into(), "--split-with".into(), "ssdo:samples=0".into()], "samples=0"),
+        (vec!["view".into(), "--method".into(), "hbil".into(), "--set".into(), "quality=insane".into()], "low, medium, high, ultra"),
+        (vec!["view".into(), "--method".into(), "ssdo".into(), "--radius".into(), "inf".into()], "radius=inf"),
+        (vec!["view".into(), "--size".into(), "0x0".into()], "--size"),
+        (vec!["view".into(), "/nonexistent/scene.glb".into()], "scene.glb"),
     ];
     for (args, needle) in cases {
         let args: Vec<&str> = args.iter().map(String::as_str).collect();

@@ -1,4 +1,4 @@
-//! The GPU device: adapter selection and device creation (headless).
+//! The GPU device: adapter selection and device creation (headless, or for a window's surface).
 
 use crate::RenderError;
 
@@ -26,10 +26,27 @@ impl GpuContext {
     /// falls back to a software adapter (lavapipe, llvmpipe). `WGPU_BACKEND` restricts the
     /// backends searched. Validation layers are off unless `WGPU_VALIDATION=1`.
     pub fn new(adapter_filter: Option<&str>) -> Result<Self, RenderError> {
-        let mut desc = wgpu::InstanceDescriptor::new_without_display_handle();
-        desc.backends = wgpu::Backends::from_env().unwrap_or(wgpu::Backends::all());
+        Self::with_instance(Self::instance(None), adapter_filter, None)
+    }
+
+    /// The instance [`Self::new`] uses; with a display handle when windows will be shown on it.
+    pub fn instance(display: Option<Box<dyn wgpu::wgt::WgpuHasDisplayHandle>>) -> wgpu::Instance {
+        let mut desc = match display {
+            Some(d) => wgpu::InstanceDescriptor::new_with_display_handle(d),
+            None => wgpu::InstanceDescriptor::new_without_display_handle(),
+        };
+        desc.backends = desc_backends();
         desc.flags = wgpu::InstanceFlags::empty().with_env();
-        let instance = wgpu::Instance::new(desc);
+        wgpu::Instance::new(desc)
+    }
+
+    /// [`Self::new`] on a given instance; with `surface`, only adapters that can present to it
+    /// are considered.
+    pub fn with_instance(
+        instance: wgpu::Instance,
+        adapter_filter: Option<&str>,
+        surface: Option<&wgpu::Surface>,
+    ) -> Result<Self, RenderError> {
         let adapters = pollster::block_on(instance.enumerate_adapters(desc_backends()));
         let rank = |a: &wgpu::Adapter| match a.get_info().device_type {
             wgpu::DeviceType::DiscreteGpu => 0,
@@ -50,6 +67,7 @@ impl GpuContext {
                 Some(f) => a.get_info().name.to_lowercase().contains(&f.to_lowercase()),
                 None => true,
             })
+            .filter(|a| surface.is_none_or(|s| a.is_surface_supported(s)))
             .collect();
         candidates.sort_by_key(|a| (rank(a), backend_rank(a)));
         let adapter = candidates

@@ -111,9 +111,10 @@ impl Renderer {
             ctx.pack_half,
             technique_name,
             params,
-        )?;
+        );
         let profiler = GpuProfiler::new(&device, &queue, ctx.timestamps);
         scopes.pop()?;
+        let passes = passes?;
         let lights_off = vec![false; gpu_scene.scene_lights.len()];
         Ok(Renderer {
             device,
@@ -477,47 +478,11 @@ impl Renderer {
     /// Copies a whole texture into host memory (tightly packed rows).
     fn read_texture(
         &self,
-        mut encoder: wgpu::CommandEncoder,
+        encoder: wgpu::CommandEncoder,
         texture: &wgpu::Texture,
         texel_bytes: u32,
     ) -> Vec<u8> {
-        let (w, h) = self.settings.size;
-        let row = w * texel_bytes;
-        let padded =
-            row.div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT) * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
-        let buffer = self.device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("readback"),
-            size: (padded * h) as u64,
-            usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
-        encoder.copy_texture_to_buffer(
-            texture.as_image_copy(),
-            wgpu::TexelCopyBufferInfo {
-                buffer: &buffer,
-                layout: wgpu::TexelCopyBufferLayout {
-                    offset: 0,
-                    bytes_per_row: Some(padded),
-                    rows_per_image: Some(h),
-                },
-            },
-            wgpu::Extent3d {
-                width: w,
-                height: h,
-                depth_or_array_layers: 1,
-            },
-        );
-        self.queue.submit([encoder.finish()]);
-        let slice = buffer.slice(..);
-        slice.map_async(wgpu::MapMode::Read, |_| {});
-        let _ = self.device.poll(wgpu::PollType::wait_indefinitely());
-        let data = slice.get_mapped_range().expect("mapped");
-        let mut out = Vec::with_capacity((row * h) as usize);
-        for y in 0..h as usize {
-            let start = y * padded as usize;
-            out.extend_from_slice(&data[start..start + row as usize]);
-        }
-        out
+        crate::util::read_texture(&self.device, &self.queue, encoder, texture, texel_bytes)
     }
 }
 
@@ -575,15 +540,16 @@ impl Passes {
 /// Validation and out-of-memory error scopes around resource creation: a failure becomes a
 /// [`RenderError::Gpu`] instead of an uncaptured error.
 struct ErrorScopes {
-    oom: wgpu::ErrorScopeGuard,
+    // Dropped in this order (the reverse of pushing) when a `?` leaves before `pop`.
     validation: wgpu::ErrorScopeGuard,
+    oom: wgpu::ErrorScopeGuard,
 }
 
 impl ErrorScopes {
     fn push(device: &wgpu::Device) -> Self {
         let oom = device.push_error_scope(wgpu::ErrorFilter::OutOfMemory);
         let validation = device.push_error_scope(wgpu::ErrorFilter::Validation);
-        ErrorScopes { oom, validation }
+        ErrorScopes { validation, oom }
     }
 
     fn pop(self) -> Result<(), RenderError> {

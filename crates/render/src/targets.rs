@@ -130,7 +130,7 @@ impl FrameTargets {
             indirect_irradiance: t("indirect irradiance", HDR_FORMAT, storage),
             radiance: t("radiance", HDR_FORMAT, storage),
             final_ldr: t("final", FINAL_FORMAT, storage | U::COPY_SRC),
-            aov: t("aov", AOV_FORMAT, U::STORAGE_BINDING | U::COPY_SRC),
+            aov: t("aov", AOV_FORMAT, storage | U::COPY_SRC),
         }
     }
 }

@@ -209,6 +209,7 @@ fn output_texture(
     });
     let srgb = texture.create_view(&wgpu::TextureViewDescriptor {
         format: Some(wgpu::TextureFormat::Rgba8UnormSrgb),
+        usage: Some(wgpu::TextureUsages::TEXTURE_BINDING),
         ..Default::default()
     });
     let storage = texture.create_view(&Default::default());

@@ -1,0 +1,606 @@
+//! What the viewer shows, without the window: the scene, environment, camera, one or two
+//! renderers (an A/B view), the image being shown and the display pass. Every change — from
+//! the panel, a dropped file, the keyboard or a script — goes through [`Session::apply`], which
+//! validates it and leaves the session as it was when it fails.
+
+use super::technique_state::TechniqueState;
+use anyhow::Result;
+use nearfield_render::passes::display::{DisplayMode, DisplayPass, DisplayPost, DisplaySide};
+use nearfield_render::{Aov, GpuContext, RenderSettings, Renderer, Tonemap};
+use nearfield_scene::{Camera, CameraFile, EnvSource, Environment, Scene, SceneSource};
+use std::path::{Path, PathBuf};
+
+/// Which side of the A/B view.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Side {
+    A,
+    B,
+}
+
+/// One change to the session. The script syntax of each is given beside it.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Change {
+    /// `method [b] NAME[:key=value+…]`: switch technique (settings from the spec, others default).
+    Method(Side, String),
+    /// `set [b] KEY VALUE`: one setting of the side's technique.
+    Setting(Side, String, String),
+    /// `quality [b] NAME`: a quality preset.
+    Preset(Side, String),
+    /// `aov NAME`: the image shown (an AOV or one of the technique's own images).
+    Aov(String),
+    /// `size WxH`: the render resolution.
+    Size(u32, u32),
+    /// `scene SCENE`: a file or builtin:NAME (environment and camera become the scene's).
+    Scene(String),
+    /// `env ENV`: sky, constant:R,G,B or an .hdr/.exr file.
+    Env(String),
+    /// `env-intensity K`
+    EnvIntensity(f32),
+    /// `env-rotation DEG`
+    EnvRotation(f32),
+    /// `exposure EV`
+    Exposure(f32),
+    /// `tonemap aces|neutral|linear`
+    Tonemap(String),
+    /// `light INDEX on|off`
+    Light(usize, bool),
+    /// `split off` or `split FRACTION` (0..=1: where the divider is).
+    Split(Option<f32>),
+    /// `camera FILE.json` loads, `save-camera FILE.json` writes ([`Change::SaveCamera`]).
+    Camera(Camera),
+    LoadCamera(PathBuf),
+    SaveCamera(PathBuf),
+    /// `orbit DEG`: turns the camera about its target.
+    Orbit(f32),
+    /// `frame`: the scene's default view.
+    FrameScene,
+}
+
+/// Live GPU objects of the device (wgpu's registry), for leak checks.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct ResourceCounts {
+    pub buffers: usize,
+    pub textures: usize,
+    pub texture_views: usize,
+    pub bind_groups: usize,
+    pub pipelines: usize,
+}
+
+impl std::fmt::Display for ResourceCounts {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "buffers={} textures={} texture_views={} bind_groups={} pipelines={}",
+            self.buffers, self.textures, self.texture_views, self.bind_groups, self.pipelines
+        )
+    }
+}
+
+pub struct Session {
+    pub ctx: GpuContext,
+    pub scene_name: String,
+    pub scene: Scene,
+    /// The environment as typed (`sky`, `constant:…`, a path).
+    pub env_name: String,
+    pub env_intensity: f32,
+    pub env_rotation_deg: f32,
+    pub settings: RenderSettings,
+    pub camera: Camera,
+    pub a: TechniqueState,
+    pub b: TechniqueState,
+    /// Where the A/B divider is (fraction of the width); `None`: A only.
+    pub split: Option<f32>,
+    pub aov: String,
+    renderer_a: Renderer,
+    renderer_b: Option<Renderer>,
+    pub display: DisplayPass,
+    /// Per-pass GPU milliseconds of the last frame, per side.
+    pub timings: (Vec<(&'static str, f64)>, Vec<(&'static str, f64)>),
+}
+
+/// Everything a session starts from.
+pub struct Start {
+    pub scene_name: String,
+    pub scene: Scene,
+    pub env_name: String,
+    pub env: Environment,
+    pub camera: Camera,
+    pub settings: RenderSettings,
+    pub a: TechniqueState,
+    pub b: Option<TechniqueState>,
+    pub aov: String,
+}
+
+impl Session {
+    pub fn new(ctx: GpuContext, start: Start) -> Result<Self> {
+        // A GPU error the session did not catch is reported, not fatal: the viewer stays up.
+        ctx.device
+            .on_uncaptured_error(std::sync::Arc::new(|e: nearfield_render::wgpu::Error| {
+                let msg = e.to_string().replace('\n', " ");
+                eprintln!("nearfield: view: GPU error: {msg}");
+            }));
+        let renderer_a = Renderer::new(
+            &ctx,
+            &start.scene,
+            &start.env,
+            start.camera,
+            start.a.name(),
+            &start.a.params(),
+            start.settings,
+        )?;
+        let display = DisplayPass::new(&ctx.device, start.settings.size);
+        let mut s = Session {
+            scene_name: start.scene_name,
+            env_name: start.env_name,
+            env_intensity: start.env.intensity,
+            env_rotation_deg: start.env.rotation.to_degrees(),
+            settings: start.settings,
+            camera: start.camera,
+            b: start.b.clone().unwrap_or_else(|| start.a.clone()),
+            a: start.a,
+            split: None,
+            aov: "final".into(),
+            renderer_a,
+            renderer_b: None,
+            display,
+            timings: Default::default(),
+            scene: start.scene,
+            ctx,
+        };
+        if start.b.is_some() {
+            s.apply(Change::Split(Some(0.5))).map_err(crate::BadInput)?;
+        }
+        s.apply(Change::Aov(start.aov)).map_err(crate::BadInput)?;
+        Ok(s)
+    }
+
+    pub fn adapter(&self) -> String {
+        nearfield_render::context::describe(&self.ctx.adapter_info())
+    }
+
+    pub fn renderer(&self, side: Side) -> Option<&Renderer> {
+        match side {
+            Side::A => Some(&self.renderer_a),
+            Side::B => self.renderer_b.as_ref(),
+        }
+    }
+
+    pub fn technique(&self, side: Side) -> &TechniqueState {
+        match side {
+            Side::A => &self.a,
+            Side::B => &self.b,
+        }
+    }
+
+    /// Names the panel offers for the shown image: every AOV, then the technique's own images.
+    pub fn image_names(&self) -> Vec<String> {
+        let mut names: Vec<String> = Aov::names().iter().map(|s| s.to_string()).collect();
+        names.extend(
+            self.renderer_a
+                .extra_names()
+                .iter()
+                .map(|s| format!("{}:{s}", "extra")),
+        );
+        names
+    }
+
+    /// Applies one change; on error the session is unchanged and the message says why.
+    pub fn apply(&mut self, change: Change) -> Result<(), String> {
+        match change {
+            Change::Method(side, spec) => {
+                let state = TechniqueState::from_command_line(&spec, &Default::default())?;
+                self.set_technique(side, state)
+            }
+            Change::Setting(side, key, value) => {
+                let mut state = self.technique(side).clone();
+                state.set(&key, &value)?;
+                self.set_technique(side, state)
+            }
+            Change::Preset(side, name) => {
+                let mut state = self.technique(side).clone();
+                state.apply_preset(&name)?;
+                self.set_technique(side, state)
+            }
+            Change::Aov(name) => {
+                let name = name.strip_prefix("extra:").unwrap_or(&name).to_string();
+                let known = Aov::parse(&name).is_some()
+                    || self.renderer_a.extra_names().contains(&name.as_str());
+                if !known {
+                    return Err(format!(
+                        "aov {name}: unknown (known: {})",
+                        self.image_names().join(", ")
+                    ));
+                }
+                self.aov = name;
+                Ok(())
+            }
+            Change::Size(w, h) => {
+                crate::options::parse_size(&format!("{w}x{h}")).map_err(|e| e.to_string())?;
+                let old = self.settings.size;
+                self.renderer_a.resize((w, h)).map_err(|e| e.to_string())?;
+                if let Some(b) = &mut self.renderer_b
+                    && let Err(e) = b.resize((w, h))
+                {
+                    let _ = self.renderer_a.resize(old);
+                    return Err(e.to_string());
+                }
+                self.settings.size = (w, h);
+                self.display.resize(&self.ctx.device, (w, h));
+                Ok(())
+            }
+            Change::Scene(name) => self.load_scene(&name),
+            Change::Env(name) => {
+                let env = self.load_env(&name)?;
+                self.renderer_a
+                    .set_environment(&env)
+                    .map_err(|e| e.to_string())?;
+                if let Some(b) = &mut self.renderer_b {
+                    b.set_environment(&env).map_err(|e| e.to_string())?;
+                }
+                self.env_name = name;
+                Ok(())
+            }
+            Change::EnvIntensity(k) => {
+                if !(k.is_finite() && (0.0..=1e6).contains(&k)) {
+                    return Err(format!("env-intensity {k}: must be in 0..=1e6"));
+                }
+                self.env_intensity = k;
+                self.for_each_renderer(|r| r.set_environment_intensity(k));
+                Ok(())
+            }
+            Change::EnvRotation(deg) => {
+                if !deg.is_finite() {
+                    return Err("env-rotation: must be finite".into());
+                }
+                self.env_rotation_deg = deg.rem_euclid(360.0);
+                let rad = self.env_rotation_deg.to_radians();
+                self.for_each_renderer(|r| r.set_environment_rotation(rad));
+                Ok(())
+            }
+            Change::Exposure(ev) => {
+                if !(ev.is_finite() && (-20.0..=20.0).contains(&ev)) {
+                    return Err(format!("exposure {ev}: must be in −20..=20"));
+                }
+                self.settings.exposure = ev;
+                let t = self.settings.tonemap;
+                self.for_each_renderer(|r| r.set_post(ev, t));
+                Ok(())
+            }
+            Change::Tonemap(name) => {
+                let t = Tonemap::parse(&name).ok_or_else(|| {
+                    format!(
+                        "tonemap {name}: unknown (known: {})",
+                        Tonemap::NAMES.join(", ")
+                    )
+                })?;
+                self.settings.tonemap = t;
+                let ev = self.settings.exposure;
+                self.for_each_renderer(|r| r.set_post(ev, t));
+                Ok(())
+            }
+            Change::Light(i, on) => {
+                if i >= self.scene.lights.len() {
+                    return Err(format!(
+                        "light {i}: the scene has {} light(s)",
+                        self.scene.lights.len()
+                    ));
+                }
+                self.for_each_renderer(|r| r.set_light_enabled(i, on));
+                Ok(())
+            }
+            Change::Split(None) => {
+                self.split = None;
+                self.renderer_b = None;
+                Ok(())
+            }
+            Change::Split(Some(f)) => {
+                if !(f.is_finite() && (0.0..=1.0).contains(&f)) {
+                    return Err(format!("split {f}: must be off or in 0..=1"));
+                }
+                if self.renderer_b.is_none() {
+                    let mut b = self.new_renderer(&self.b)?;
+                    self.copy_live_state(&mut b);
+                    self.renderer_b = Some(b);
+                }
+                self.split = Some(f);
+                Ok(())
+            }
+            Change::Camera(c) => {
+                c.validate().map_err(|e| format!("camera: {e}"))?;
+                self.camera = c;
+                Ok(())
+            }
+            Change::LoadCamera(path) => {
+                let c = CameraFile::load(&path).map_err(|e| e.to_string())?;
+                self.camera = c;
+                Ok(())
+            }
+            Change::SaveCamera(path) => save_camera(&self.camera, &path),
+            Change::Orbit(deg) => {
+                if !(deg.is_finite() && deg.abs() <= 360.0) {
+                    return Err(format!("orbit {deg}: must be in -360..=360"));
+                }
+                self.camera = self.camera.orbit(deg);
+                Ok(())
+            }
+            Change::FrameScene => {
+                self.camera = self.scene.default_camera();
+                Ok(())
+            }
+        }
+    }
+
+    fn for_each_renderer(&mut self, mut f: impl FnMut(&mut Renderer)) {
+        f(&mut self.renderer_a);
+        if let Some(b) = &mut self.renderer_b {
+            f(b);
+        }
+    }
+
+    fn set_technique(&mut self, side: Side, state: TechniqueState) -> Result<(), String> {
+        let renderer = match side {
+            Side::A => Some(&mut self.renderer_a),
+            Side::B => self.renderer_b.as_mut(),
+        };
+        if let Some(r) = renderer {
+            r.set_technique(state.name(), &state.params())
+                .map_err(|e| e.to_string())?;
+        }
+        match side {
+            Side::A => {
+                self.a = state;
+                // A technique image the new technique lacks falls back to the frame.
+                if Aov::parse(&self.aov).is_none()
+                    && !self.renderer_a.extra_names().contains(&self.aov.as_str())
+                {
+                    self.aov = "final".into();
+                }
+            }
+            Side::B => self.b = state,
+        }
+        Ok(())
+    }
+
+    fn load_env(&self, name: &str) -> Result<Environment, String> {
+        let source = EnvSource::parse(name).map_err(|e| e.to_string())?;
+        let mut env = source.load().map_err(|e| e.to_string())?;
+        env.intensity = self.env_intensity;
+        env.rotation = self.env_rotation_deg.to_radians();
+        Ok(env)
+    }
+
+    fn new_renderer(&self, state: &TechniqueState) -> Result<Renderer, String> {
+        let env = self.load_env(&self.env_name)?;
+        Renderer::new(
+            &self.ctx,
+            &self.scene,
+            &env,
+            self.camera,
+            state.name(),
+            &state.params(),
+            self.settings,
+        )
+        .map_err(|e| e.to_string())
+    }
+
+    /// Light switches of side A onto a new renderer.
+    fn copy_live_state(&self, r: &mut Renderer) {
+        for i in 0..self.scene.lights.len() {
+            r.set_light_enabled(i, self.renderer_a.light_enabled(i));
+        }
+    }
+
+    /// Loads a scene; the environment becomes the scene's own unless one was chosen by name
+    /// other than the default, and the camera the scene's default.
+    fn load_scene(&mut self, name: &str) -> Result<(), String> {
+        let scene = SceneSource::parse(name).load().map_err(|e| e.to_string())?;
+        let env_name = env_name(&scene.default_env);
+        let source = EnvSource::parse(&env_name).map_err(|e| e.to_string())?;
+        let mut env = source.load().map_err(|e| e.to_string())?;
+        env.intensity = self.env_intensity;
+        env.rotation = self.env_rotation_deg.to_radians();
+        let camera = scene.default_camera();
+        // Drop the old renderers first: two scenes need not fit at once.
+        let a = self.a.clone();
+        let make = |state: &TechniqueState| {
+            Renderer::new(
+                &self.ctx,
+                &scene,
+                &env,
+                camera,
+                state.name(),
+                &state.params(),
+                self.settings,
+            )
+            .map_err(|e| e.to_string())
+        };
+        let new_a = make(&a)?;
+        let new_b = match self.renderer_b {
+            Some(_) => Some(make(&self.b)?),
+            None => None,
+        };
+        self.renderer_a = new_a;
+        self.renderer_b = new_b;
+        self.scene = scene;
+        self.scene_name = name.to_string();
+        self.env_name = env_name;
+        self.camera = camera;
+        if Aov::parse(&self.aov).is_none()
+            && !self.renderer_a.extra_names().contains(&self.aov.as_str())
+        {
+            self.aov = "final".into();
+        }
+        Ok(())
+    }
+
+    /// Renders one frame of each side and the display image; reads the per-pass timings.
+    pub fn frame(&mut self) {
+        let camera = self.camera;
+        self.for_each_renderer(|r| {
+            r.set_camera(camera);
+            r.render_frame();
+        });
+        let far = {
+            let b = self.scene.bounds();
+            if b.is_empty() {
+                1.0
+            } else {
+                (camera.eye - b.center()).length() + b.radius()
+            }
+        };
+        let aov = self.aov.clone();
+        let a = source(&mut self.renderer_a, &aov);
+        let b = self.renderer_b.as_mut().map(|r| source(r, &aov));
+        let range = match Aov::parse(&aov) {
+            Some(Aov::Depth) => (0.0, far),
+            Some(Aov::Motion) => (0.0, 4.0),
+            _ => (0.0, 1.0),
+        };
+        let post = DisplayPost {
+            exposure: self.settings.exposure,
+            tonemap: self.settings.tonemap,
+            range,
+        };
+        let mut encoder = self
+            .ctx
+            .device
+            .create_command_encoder(&wgpu_encoder_label());
+        let a_side = display_side(&a);
+        let b_side = b.as_ref().map(display_side);
+        let split = self
+            .split
+            .map(|f| (f * self.settings.size.0 as f32).round() as u32);
+        self.display.encode(
+            &self.ctx.device,
+            &self.ctx.queue,
+            &mut encoder,
+            &a_side,
+            b_side.as_ref().zip(split),
+            post,
+        );
+        self.ctx.queue.submit([encoder.finish()]);
+        self.timings.0 = self.renderer_a.timings();
+        self.timings.1 = self
+            .renderer_b
+            .as_ref()
+            .map(|r| r.timings())
+            .unwrap_or_default();
+    }
+
+    /// Saves the display image (the 3D view without the interface) as PNG.
+    pub fn screenshot(&self, path: &Path) -> Result<()> {
+        crate::render::check_parent_dir(path)?;
+        let encoder = self.ctx.device.create_command_encoder(&Default::default());
+        let bytes = nearfield_render::util::read_texture(
+            &self.ctx.device,
+            &self.ctx.queue,
+            encoder,
+            &self.display.output,
+            4,
+        );
+        let (w, h) = self.display.size();
+        let img = image::RgbaImage::from_raw(w, h, bytes)
+            .ok_or_else(|| anyhow::anyhow!("display image has a wrong size"))?;
+        crate::render::save_atomically(path, |tmp| {
+            img.save_with_format(tmp, image::ImageFormat::Png)
+                .map_err(anyhow::Error::from)
+        })
+    }
+
+    /// Live GPU objects, after letting the device free what was dropped.
+    pub fn resource_counts(&self) -> ResourceCounts {
+        let _ = self
+            .ctx
+            .device
+            .poll(nearfield_render::wgpu::PollType::wait_indefinitely());
+        let Some(report) = self.ctx.instance.generate_report() else {
+            return ResourceCounts::default();
+        };
+        let hub = report.hub_report();
+        ResourceCounts {
+            buffers: hub.buffers.num_kept_from_user,
+            textures: hub.textures.num_kept_from_user,
+            texture_views: hub.texture_views.num_kept_from_user,
+            bind_groups: hub.bind_groups.num_kept_from_user,
+            pipelines: hub.compute_pipelines.num_kept_from_user
+                + hub.render_pipelines.num_kept_from_user,
+        }
+    }
+}
+
+fn display_side(s: &(nearfield_render::wgpu::TextureView, DisplayMode, bool)) -> DisplaySide<'_> {
+    DisplaySide {
+        view: &s.0,
+        mode: s.1,
+        coverage: s.2,
+    }
+}
+
+fn wgpu_encoder_label() -> nearfield_render::wgpu::CommandEncoderDescriptor<'static> {
+    nearfield_render::wgpu::CommandEncoderDescriptor {
+        label: Some("display"),
+    }
+}
+
+/// The image to show for `name` from one renderer: (view, mode, alpha is coverage). A name the
+/// renderer does not have (a technique image of the other side) shows its frame.
+fn source(
+    r: &mut Renderer,
+    name: &str,
+) -> (nearfield_render::wgpu::TextureView, DisplayMode, bool) {
+    use nearfield_render::wgpu::{TextureFormat as F, TextureViewDescriptor, TextureViewDimension};
+    match Aov::parse(name) {
+        Some(Aov::Final) => (
+            r.targets.final_ldr.view.clone(),
+            DisplayMode::Encoded,
+            false,
+        ),
+        Some(aov) => {
+            r.extract_aov(aov);
+            (r.targets.aov.view.clone(), DisplayMode::for_aov(aov), true)
+        }
+        None => match r.extra_texture(name) {
+            Some(t) if matches!(t.format(), F::Rgba16Float | F::Rgba32Float | F::R32Float) => {
+                let view = t.create_view(&TextureViewDescriptor {
+                    dimension: Some(TextureViewDimension::D2),
+                    base_mip_level: 0,
+                    mip_level_count: Some(1),
+                    base_array_layer: 0,
+                    array_layer_count: Some(1),
+                    ..Default::default()
+                });
+                let mode = if t.format() == F::R32Float {
+                    DisplayMode::Scalar
+                } else {
+                    DisplayMode::Colour
+                };
+                (view, mode, false)
+            }
+            _ => (
+                r.targets.final_ldr.view.clone(),
+                DisplayMode::Encoded,
+                false,
+            ),
+        },
+    }
+}
+
+/// How an environment source is typed after `--env`.
+pub fn env_name(source: &EnvSource) -> String {
+    match source {
+        EnvSource::Sky => "sky".into(),
+        EnvSource::File(p) => p.display().to_string(),
+        EnvSource::Constant(c) => format!("constant:{},{},{}", c.x, c.y, c.z),
+    }
+}
+
+/// Writes the camera JSON of DESIGN.md (what `render --camera` and `reference --camera` read).
+pub fn save_camera(camera: &Camera, path: &Path) -> Result<(), String> {
+    crate::render::check_parent_dir(path).map_err(|e| e.to_string())?;
+    let text = serde_json::to_string_pretty(&CameraFile::from_camera(camera))
+        .map_err(|e| e.to_string())?;
+    crate::render::save_atomically(path, |tmp| {
+        std::fs::write(tmp, format!("{text}\n")).map_err(anyhow::Error::from)
+    })
+    .map_err(|e| format!("{e:#}"))
+}
