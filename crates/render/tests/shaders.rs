@@ -138,7 +138,11 @@ fn host_and_shader_structs_agree() {
         &nearfield_render::passes::display::source(),
         "DisplayParams",
         size_of::<DisplayParams>(),
-        &offsets!(DisplayParams: size, mode, range),
+        &[
+            ("size", offset_of!(DisplayParams, size)),
+            ("mode", offset_of!(DisplayParams, mode)),
+            ("range", offset_of!(DisplayParams, range)),
+        ],
     );
     let material = [
         ("base_color", offset_of!(GpuMaterial, base_color)),

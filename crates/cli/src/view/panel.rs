@@ -153,7 +153,8 @@ impl Panel {
             .selected_text(format!("image: {}", s.aov))
             .show_ui(ui, |ui| {
                 for name in s.image_names() {
-                    if ui.selectable_label(name == s.aov, &name).clicked() {
+                    let current = name.strip_prefix("extra:").unwrap_or(&name) == s.aov;
+                    if ui.selectable_label(current, &name).clicked() {
                         req.changes.push(Change::Aov(name));
                     }
                 }

@@ -76,6 +76,9 @@ impl std::fmt::Display for ResourceCounts {
     }
 }
 
+/// (pass, GPU milliseconds) of one frame.
+pub type PassTimes = Vec<(&'static str, f64)>;
+
 pub struct Session {
     pub ctx: GpuContext,
     pub scene_name: String,
@@ -95,7 +98,7 @@ pub struct Session {
     renderer_b: Option<Renderer>,
     pub display: DisplayPass,
     /// Per-pass GPU milliseconds of the last frame, per side.
-    pub timings: (Vec<(&'static str, f64)>, Vec<(&'static str, f64)>),
+    pub timings: (PassTimes, PassTimes),
 }
 
 /// Everything a session starts from.
@@ -179,7 +182,7 @@ impl Session {
             self.renderer_a
                 .extra_names()
                 .iter()
-                .map(|s| format!("{}:{s}", "extra")),
+                .map(|s| format!("extra:{s}")),
         );
         names
     }

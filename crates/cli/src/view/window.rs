@@ -245,14 +245,9 @@ impl Running {
     }
 
     fn apply(&mut self, change: super::session::Change) {
-        let label = format!("{change:?}");
-        match self.session.apply(change) {
-            Ok(()) => {}
-            Err(e) => {
-                eprintln!("nearfield: view: {e}");
-                self.panel.status = e;
-                let _ = label;
-            }
+        if let Err(e) = self.session.apply(change) {
+            eprintln!("nearfield: view: {e}");
+            self.panel.status = e;
         }
     }
 
@@ -287,9 +282,11 @@ impl Running {
     /// One frame: script, interface, 3D view, present. False when the viewer should close.
     fn redraw(&mut self) -> Result<bool> {
         let now = Instant::now();
-        let dt = now.duration_since(self.last_frame).as_secs_f32().min(0.25);
+        let elapsed = now.duration_since(self.last_frame).as_secs_f32();
         self.last_frame = now;
-        self.panel.record_frame_time(dt * 1000.0);
+        self.panel.record_frame_time(elapsed * 1000.0);
+        // Camera motion per frame is capped, so a slow frame does not fling the fly camera.
+        let dt = elapsed.min(0.25);
         if !self.step_script()? {
             return Ok(false);
         }
