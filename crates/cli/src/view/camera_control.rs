@@ -8,7 +8,8 @@ use nearfield_scene::Camera;
 pub const TURN_PER_PIXEL: f32 = 0.006;
 
 /// Turns the eye about the target: `dx` about the up axis, `dy` about the camera's right axis
-/// (pixels of drag). The pitch stops 1° short of the poles so the view never flips.
+/// (pixels of drag; dragging down raises the eye). The pitch stops 1° short of the poles so the
+/// view never flips.
 pub fn orbit(c: &Camera, dx: f32, dy: f32) -> Camera {
     let up = c.up.normalize();
     let offset = c.eye - c.target;
@@ -21,7 +22,7 @@ pub fn orbit(c: &Camera, dx: f32, dy: f32) -> Camera {
     let offset = if right == Vec3::ZERO {
         offset
     } else {
-        Quat::from_axis_angle(right, -pitch) * offset
+        Quat::from_axis_angle(right, pitch) * offset
     };
     Camera {
         eye: c.target + offset,

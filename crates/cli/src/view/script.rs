@@ -109,7 +109,7 @@ mod tests {
                     split off\ncamera c.json\nsave-camera d.json\norbit 5\nframe\nwait 3\n\
                     screenshot s.png\nreport\nquit\n";
         let cmds = parse(text).unwrap();
-        assert_eq!(cmds.len(), 23);
+        assert_eq!(cmds.len(), 22);
         assert_eq!(
             cmds[0],
             Command::Change(Change::Method(Side::B, "ssdo:samples=8".into()))

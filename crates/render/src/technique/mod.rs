@@ -129,18 +129,7 @@ impl Setting {
         default: &'static str,
         doc: &'static str,
     ) -> Self {
-        let kind = SettingKind::Number {
-            lo,
-            hi,
-            integer: false,
-            log: false,
-        };
-        Setting {
-            key,
-            kind,
-            default,
-            doc,
-        }
+        Self::numeric(key, (lo, hi), (false, false), default, doc)
     }
 
     /// A whole-number setting.
@@ -151,18 +140,7 @@ impl Setting {
         default: &'static str,
         doc: &'static str,
     ) -> Self {
-        let kind = SettingKind::Number {
-            lo,
-            hi,
-            integer: true,
-            log: false,
-        };
-        Setting {
-            key,
-            kind,
-            default,
-            doc,
-        }
+        Self::numeric(key, (lo, hi), (true, false), default, doc)
     }
 
     /// A number setting best shown on a log scale (radii, distances).
@@ -173,15 +151,24 @@ impl Setting {
         default: &'static str,
         doc: &'static str,
     ) -> Self {
-        let kind = SettingKind::Number {
-            lo,
-            hi,
-            integer: false,
-            log: true,
-        };
+        Self::numeric(key, (lo, hi), (false, true), default, doc)
+    }
+
+    const fn numeric(
+        key: &'static str,
+        (lo, hi): (f32, f32),
+        (integer, log): (bool, bool),
+        default: &'static str,
+        doc: &'static str,
+    ) -> Self {
         Setting {
             key,
-            kind,
+            kind: SettingKind::Number {
+                lo,
+                hi,
+                integer,
+                log,
+            },
             default,
             doc,
         }

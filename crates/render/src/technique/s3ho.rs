@@ -8,7 +8,7 @@
 //! `indirect-irradiance`.
 
 use super::ssdo::{Pattern, check_sampling, interleaved_sets};
-use super::{Preset, Setting, Technique, TechniqueContext, TechniqueDesc, TechniqueParams};
+use super::{Setting, Technique, TechniqueContext, TechniqueDesc, TechniqueParams};
 use crate::RenderError;
 use crate::gpu_env::GpuEnvironment;
 use crate::passes::bilateral_blur::{BilateralBlur, BlurChain, BlurSettings};
@@ -37,7 +37,7 @@ pub const S3HO: TechniqueDesc = TechniqueDesc {
     summary: "screen-space SH occlusion (16 coefficients), SH lighting of environment and lights, indirect extension",
     create: create_s3ho,
     settings: SETTINGS,
-    presets: PRESETS,
+    presets: super::ssdo::PRESETS,
 };
 
 pub const SSBN: TechniqueDesc = TechniqueDesc {
@@ -45,7 +45,7 @@ pub const SSBN: TechniqueDesc = TechniqueDesc {
     summary: "screen-space bent normals and cones: environment through the cone around the bent normal",
     create: create_ssbn,
     settings: SETTINGS,
-    presets: PRESETS,
+    presets: super::ssdo::PRESETS,
 };
 
 /// Settings of `s3ho` and `ssbn`.
@@ -127,26 +127,6 @@ pub const SETTINGS: &[Setting] = &[
         "smallest sender distance in 1/d² (m)",
     ),
     Setting::toggle("blur", "on", "bilateral filter"),
-];
-
-/// `quality` presets: directions per pixel.
-pub const PRESETS: &[Preset] = &[
-    Preset {
-        name: "low",
-        set: &[("samples", "8")],
-    },
-    Preset {
-        name: "medium",
-        set: &[("samples", "16")],
-    },
-    Preset {
-        name: "high",
-        set: &[("samples", "32")],
-    },
-    Preset {
-        name: "ultra",
-        set: &[("samples", "64")],
-    },
 ];
 
 impl Settings {
