@@ -61,6 +61,8 @@ pub struct Renderer {
     /// Lights switched off ([`Self::set_light_enabled`]), by index into the scene's lights.
     lights_off: Vec<bool>,
     pub profiler: GpuProfiler,
+    /// Untimed recording of the AOV pass (extraction is not part of the frame's timings).
+    quiet: GpuProfiler,
     camera: Camera,
     previous: Option<CameraMatrices>,
     previous_camera: Option<Camera>,
@@ -131,6 +133,7 @@ impl Renderer {
             pack_half: ctx.pack_half,
             lights_off,
             profiler,
+            quiet: GpuProfiler::new(&ctx.device, &ctx.queue, false),
             camera,
             previous: None,
             previous_camera: None,
@@ -383,10 +386,9 @@ impl Renderer {
         self.queue
             .write_buffer(&self.frame_buffer, 0, bytemuck::bytes_of(&u));
         let mut encoder = self.device.create_command_encoder(&Default::default());
-        let mut quiet = GpuProfiler::new(&self.device, &self.queue, false);
         self.passes.aov.encode(
             &mut encoder,
-            &mut quiet,
+            &mut self.quiet,
             self.settings.size,
             (last % 2) as usize,
         );

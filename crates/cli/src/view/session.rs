@@ -352,12 +352,7 @@ impl Session {
         match side {
             Side::A => {
                 self.a = state;
-                // A technique image the new technique lacks falls back to the frame.
-                if Aov::parse(&self.aov).is_none()
-                    && !self.renderer_a.extra_names().contains(&self.aov.as_str())
-                {
-                    self.aov = "final".into();
-                }
+                self.keep_image_valid();
             }
             Side::B => self.b = state,
         }
@@ -393,17 +388,13 @@ impl Session {
         }
     }
 
-    /// Loads a scene; the environment becomes the scene's own unless one was chosen by name
-    /// other than the default, and the camera the scene's default.
+    /// Loads a scene; the environment and the camera become the scene's own.
     fn load_scene(&mut self, name: &str) -> Result<(), String> {
         let scene = SceneSource::parse(name).load().map_err(|e| e.to_string())?;
         let env_name = env_name(&scene.default_env);
-        let source = EnvSource::parse(&env_name).map_err(|e| e.to_string())?;
-        let mut env = source.load().map_err(|e| e.to_string())?;
-        env.intensity = self.env_intensity;
-        env.rotation = self.env_rotation_deg.to_radians();
+        let env = self.load_env(&env_name)?;
         let camera = scene.default_camera();
-        // Drop the old renderers first: two scenes need not fit at once.
+        // The old renderers stay until the new ones exist, so a failure changes nothing.
         let a = self.a.clone();
         let make = |state: &TechniqueState| {
             Renderer::new(
@@ -428,12 +419,17 @@ impl Session {
         self.scene_name = name.to_string();
         self.env_name = env_name;
         self.camera = camera;
+        self.keep_image_valid();
+        Ok(())
+    }
+
+    /// A technique image the current technique lacks falls back to the frame.
+    fn keep_image_valid(&mut self) {
         if Aov::parse(&self.aov).is_none()
             && !self.renderer_a.extra_names().contains(&self.aov.as_str())
         {
             self.aov = "final".into();
         }
-        Ok(())
     }
 
     /// Renders one frame of each side and the display image; reads the per-pass timings.
