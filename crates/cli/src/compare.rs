@@ -45,9 +45,34 @@ pub struct CompareArgs {
     /// Excluded band at the image edge in pixels. Default: 2 % of the smaller side, at least 2.
     #[arg(long)]
     pub border: Option<u32>,
+    /// Restrict the metrics to the pixel rectangle X0,Y0,X1,Y1 (x0 ≤ x < x1, y0 ≤ y < y1), e.g.
+    /// the region an effect is about.
+    #[arg(long)]
+    pub region: Option<String>,
     /// Output folder.
     #[arg(long, default_value = "compare")]
     pub out: PathBuf,
+}
+
+/// `--region X0,Y0,X1,Y1` inside an image of `size`.
+fn parse_region(s: &str, size: (u32, u32)) -> Result<[u32; 4]> {
+    let bad = || {
+        BadInput(format!(
+            "--region {s}: expected X0,Y0,X1,Y1 with 0 ≤ X0 < X1 ≤ {} and 0 ≤ Y0 < Y1 ≤ {}",
+            size.0, size.1
+        ))
+    };
+    let v: Vec<u32> = s
+        .split(',')
+        .map(|p| p.trim().parse::<u32>())
+        .collect::<Result<_, _>>()
+        .map_err(|_| bad())?;
+    match v[..] {
+        [x0, y0, x1, y1] if x0 < x1 && y0 < y1 && x1 <= size.0 && y1 <= size.1 => {
+            Ok([x0, y0, x1, y1])
+        }
+        _ => Err(bad().into()),
+    }
 }
 
 pub fn run(args: CompareArgs) -> Result<()> {
@@ -72,6 +97,11 @@ pub fn run(args: CompareArgs) -> Result<()> {
         ))
         .into());
     }
+    let region = args
+        .region
+        .as_deref()
+        .map(|r| parse_region(r, size))
+        .transpose()?;
     // One radius for both sides (default inf), and one seed.
     let mut params = args.technique.params()?;
     let radius = *params.radius.get_or_insert(f32::INFINITY);
@@ -159,7 +189,14 @@ pub fn run(args: CompareArgs) -> Result<()> {
             if still && (args.frames <= 64 || n.is_power_of_two() || n == args.frames) {
                 let value = r.read_aov(gpu_aov);
                 let mask = mask.get_or_insert_with(|| {
-                    gpu_mask(&mut r, &value, &ref_alpha, &reference.depth, mask_settings)
+                    gpu_mask(
+                        &mut r,
+                        &value,
+                        &ref_alpha,
+                        &reference.depth,
+                        mask_settings,
+                        region,
+                    )
                 });
                 let m = metrics::metrics(&value.pixels, &reference.value, mask);
                 convergence.push(ConvergencePoint {
@@ -172,7 +209,14 @@ pub fn run(args: CompareArgs) -> Result<()> {
         let value = r.read_aov(gpu_aov);
         let mask = match mask {
             Some(m) => m,
-            None => gpu_mask(&mut r, &value, &ref_alpha, &reference.depth, mask_settings),
+            None => gpu_mask(
+                &mut r,
+                &value,
+                &ref_alpha,
+                &reference.depth,
+                mask_settings,
+                region,
+            ),
         };
         let mut m = metrics::metrics(&value.pixels, &reference.value, &mask);
         let srgb = image_ops::tonemap(&value.pixels, w, h);
@@ -215,6 +259,7 @@ pub fn run(args: CompareArgs) -> Result<()> {
         adapter: nearfield_render::context::describe(&ctx.adapter_info()),
         reference: ref_info,
         mask: mask_settings,
+        region,
         silhouette_pixels: mask.silhouette_pixels,
         depth_checked: mask.depth_checked,
         reference_noise: metrics::rms_stderr(&reference.stderr, &mask),
@@ -230,23 +275,29 @@ pub fn run(args: CompareArgs) -> Result<()> {
     Ok(())
 }
 
-/// The comparison mask: GPU and reference coverage and depth (silhouettes excluded).
+/// The comparison mask: GPU and reference coverage and depth (silhouettes excluded), within
+/// `region` if given.
 fn gpu_mask(
     r: &mut Renderer,
     value: &nearfield_render::AovImage,
     ref_alpha: &[f32],
     ref_depth: &[f32],
     settings: MaskSettings,
+    region: Option<[u32; 4]>,
 ) -> Mask {
     let depth = r.read_aov(Aov::Depth);
     let alpha: Vec<f32> = value.pixels.iter().map(|p| p[3]).collect();
     let gpu_depth: Vec<f32> = depth.pixels.iter().map(|p| p[0]).collect();
-    Mask::new(
+    let mut mask = Mask::new(
         (value.width, value.height),
         &alpha,
         &gpu_depth,
         ref_alpha,
         ref_depth,
         settings,
-    )
+    );
+    if let Some(rect) = region {
+        mask.restrict(rect);
+    }
+    mask
 }

@@ -106,13 +106,30 @@ impl ReferenceOpts {
     }
 }
 
+/// A fingerprint of the scene's content (geometry, materials, lights), so that a changed file
+/// or built-in scene never meets a stale cache entry.
+fn scene_fingerprint(scene: &nearfield_scene::Scene) -> u64 {
+    use std::hash::{Hash, Hasher};
+    let mut h = std::collections::hash_map::DefaultHasher::new();
+    for m in &scene.meshes {
+        m.material.hash(&mut h);
+        for p in m.positions.iter().chain(&m.normals) {
+            p.to_array().map(f32::to_bits).hash(&mut h);
+        }
+        m.indices.hash(&mut h);
+    }
+    format!("{:?}|{:?}", scene.materials, scene.lights).hash(&mut h);
+    h.finish()
+}
+
 /// The cache key's description of everything the result depends on.
 fn describe(opts: &SceneOpts, loaded: &Loaded, s: &ReferenceSettings) -> String {
     let c = loaded.camera;
     format!(
-        "v{REFERENCE_VERSION}|{}|scene={}|env={}|intensity={}|rotation={}|eye={}|target={}|up={}|yfov={}|size={}x{}|aov={}|radius={}|spp={}|seed={}|depth={}",
+        "v{REFERENCE_VERSION}|{}|scene={}|content={:016x}|env={}|intensity={}|rotation={}|eye={}|target={}|up={}|yfov={}|size={}x{}|aov={}|radius={}|spp={}|seed={}|depth={}",
         env!("CARGO_PKG_VERSION"),
         cache::describe_input(&opts.scene),
+        scene_fingerprint(&loaded.scene),
         cache::describe_input(&loaded.env_source.to_string()),
         opts.env_intensity,
         opts.env_rotation,

@@ -31,6 +31,17 @@ pub struct Mask {
 }
 
 impl Mask {
+    /// Keeps only the pixels inside the rectangle [x0, y0, x1, y1) (pixel coordinates).
+    pub fn restrict(&mut self, [x0, y0, x1, y1]: [u32; 4]) {
+        for y in 0..self.height {
+            for x in 0..self.width {
+                if !(x >= x0 && x < x1 && y >= y0 && y < y1) {
+                    self.valid[(y * self.width + x) as usize] = false;
+                }
+            }
+        }
+    }
+
     /// `*_alpha`: coverage (> 0 = surface); `*_depth`: view depth (reference depth all 0 = unknown).
     pub fn new(
         size: (u32, u32),

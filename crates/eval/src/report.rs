@@ -121,6 +121,8 @@ pub struct Report {
     /// Where the reference came from (file or cache path) and its sampling.
     pub reference: ReferenceInfo,
     pub mask: MaskSettings,
+    /// The pixel rectangle [x0, y0, x1, y1) the metrics were restricted to, if any.
+    pub region: Option<[u32; 4]>,
     /// Pixels excluded as silhouettes (dilated), and whether depth was available to find them.
     pub silhouette_pixels: usize,
     pub depth_checked: bool,

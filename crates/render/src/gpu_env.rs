@@ -286,6 +286,11 @@ impl GpuEnvironment {
         queue.write_buffer(&self.sh_buffer, 0, bytemuck::cast_slice(&padded));
     }
 
+    /// The CPU map (rotation applied in its `rotation`; raw texels without `intensity`).
+    pub fn source(&self) -> &Environment {
+        &self.source
+    }
+
     /// `Frame.env_params`: rotation, intensity (already in the SH; textures are raw), specular
     /// mip count, radiance mip count.
     pub fn params(&self) -> [f32; 4] {

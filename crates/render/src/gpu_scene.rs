@@ -230,7 +230,7 @@ impl GpuScene {
     }
 }
 
-fn gpu_light(l: &nearfield_scene::Light, layer: Option<u32>, texel: f32) -> GpuLight {
+pub(crate) fn gpu_light(l: &nearfield_scene::Light, layer: Option<u32>, texel: f32) -> GpuLight {
     let c = l.color * l.intensity;
     let (pos, kind, dir, cones) = match l.kind {
         LightKind::Directional { direction } => (direction, 0.0, Vec3::ZERO, (1.0, 1.0)),

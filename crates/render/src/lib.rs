@@ -18,6 +18,7 @@ pub mod renderer;
 pub mod targets;
 pub mod technique;
 pub mod util;
+pub mod vpl;
 
 pub use aov::{Aov, AovImage};
 pub use context::GpuContext;

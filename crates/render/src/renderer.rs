@@ -331,6 +331,7 @@ impl Renderer {
         let u = self.uniforms(current, Aov::Final);
         self.queue
             .write_buffer(&self.frame_buffer, 0, bytemuck::bytes_of(&u));
+        self.passes.technique.prepare(&self.queue, &self.camera);
         let mut encoder = self
             .device
             .create_command_encoder(&wgpu::CommandEncoderDescriptor {
@@ -342,7 +343,7 @@ impl Renderer {
         p.begin_frame();
         self.gbuffer
             .encode(&mut encoder, p, &self.targets, &self.scene);
-        self.shadows.encode(&mut encoder, p, &self.scene);
+        self.shadows.encode(&mut encoder, p);
         self.passes.direct.encode(&mut encoder, p, size, side);
         self.passes.technique.encode(
             &mut encoder,

@@ -118,7 +118,11 @@ impl FrameTargets {
             emissive: t("gbuffer emissive", EMISSIVE_FORMAT, raster),
             motion: t("gbuffer motion", MOTION_FORMAT, raster),
             view_depth: t("gbuffer view depth", VIEW_DEPTH_FORMAT, raster),
-            depth: t("gbuffer depth", DEPTH_FORMAT, U::RENDER_ATTACHMENT),
+            depth: t(
+                "gbuffer depth",
+                DEPTH_FORMAT,
+                U::RENDER_ATTACHMENT | U::TEXTURE_BINDING,
+            ),
             light_irradiance: t("light irradiance", HDR_FORMAT, storage),
             specular: t("specular", HDR_FORMAT, storage),
             direct_radiance: [

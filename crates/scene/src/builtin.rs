@@ -9,12 +9,25 @@
 //! | `plane` | one 400 m × 400 m plane: nothing occludes anything |
 //! | `wall` | a 400 m floor meeting a 200 m wall at 90° along the line y = 0, z = 0 |
 //! | `closed-box` | a closed 4 × 3 × 4 m room with a point light; the camera is inside |
+//! | `gap` | a thin floating slab (6 cm) 0.25 m above a floor under the sky, seen from above: points of the gap under it lie behind it from the camera (SSDO Fig. 5) |
+//! | `columns` | a white column hiding a pink column behind it from the camera, on a floor under the sky and a sun from the right (SSDO Fig. 7) |
+//! | `contact` | a 4 cm cube and a 2 cm rod on a 6 m plane under a low sun: the shadow map's bias loses their contact shadows (SSDO Fig. 9) |
 
 use crate::{Camera, EnvSource, Light, LightKind, Material, Mesh, Scene, SceneError};
 use glam::{Quat, Vec2, Vec3};
 
 /// Names of the built-in scenes, in the order shown to users.
-pub const NAMES: &[&str] = &["cornell", "boxes", "city", "plane", "wall", "closed-box"];
+pub const NAMES: &[&str] = &[
+    "cornell",
+    "boxes",
+    "city",
+    "plane",
+    "wall",
+    "closed-box",
+    "gap",
+    "columns",
+    "contact",
+];
 
 /// Builds the named built-in scene.
 pub fn scene(name: &str) -> Result<Scene, SceneError> {
@@ -25,6 +38,9 @@ pub fn scene(name: &str) -> Result<Scene, SceneError> {
         "plane" => plane(),
         "wall" => wall(),
         "closed-box" => closed_box(),
+        "gap" => gap(),
+        "columns" => columns(),
+        "contact" => contact(),
         _ => {
             return Err(SceneError::UnknownBuiltin {
                 name: name.into(),
@@ -140,6 +156,14 @@ impl Builder {
                 p(-1., 1., -1.),
             ],
         );
+    }
+
+    /// A closed box (all six faces, outward) from y = base to base + size.y: a slab that need not
+    /// rest on anything.
+    fn slab(&mut self, material: u32, center_xz: Vec2, size: Vec3, base: f32) {
+        self.block(material, center_xz, size, base, 0.0);
+        let h = Vec2::new(0.5 * size.x, 0.5 * size.z);
+        self.floor(material, center_xz - h, center_xz + h, base, true);
     }
 
     fn finish(mut self, camera: Camera, env: EnvSource) -> Scene {
@@ -357,6 +381,92 @@ fn closed_box() -> Scene {
     b.finish(
         Camera::new(Vec3::new(-1.0, 1.6, 1.8), Vec3::new(0.3, 0.8, -1.5), 70.0),
         EnvSource::Sky,
+    )
+}
+
+/// SSDO Fig. 5: a thin floating slab (1.2 × 0.06 × 1.2 m, its underside 0.25 m above the floor)
+/// seen from above; the floor just beyond its far edge is in view, and points of the gap under
+/// the slab lie behind it from the camera.
+fn gap() -> Scene {
+    let mut b = Builder::new("gap");
+    let floor = b.material(Material::diffuse("floor", Vec3::splat(0.7)));
+    let slab = b.material(Material::diffuse("slab", Vec3::new(0.7, 0.6, 0.45)));
+    b.floor(floor, Vec2::splat(-3.0), Vec2::splat(3.0), 0.0, false);
+    b.slab(slab, Vec2::ZERO, Vec3::new(1.2, 0.06, 1.2), 0.25);
+    b.finish(
+        Camera::new(Vec3::new(0.0, 3.0, 1.5), Vec3::new(0.0, 0.0, -0.9), 40.0),
+        EnvSource::Sky,
+    )
+}
+
+/// SSDO Fig. 7: a white column (0.6 × 1.6 × 0.6 m) hides a pink one (0.35 × 1.2 × 0.35 m, 0.6 m
+/// behind it) from the camera; the floor beside the pink column is in view, and a sun from the
+/// right lights the pink column's right face.
+fn columns() -> Scene {
+    let mut b = Builder::new("columns");
+    let floor = b.material(Material::diffuse("floor", Vec3::splat(0.7)));
+    let white = b.material(Material::diffuse("white", WHITE));
+    let pink = b.material(Material::diffuse("pink", Vec3::new(0.9, 0.2, 0.55)));
+    b.floor(floor, Vec2::splat(-3.0), Vec2::splat(3.0), 0.0, false);
+    b.block(
+        white,
+        Vec2::new(0.0, 0.0),
+        Vec3::new(0.6, 1.6, 0.6),
+        0.0,
+        0.0,
+    );
+    b.block(
+        pink,
+        Vec2::new(0.0, -0.6),
+        Vec3::new(0.35, 1.2, 0.35),
+        0.0,
+        0.0,
+    );
+    b.scene.lights = vec![Light {
+        kind: LightKind::Directional {
+            direction: Vec3::new(-0.85, -0.45, 0.25).normalize(),
+        },
+        color: Vec3::ONE,
+        intensity: 3.0,
+        range: None,
+    }];
+    b.finish(
+        Camera::new(Vec3::new(0.0, 0.9, 4.0), Vec3::new(0.0, 0.4, 0.0), 40.0),
+        EnvSource::Sky,
+    )
+}
+
+/// SSDO Fig. 9: small objects on a plane under a sun 25° above the horizon, seen from close by.
+fn contact() -> Scene {
+    let mut b = Builder::new("contact");
+    let floor = b.material(Material::diffuse("floor", Vec3::splat(0.75)));
+    let objects = b.material(Material::diffuse("objects", Vec3::new(0.6, 0.6, 0.7)));
+    b.floor(floor, Vec2::splat(-3.0), Vec2::splat(3.0), 0.0, false);
+    b.block(objects, Vec2::new(0.0, 0.0), Vec3::splat(0.04), 0.0, 30.0);
+    b.block(
+        objects,
+        Vec2::new(0.12, 0.05),
+        Vec3::new(0.02, 0.1, 0.02),
+        0.0,
+        0.0,
+    );
+    let elevation = 25f32.to_radians();
+    b.scene.lights = vec![Light {
+        kind: LightKind::Directional {
+            direction: Vec3::new(
+                -elevation.cos() * 0.8,
+                -elevation.sin(),
+                -elevation.cos() * 0.6,
+            )
+            .normalize(),
+        },
+        color: Vec3::ONE,
+        intensity: 3.0,
+        range: None,
+    }];
+    b.finish(
+        Camera::new(Vec3::new(0.05, 0.22, 0.42), Vec3::new(0.03, 0.0, 0.0), 40.0),
+        EnvSource::Constant(Vec3::splat(0.1)),
     )
 }
 

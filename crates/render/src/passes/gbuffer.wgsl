@@ -64,12 +64,16 @@ struct GBufferOut {
     @location(5) view_depth: vec4<f32>,
 }
 
-// Pixel coordinates (x right, y down) of a world point under a clip_from_world matrix.
-@fragment
-fn fs_main(in: VertexOut, @builtin(front_facing) front: bool) -> GBufferOut {
-    // Gradients first, in uniform control flow; the texture fetches below are conditional.
-    let duv_dx = dpdx(in.uv);
-    let duv_dy = dpdy(in.uv);
+// What the material gives at a fragment: base colour, metallic, roughness, emission. Discards
+// fragments below the alpha cutoff.
+struct SurfaceMaterial {
+    base: vec3<f32>,
+    metallic: f32,
+    roughness: f32,
+    emissive: vec3<f32>,
+}
+
+fn surface_material(in: VertexOut, duv_dx: vec2<f32>, duv_dy: vec2<f32>) -> SurfaceMaterial {
     let m = materials[in.material];
     var base = m.base_color;
     if m.textures.x != NO_TEXTURE {
@@ -89,16 +93,84 @@ fn fs_main(in: VertexOut, @builtin(front_facing) front: bool) -> GBufferOut {
     if m.textures.z != NO_TEXTURE {
         emissive *= textureSampleGrad(srgb_textures, material_sampler, in.uv, m.textures.z, duv_dx, duv_dy).rgb;
     }
+    return SurfaceMaterial(base.rgb, metallic, roughness, emissive);
+}
+
+@fragment
+fn fs_main(in: VertexOut, @builtin(front_facing) front: bool) -> GBufferOut {
+    // Gradients first, in uniform control flow; the texture fetches are conditional.
+    let duv_dx = dpdx(in.uv);
+    let duv_dy = dpdy(in.uv);
+    let m = surface_material(in, duv_dx, duv_dy);
     var n = normalize(in.normal);
     if !front {
         n = -n;
     }
     var o: GBufferOut;
     o.normal = vec4<f32>(n, 1.0);
-    o.albedo = vec4<f32>(base.rgb, 1.0);
-    o.material = vec4<f32>(metallic, roughness, 0.0, 1.0);
-    o.emissive = vec4<f32>(emissive, 1.0);
+    o.albedo = vec4<f32>(m.base, 1.0);
+    o.material = vec4<f32>(m.metallic, m.roughness, 0.0, 1.0);
+    o.emissive = vec4<f32>(m.emissive, 1.0);
     o.motion = vec4<f32>(to_screen(frame.prev_clip_from_world, in.world) - in.clip.xy, 0.0, 0.0);
     o.view_depth = vec4<f32>(-(frame.view_from_world * vec4<f32>(in.world, 1.0)).z, 0.0, 0.0, 0.0);
+    return o;
+}
+
+// ---- Extra layers (passes/layers.rs): depth peeling of the main view and additional cameras.
+// One `LayerView` (common.wgsl) per pass (dynamic offset); `prev_depth` is the depth buffer of the layer before
+// (peeling only). Targets: 0 normal (rgba16float: xyz oriented as layers.rs documents, w = 1),
+// 1 albedo (rgba8unorm-srgb), 2 emissive (rgba16float), 3 view depth (r32float, 0 = none).
+
+@group(0) @binding(5) var<uniform> layer_view: LayerView;
+@group(0) @binding(6) var prev_depth: texture_depth_2d;
+
+@vertex
+fn vs_layer(v: VertexIn) -> VertexOut {
+    var o: VertexOut;
+    o.clip = layer_view.clip_from_world * vec4<f32>(v.position, 1.0);
+    o.world = v.position;
+    o.normal = v.normal;
+    o.uv = v.uv;
+    o.material = v.material;
+    return o;
+}
+
+struct LayerOut {
+    @location(0) normal: vec4<f32>,
+    @location(1) albedo: vec4<f32>,
+    @location(2) emissive: vec4<f32>,
+    @location(3) view_depth: vec4<f32>,
+}
+
+@fragment
+fn fs_layer(in: VertexOut) -> LayerOut {
+    let duv_dx = dpdx(in.uv);
+    let duv_dy = dpdy(in.uv);
+    let depth = -(layer_view.view_from_world * vec4<f32>(in.world, 1.0)).z;
+    if layer_view.flags.x == 1u {
+        // View depth of the layer before, from its depth buffer (directx-style perspective:
+        // d = f (t − n) / ((f − n) t)  ⇔  t = f n / (f − d (f − n))).
+        let d = textureLoad(prev_depth, vec2<u32>(in.clip.xy), 0);
+        let near = layer_view.projection.x;
+        let far = layer_view.projection.y;
+        let before = far * near / (far - d * (far - near));
+        if d >= 1.0 || depth <= before * (1.0 + 1e-4) + 1e-6 {
+            discard;
+        }
+    }
+    let m = surface_material(in, duv_dx, duv_dy);
+    let eye = layer_view.world_from_view[3].xyz;
+    var n = normalize(in.normal);
+    if dot(n, eye - in.world) < 0.0 {
+        n = -n;
+    }
+    if layer_view.flags.y == 1u {
+        n = -n;
+    }
+    var o: LayerOut;
+    o.normal = vec4<f32>(n, 1.0);
+    o.albedo = vec4<f32>(m.base, 1.0);
+    o.emissive = vec4<f32>(m.emissive, 1.0);
+    o.view_depth = vec4<f32>(depth, 0.0, 0.0, 0.0);
     return o;
 }

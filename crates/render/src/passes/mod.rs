@@ -9,6 +9,7 @@ pub mod composite;
 pub mod direct_lighting;
 pub mod display;
 pub mod gbuffer;
+pub mod layers;
 pub mod reproject;
 pub mod shadow;
 pub mod tonemap;

@@ -60,6 +60,11 @@ pub struct ShadowPass {
     /// Per scene light: first layer (None = unshadowed) and texel size factor.
     pub light_layers: Vec<(Option<u32>, f32)>,
     pub settings: ShadowSettings,
+    /// Profiler label of [`Self::encode`].
+    label: &'static str,
+    vertices: wgpu::Buffer,
+    indices: wgpu::Buffer,
+    index_count: u32,
 }
 
 /// Shadow projections of one light, and its texel size factor (metres for orthographic,
@@ -120,12 +125,25 @@ pub fn light_views(kind: &LightKind, bounds: Aabb, size: u32) -> (Vec<Mat4>, f32
 }
 
 impl ShadowPass {
+    /// Shadow maps of the scene's lights.
     pub fn new(device: &wgpu::Device, scene: &GpuScene, settings: ShadowSettings) -> Self {
+        let kinds: Vec<LightKind> = scene.scene_lights.iter().map(|l| l.kind).collect();
+        Self::for_lights(device, scene, &kinds, settings, "shadows")
+    }
+
+    /// Shadow maps of any lights (e.g. virtual point lights) over `scene`, timed as `label`.
+    pub fn for_lights(
+        device: &wgpu::Device,
+        scene: &GpuScene,
+        kinds: &[LightKind],
+        settings: ShadowSettings,
+        label: &'static str,
+    ) -> Self {
         let mut matrices: Vec<Mat4> = Vec::new();
         let mut light_layers = Vec::new();
         let mut dropped = 0;
-        for light in &scene.scene_lights {
-            let (views, texel) = light_views(&light.kind, scene.bounds, settings.size);
+        for kind in kinds {
+            let (views, texel) = light_views(kind, scene.bounds, settings.size);
             if matrices.len() + views.len() > settings.max_layers as usize {
                 light_layers.push((None, texel));
                 dropped += 1;
@@ -289,6 +307,10 @@ impl ShadowPass {
             matrices: matrix_buffer,
             light_layers,
             settings,
+            label,
+            vertices: scene.vertices.clone(),
+            indices: scene.indices.clone(),
+            index_count: scene.index_count,
         }
     }
 
@@ -328,13 +350,8 @@ impl ShadowPass {
         ]
     }
 
-    /// Renders every layer (timed together as "shadows").
-    pub fn encode(
-        &self,
-        encoder: &mut wgpu::CommandEncoder,
-        profiler: &mut GpuProfiler,
-        scene: &GpuScene,
-    ) {
+    /// Renders every layer (timed together under the pass's label).
+    pub fn encode(&self, encoder: &mut wgpu::CommandEncoder, profiler: &mut GpuProfiler) {
         let n = self.layer_views.len();
         for (i, view) in self.layer_views.iter().enumerate() {
             let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
@@ -348,15 +365,15 @@ impl ShadowPass {
                     }),
                     stencil_ops: None,
                 }),
-                timestamp_writes: profiler.render_group("shadows", i == 0, i + 1 == n),
+                timestamp_writes: profiler.render_group(self.label, i == 0, i + 1 == n),
                 occlusion_query_set: None,
                 multiview_mask: None,
             });
             pass.set_pipeline(&self.pipeline);
             pass.set_bind_group(0, &self.bind_group, &[(i as u64 * VIEW_STRIDE) as u32]);
-            pass.set_vertex_buffer(0, scene.vertices.slice(..));
-            pass.set_index_buffer(scene.indices.slice(..), wgpu::IndexFormat::Uint32);
-            pass.draw_indexed(0..scene.index_count, 0, 0..1);
+            pass.set_vertex_buffer(0, self.vertices.slice(..));
+            pass.set_index_buffer(self.indices.slice(..), wgpu::IndexFormat::Uint32);
+            pass.draw_indexed(0..self.index_count, 0, 0..1);
         }
     }
 }

@@ -35,6 +35,32 @@ struct Frame {
 
 @group(0) @binding(0) var<uniform> frame: Frame;
 
+// One view of the extra layers (passes/layers.rs, `LayerView` there): a peeled depth layer of the
+// main camera or an additional camera. 256 bytes, so that one buffer serves as a storage array and
+// as a uniform with dynamic offsets.
+struct LayerView {
+    clip_from_world: mat4x4<f32>,
+    view_from_world: mat4x4<f32>,
+    world_from_view: mat4x4<f32>,
+    // width, height, 1/width, 1/height.
+    size: vec4<f32>,
+    // near, far, aspect, tan(yfov / 2).
+    projection: vec4<f32>,
+    // x: 1 = peel against the layer before; y: 1 = exit layer (normal stored facing away from the
+    // camera); z, w: unused.
+    flags: vec4<u32>,
+    pad: vec4<f32>,
+}
+
+// World position of `pixel` at view depth `depth` in layer view `v`.
+fn layer_position(v: LayerView, pixel: vec2<u32>, depth: f32) -> vec3<f32> {
+    let p = (vec2<f32>(pixel) + 0.5) * v.size.zw;
+    let ndc = vec2<f32>(2.0 * p.x - 1.0, 1.0 - 2.0 * p.y);
+    let t = v.projection.w;
+    let view = vec3<f32>(ndc.x * t * v.projection.z, ndc.y * t, -1.0) * depth;
+    return (v.world_from_view * vec4<f32>(view, 1.0)).xyz;
+}
+
 const PI: f32 = 3.14159265358979;
 
 // View-space position of pixel `pixel` (integer coordinates) at view depth `view_depth` (> 0, m).

@@ -97,3 +97,25 @@ fn shadow_visibility(l: GpuLight, p: vec3<f32>, n: vec3<f32>) -> f32 {
     }
     return sum / 9.0;
 }
+
+// Length along the light direction from p within which `shadow_visibility` cannot see an
+// occluder (SSDO paper Sec. 5, Fig. 8): the paper's b = (t/2)·tan α for a texel of world size t
+// at p and the angle α between n and the light, plus the two biases this shadow map adds — the
+// rasterizer's slope-scaled depth bias (2 texels of depth slope: 2t·tan α, shadow.rs) and the
+// receiver offset along n (frame.post.z texels: its component along the light, t·k·cos α).
+// tan α is capped at 10 (α ≈ 84°). 0 for an unshadowed light.
+fn shadow_bias_length(l: GpuLight, p: vec3<f32>, n: vec3<f32>) -> f32 {
+    if l.cone.z < 0.0 {
+        return 0.0;
+    }
+    var texel_world = l.cone.w;
+    let kind = u32(l.position.w);
+    var to_light = -l.position.xyz;
+    if kind != 0u {
+        texel_world *= length(p - l.position.xyz);
+        to_light = normalize(l.position.xyz - p);
+    }
+    let cos_a = clamp(dot(n, to_light), 1e-4, 1.0);
+    let tan_a = min(sqrt(max(0.0, 1.0 - cos_a * cos_a)) / cos_a, 10.0);
+    return texel_world * (2.5 * tan_a + frame.post.z * cos_a);
+}

@@ -8,6 +8,18 @@
 @group(0) @binding(6) var<storage, read> sample_sets: array<vec4<f32>>;
 @group(0) @binding(8) var gb_normal: texture_2d<f32>;
 @group(0) @binding(9) var gb_view_depth: texture_2d<f32>;
+// Extra layers (passes/layers.rs): views 0..2 = peeled layers 2..4 of the main camera, views
+// 3..6 = additional cameras; their normals (oriented: see layers.rs) and view depths.
+@group(0) @binding(40) var<storage, read> layer_views: array<LayerView>;
+@group(0) @binding(41) var peel_normal: texture_2d_array<f32>;
+@group(0) @binding(42) var peel_depth: texture_2d_array<f32>;
+@group(0) @binding(43) var cam_normal: texture_2d_array<f32>;
+@group(0) @binding(44) var cam_depth: texture_2d_array<f32>;
+
+const CAMERA_VIEW_BASE: u32 = 3u;
+// `Occlusion.source` of a blocker seen by additional camera c: CAMERA_SOURCE + c (peeled layer
+// k ≥ 2 of the main view: k − 1; the G-buffer: 0).
+const CAMERA_SOURCE: u32 = 8u;
 
 // What the sampling needs from a technique's parameters.
 struct SampleConfig {
@@ -18,6 +30,9 @@ struct SampleConfig {
     radius: f32,
     // Fraction of R where the blocker fade starts.
     fade: f32,
+    // Depth layers of the main view (1..=4) and additional cameras (0..=4) in the blocker test.
+    layers: u32,
+    cameras: u32,
 }
 
 struct Surface {
@@ -80,54 +95,194 @@ fn tangent_frame(n: vec3<f32>) -> Frame3 {
     return Frame3(t, cross(n, t));
 }
 
-// How much the point s = p + λω, seen from p, is occluded: 0 visible, up to 1 occluded.
-// Returns the occluder's pixel in `.pixel` for the bounce.
+// How much the point s = p + λω, seen from p, is occluded: 0 visible, up to 1 occluded; the
+// blocker (sender patch for the bounce) in `.sender`, where it was seen in `.source` (0 G-buffer,
+// 1..3 peeled layer 2..4, CAMERA_SOURCE + c additional camera c) at `.pixel` of that view.
 struct Occlusion {
     amount: f32,
     pixel: vec2<u32>,
     distance: f32,
+    source: u32,
+    sender: Surface,
 }
 
-fn occlusion(p: vec3<f32>, omega: vec3<f32>, lambda: f32, cfg: SampleConfig) -> Occlusion {
-    var o: Occlusion;
-    o.amount = 0.0;
-    let s = p + omega * lambda;
-    let c = frame.clip_from_world * vec4<f32>(s, 1.0);
-    // Chapter condition 1: outside the screen (or behind the camera) — open.
-    if c.w <= 0.0 {
-        return o;
-    }
-    let ndc = c.xy / c.w;
-    let uv = vec2<f32>(ndc.x * 0.5 + 0.5, 0.5 - ndc.y * 0.5);
-    if any(uv < vec2<f32>(0.0)) || any(uv >= vec2<f32>(1.0)) {
-        return o;
-    }
-    let q = vec2<u32>(uv * frame.size.xy);
-    let surf = surface_at(q);
-    // Chapter condition 2: background — open.
-    if !surf.valid {
-        return o;
-    }
-    // Chapter condition 3 / the paper's rule against the tangent plane at q: the sample is
-    // behind the surface seen there.
+// The fade of a blocker whose entry face (the face towards the viewer that s is behind) is
+// `surf`: its distance from p where the segment p → s crosses the face's tangent plane when p is
+// in front of it, else (the plane seen is not the blocking face, e.g. the far side of a box) the
+// distance to the surface point seen; amount = 1 − smoothstep(fade·R, R, d).
+fn blocker_fade(p: vec3<f32>, s: vec3<f32>, lambda: f32, surf: Surface, cfg: SampleConfig) -> vec2<f32> {
     let above_s = dot(s - surf.p, surf.n);
-    if above_s >= -1e-4 * c.w {
-        return o;
-    }
-    // Blocker distance for the fade: where the segment p → s crosses the tangent plane when p is
-    // in front of it, else (the plane seen is not the blocking face, e.g. the far side of a box)
-    // the distance to the surface point seen.
     let above_p = dot(p - surf.p, surf.n);
     var d = distance(surf.p, p);
     if above_p >= 0.0 {
         d = above_p / max(above_p - above_s, 1e-12) * lambda;
     }
-    o.amount = 1.0 - smoothstep(cfg.fade * cfg.radius, cfg.radius, d);
-    o.pixel = q;
-    o.distance = d;
-    return o;
+    return vec2<f32>(1.0 - smoothstep(cfg.fade * cfg.radius, cfg.radius, d), d);
 }
 
+fn peel_surface(pixel: vec2<u32>, k: u32) -> Surface {
+    var s: Surface;
+    let nw = textureLoad(peel_normal, pixel, k, 0);
+    let depth = textureLoad(peel_depth, pixel, k, 0).r;
+    s.valid = nw.w != 0.0 && depth > 0.0;
+    s.n = normalize(nw.xyz);
+    s.p = world_position(pixel, depth);
+    return s;
+}
+
+fn camera_surface(pixel: vec2<u32>, c: u32) -> Surface {
+    var s: Surface;
+    let nw = textureLoad(cam_normal, pixel, c, 0);
+    let depth = textureLoad(cam_depth, pixel, c, 0).r;
+    s.valid = nw.w != 0.0 && depth > 0.0;
+    s.n = normalize(nw.xyz);
+    s.p = layer_position(layer_views[CAMERA_VIEW_BASE + c], pixel, depth);
+    return s;
+}
+
+// What one view says about s: `informed` (s projects inside it), `free` (s is in front of what
+// it sees there, or it sees background) or occluded by `o`.
+struct ViewVerdict {
+    informed: bool,
+    free: bool,
+    o: Occlusion,
+}
+
+// The main view: the paper's test against the first layer (against its tangent plane, see
+// technique/ssdo.wgsl), and with depth peeling (paper Sec. 4) s is inside a solid only between
+// an entry layer (1, 3) and the exit layer after it (2, 4): behind an exit face it lies in a gap
+// and is free (Fig. 5, sample A). Peeled normals face outwards (entry layers towards the camera,
+// exit layers away from it), so "inside" is "behind both faces' planes". A missing exit keeps
+// the single-layer verdict.
+fn main_view_verdict(p: vec3<f32>, s: vec3<f32>, lambda: f32, cfg: SampleConfig) -> ViewVerdict {
+    var v: ViewVerdict;
+    v.informed = false;
+    v.free = true;
+    v.o.amount = 0.0;
+    let c = frame.clip_from_world * vec4<f32>(s, 1.0);
+    // Chapter condition 1: outside the screen (or behind the camera) — no information.
+    if c.w <= 0.0 {
+        return v;
+    }
+    let ndc = c.xy / c.w;
+    let uv = vec2<f32>(ndc.x * 0.5 + 0.5, 0.5 - ndc.y * 0.5);
+    if any(uv < vec2<f32>(0.0)) || any(uv >= vec2<f32>(1.0)) {
+        return v;
+    }
+    v.informed = true;
+    let q = vec2<u32>(uv * frame.size.xy);
+    let surf = surface_at(q);
+    // Chapter condition 2: background — open.
+    if !surf.valid {
+        return v;
+    }
+    // Chapter condition 3 / the paper's rule against the tangent plane at q.
+    let tolerance = 1e-4 * c.w;
+    if dot(s - surf.p, surf.n) >= -tolerance {
+        return v;
+    }
+    var entry = surf;
+    var sender = surf;
+    var source = 0u;
+    var inside = true;
+    for (var k = 0u; k + 1u < cfg.layers; k++) {
+        let layer = peel_surface(q, k);
+        if !layer.valid {
+            break;
+        }
+        let behind = dot(s - layer.p, layer.n) < -tolerance;
+        if k % 2u == 0u {
+            // Exit face (layer 2 or 4).
+            if behind {
+                if abs(dot(s - layer.p, layer.n)) < abs(dot(s - entry.p, entry.n)) {
+                    sender = layer;
+                    source = k + 1u;
+                }
+                break;
+            }
+            inside = false;
+        } else {
+            // Entry face (layer 3).
+            if !behind {
+                break;
+            }
+            inside = true;
+            entry = layer;
+            sender = layer;
+            source = k + 1u;
+        }
+    }
+    if !inside {
+        return v;
+    }
+    let f = blocker_fade(p, s, lambda, entry, cfg);
+    v.free = false;
+    v.o.amount = f.x;
+    v.o.distance = f.y;
+    v.o.pixel = q;
+    v.o.source = source;
+    v.o.sender = sender;
+    return v;
+}
+
+// Additional camera c (paper Sec. 4): the single-layer test in that view.
+fn camera_verdict(p: vec3<f32>, s: vec3<f32>, lambda: f32, c: u32, cfg: SampleConfig) -> ViewVerdict {
+    var v: ViewVerdict;
+    v.informed = false;
+    v.free = true;
+    v.o.amount = 0.0;
+    let view = layer_views[CAMERA_VIEW_BASE + c];
+    let h = view.clip_from_world * vec4<f32>(s, 1.0);
+    if h.w <= 0.0 {
+        return v;
+    }
+    let ndc = h.xyz / h.w;
+    let uv = vec2<f32>(ndc.x * 0.5 + 0.5, 0.5 - ndc.y * 0.5);
+    if any(uv < vec2<f32>(0.0)) || any(uv >= vec2<f32>(1.0)) || ndc.z < 0.0 {
+        return v;
+    }
+    v.informed = true;
+    let q = vec2<u32>(uv * view.size.xy);
+    let surf = camera_surface(q, c);
+    if !surf.valid || dot(s - surf.p, surf.n) >= -1e-4 * h.w {
+        return v;
+    }
+    let f = blocker_fade(p, s, lambda, surf, cfg);
+    v.free = false;
+    v.o.amount = f.x;
+    v.o.distance = f.y;
+    v.o.pixel = q;
+    v.o.source = CAMERA_SOURCE + c;
+    v.o.sender = surf;
+    return v;
+}
+
+// The blocker test of every technique that samples the hemisphere. With additional cameras a
+// sample is free as soon as one view that sees it finds it in front of the surface there (free
+// space seen from any viewpoint is free), else occluded by the strongest blocker any view found;
+// off-screen in every view, it is free (chapter condition 1).
+fn occlusion(p: vec3<f32>, omega: vec3<f32>, lambda: f32, cfg: SampleConfig) -> Occlusion {
+    let s = p + omega * lambda;
+    var best = main_view_verdict(p, s, lambda, cfg);
+    if best.informed && best.free {
+        return best.o;
+    }
+    for (var c = 0u; c < cfg.cameras; c++) {
+        let v = camera_verdict(p, s, lambda, c, cfg);
+        if !v.informed {
+            continue;
+        }
+        if v.free {
+            var none: Occlusion;
+            none.amount = 0.0;
+            return none;
+        }
+        if !best.informed || v.o.amount > best.o.amount {
+            best = v;
+        }
+    }
+    return best.o;
+}
 
 // Transfer from a sender patch (a pixel that occludes a sample, SSDO Sec. 3) to the receiver,
 // per unit sender radiance, in irradiance/π units: area · cos θ_s · cos θ_r · falloff /

@@ -62,6 +62,9 @@ impl FrameInfo {
 /// A created technique: records its passes each frame.
 pub trait Technique {
     fn name(&self) -> &'static str;
+    /// Uploads what this frame needs from the CPU (e.g. the additional cameras' matrices, which
+    /// follow the main camera) before [`Self::encode`].
+    fn prepare(&self, _queue: &wgpu::Queue, _camera: &nearfield_scene::Camera) {}
     /// Records this frame's passes. Allocates nothing.
     fn encode(
         &self,
@@ -297,6 +300,7 @@ pub const REGISTRY: &[TechniqueDesc] = &[
     none::DESC,
     ssdo::SSAO,
     ssdo::SSDO,
+    ssdo::SSDO_VPL,
     s3ho::S3HO,
     s3ho::SSBN,
     horizon::GTAO,

@@ -12,6 +12,7 @@ use super::{Setting, Technique, TechniqueContext, TechniqueDesc, TechniqueParams
 use crate::RenderError;
 use crate::gpu_env::GpuEnvironment;
 use crate::passes::bilateral_blur::{BilateralBlur, BlurChain, BlurSettings};
+use crate::passes::layers::{self, LayerSettings, LayerStack};
 use crate::passes::shadow::ShadowPass;
 use crate::profiler::GpuProfiler;
 use crate::targets::{AO_FORMAT, HDR_FORMAT};
@@ -73,6 +74,9 @@ pub struct Settings {
     /// `blur`: the bilateral filter (s3ho: 8×8 on the coefficients; ssbn: on bent cone and ao).
     /// Default on.
     pub blur: bool,
+    /// `layers`, `cameras`, `camera_scale`, `camera_spread`: depth peeling and additional
+    /// cameras in the blocker test (passes/layers.rs). Default 1 layer, no cameras.
+    pub layers: LayerSettings,
 }
 
 impl Default for Settings {
@@ -88,6 +92,7 @@ impl Default for Settings {
             strength: 1.0,
             distance_clamp: 0.1,
             blur: true,
+            layers: LayerSettings::default(),
         }
     }
 }
@@ -127,6 +132,33 @@ pub const SETTINGS: &[Setting] = &[
         "smallest sender distance in 1/d² (m)",
     ),
     Setting::toggle("blur", "on", "bilateral filter"),
+    Setting::choice(
+        "layers",
+        &["1", "2", "4"],
+        "1",
+        "depth layers in the blocker test (depth peeling)",
+    ),
+    Setting::integer(
+        "cameras",
+        0.0,
+        4.0,
+        "0",
+        "additional cameras in the blocker test",
+    ),
+    Setting::integer(
+        "camera_scale",
+        1.0,
+        8.0,
+        "2",
+        "resolution divisor of the additional cameras",
+    ),
+    Setting::number(
+        "camera_spread",
+        0.0,
+        4.0,
+        "0.5",
+        "camera displacement (× scene bounding radius)",
+    ),
 ];
 
 impl Settings {
@@ -150,6 +182,7 @@ impl Settings {
                 "samples" => s.samples = super::parse_integer(k, v, 1, 256)?,
                 "radius" => s.radius = super::parse_number(k, v, 1e-6, 1e6)?,
                 "pattern" => s.pattern = Pattern::parse(v)?,
+                _ if layers::parse_setting(&mut s.layers, k, v)? => {}
                 _ => {
                     return Err(format!(
                         "unknown setting '{k}' (known: quality, {})",
@@ -175,7 +208,8 @@ impl Settings {
             indirect: (!ssbn && self.indirect) as u32,
             strength: self.strength,
             distance_clamp: self.distance_clamp,
-            _pad: [0.0; 2],
+            layers: self.layers.layers,
+            cameras: self.layers.cameras,
         }
     }
 }
@@ -194,7 +228,8 @@ pub struct S3hoParams {
     pub indirect: u32,
     pub strength: f32,
     pub distance_clamp: f32,
-    pub _pad: [f32; 2],
+    pub layers: u32,
+    pub cameras: u32,
 }
 
 struct S3ho {
@@ -213,6 +248,7 @@ struct S3ho {
     blur_bent: BlurChain,
     blur_ao: BlurChain,
     blur_indirect: BlurChain,
+    layers: LayerStack,
     _textures: Vec<wgpu::Texture>,
 }
 
@@ -308,6 +344,7 @@ fn create(
         ];
         e.extend(GpuEnvironment::layout_entries());
         e.extend(ShadowPass::layout_entries());
+        e.extend(LayerStack::layout_entries(true));
         e.extend_from_slice(extra);
         e
     };
@@ -343,6 +380,15 @@ fn create(
         ]),
     );
     let shadows = ctx.shadows;
+    let stack = LayerStack::new(
+        device,
+        t,
+        ctx.scene,
+        ctx.env,
+        shadows,
+        ctx.frame,
+        settings.layers,
+    );
     let mut common: Vec<(u32, R<'_>)> = vec![
         (0, ctx.frame.as_entire_binding()),
         (5, params.as_entire_binding()),
@@ -353,6 +399,7 @@ fn create(
     ];
     common.extend(ctx.env.bindings());
     common.extend(shadows.bindings(ctx.scene));
+    common.extend(stack.bindings(true));
     fn with<'a>(common: &[(u32, R<'a>)], extra: &[(u32, R<'a>)]) -> Vec<(u32, R<'a>)> {
         common.iter().chain(extra).cloned().collect()
     }
@@ -453,6 +500,7 @@ fn create(
             &t.indirect_irradiance.view,
         ),
         blur,
+        layers: stack,
         _textures: textures,
     }))
 }
@@ -462,12 +510,17 @@ impl Technique for S3ho {
         self.name
     }
 
+    fn prepare(&self, queue: &wgpu::Queue, camera: &nearfield_scene::Camera) {
+        self.layers.prepare(queue, camera);
+    }
+
     fn encode(
         &self,
         encoder: &mut wgpu::CommandEncoder,
         profiler: &mut GpuProfiler,
         _frame: super::FrameInfo,
     ) {
+        self.layers.encode(encoder, profiler);
         super::dispatch_screen(
             encoder,
             profiler,

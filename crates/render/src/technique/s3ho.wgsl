@@ -46,12 +46,16 @@ struct S3hoParams {
     indirect: u32,
     strength: f32,
     distance_clamp: f32,
-    _pad0: f32,
-    _pad1: f32,
+    // Depth layers of the main view and additional cameras in the blocker test (passes/layers.rs).
+    layers: u32,
+    cameras: u32,
 }
 
 @group(0) @binding(5) var<uniform> params: S3hoParams;
 @group(0) @binding(10) var gb_albedo: texture_2d<f32>;
+// Direct radiance of the peeled layers and additional cameras (passes/layers.rs).
+@group(0) @binding(45) var peel_radiance: texture_2d_array<f32>;
+@group(0) @binding(46) var cam_radiance: texture_2d_array<f32>;
 // `sample` outputs.
 @group(0) @binding(20) var out_coeffs0: texture_storage_2d<rgba32uint, write>;
 @group(0) @binding(21) var out_coeffs1: texture_storage_2d<rgba32uint, write>;
@@ -70,7 +74,7 @@ struct S3hoParams {
 @group(0) @binding(31) var in_ao_raw: texture_2d<f32>;
 
 fn cfg() -> SampleConfig {
-    return SampleConfig(params.samples, params.pattern, params.radius, params.fade);
+    return SampleConfig(params.samples, params.pattern, params.radius, params.fade, params.layers, params.cameras);
 }
 
 // Clamped-cosine band factors A_l (Funk–Hecke), bands 0..3.
@@ -190,11 +194,18 @@ fn sample_pass(@builtin(global_invocation_id) id: vec3<u32>) {
                 occluded[i] += (1.0 - v) * y[i] * cos_theta * d_omega;
             }
             if params.indirect == 1u {
-                let sender = surface_at(occ.pixel);
+                let sender = occ.sender;
                 let transfer = sender_transfer(here, sender, area, params.radius, params.distance_clamp);
                 if transfer > 0.0 {
-                    let rho = textureLoad(gb_albedo, occ.pixel, 0).rgb;
-                    let radiance = rho / PI * incident_at(sender.n, sender.p);
+                    var radiance: vec3<f32>;
+                    if occ.source == 0u {
+                        let rho = textureLoad(gb_albedo, occ.pixel, 0).rgb;
+                        radiance = rho / PI * incident_at(sender.n, sender.p);
+                    } else if occ.source < CAMERA_SOURCE {
+                        radiance = textureLoad(peel_radiance, occ.pixel, occ.source - 1u, 0).rgb;
+                    } else {
+                        radiance = textureLoad(cam_radiance, occ.pixel, occ.source - CAMERA_SOURCE, 0).rgb;
+                    }
                     indirect += radiance * (transfer * params.strength * (1.0 - v));
                 }
             }

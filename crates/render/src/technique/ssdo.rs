@@ -12,6 +12,7 @@ use super::{Preset, Setting, Technique, TechniqueContext, TechniqueDesc, Techniq
 use crate::RenderError;
 use crate::gpu_env::GpuEnvironment;
 use crate::passes::bilateral_blur::{BilateralBlur, BlurChain, BlurSettings};
+use crate::passes::layers::{self, LayerSettings, LayerStack};
 use crate::passes::shadow::ShadowPass;
 use crate::profiler::GpuProfiler;
 use crate::targets::{AO_FORMAT, HDR_FORMAT};
@@ -47,6 +48,23 @@ pub const SSDO: TechniqueDesc = TechniqueDesc {
     settings: SETTINGS,
     presets: PRESETS,
 };
+
+pub const SSDO_VPL: TechniqueDesc = TechniqueDesc {
+    name: "ssdo-vpl",
+    summary: "the environment as shadow-mapped virtual point lights, their lost small-scale shadows restored in screen space (ssdo Sec. 5)",
+    create: create_ssdo_vpl,
+    settings: SETTINGS,
+    presets: PRESETS,
+};
+
+/// Which technique of this file.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Variant {
+    Ssao,
+    Ssdo,
+    /// ssdo with the environment as VPLs (Sec. 5).
+    SsdoVpl,
+}
 
 /// How the environment term is formed.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -127,6 +145,25 @@ pub struct Settings {
     pub blur_depth: f32,
     /// `blur_normal`: exponent on the normals' cosine in the blur. Default 8.
     pub blur_normal: f32,
+    /// `light_segment`: radius | bias — the segment towards each light tested in screen space:
+    /// length R (Sec. 4) or the shadow map's bias (Sec. 5 shadow correction). Default radius.
+    pub light_segment: LightSegment,
+    /// `layers`, `cameras`, `camera_scale`, `camera_spread`: depth peeling and additional
+    /// cameras in the blocker test (passes/layers.rs). Default 1 layer, no cameras.
+    pub layers: LayerSettings,
+    /// `vpls` (ssdo-vpl): environment lights, 1..=256. Default 64.
+    pub vpls: u32,
+    /// `vpl_map` (ssdo-vpl): side of each environment light's shadow map, 128..=2048. Default 512.
+    pub vpl_map: u32,
+}
+
+/// What part of the ray towards a light is tested in screen space.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum LightSegment {
+    /// Length R, on top of the shadow map (paper Sec. 4, Fig. 6).
+    Radius,
+    /// The length the shadow map's bias hides (paper Sec. 5, Fig. 8–9).
+    Bias,
 }
 
 impl Default for Settings {
@@ -148,6 +185,10 @@ impl Default for Settings {
             blur_radius: 4,
             blur_depth: 0.01,
             blur_normal: 8.0,
+            light_segment: LightSegment::Radius,
+            layers: LayerSettings::default(),
+            vpls: 64,
+            vpl_map: 512,
         }
     }
 }
@@ -199,6 +240,53 @@ pub const SETTINGS: &[Setting] = &[
         64.0,
         "8",
         "points per light segment (0: off)",
+    ),
+    Setting::choice(
+        "light_segment",
+        &["radius", "bias"],
+        "radius",
+        "light segment tested in screen space: R, or the shadow map's bias (shadow correction)",
+    ),
+    Setting::choice(
+        "layers",
+        &["1", "2", "4"],
+        "1",
+        "depth layers in the blocker test (depth peeling)",
+    ),
+    Setting::integer(
+        "cameras",
+        0.0,
+        4.0,
+        "0",
+        "additional cameras in the blocker test",
+    ),
+    Setting::integer(
+        "camera_scale",
+        1.0,
+        8.0,
+        "2",
+        "resolution divisor of the additional cameras",
+    ),
+    Setting::number(
+        "camera_spread",
+        0.0,
+        4.0,
+        "0.5",
+        "camera displacement (× scene bounding radius)",
+    ),
+    Setting::integer(
+        "vpls",
+        1.0,
+        256.0,
+        "64",
+        "environment lights (ssdo-vpl; light_samples = correction points per light)",
+    ),
+    Setting::integer(
+        "vpl_map",
+        128.0,
+        2048.0,
+        "512",
+        "shadow map side per environment light (ssdo-vpl)",
     ),
     Setting::toggle("blur", "on", "geometry-aware blur"),
     Setting::integer("blur_radius", 0.0, 16.0, "4", "blur half width (pixels)"),
@@ -272,6 +360,16 @@ impl Settings {
                 "blur_normal" => s.blur_normal = super::parse_number(k, v, 0.0, 128.0)?,
                 "samples" => s.samples = super::parse_integer(k, v, 1, 256)?,
                 "radius" => s.radius = super::parse_number(k, v, 1e-6, 1e6)?,
+                "light_segment" => {
+                    s.light_segment = match v.as_str() {
+                        "radius" => LightSegment::Radius,
+                        "bias" => LightSegment::Bias,
+                        _ => return Err(format!("light_segment={v}: expected radius or bias")),
+                    }
+                }
+                "vpls" => s.vpls = super::parse_integer(k, v, 1, crate::vpl::MAX_VPLS)?,
+                "vpl_map" => s.vpl_map = super::parse_integer(k, v, 128, 2048)?,
+                _ if layers::parse_setting(&mut s.layers, k, v)? => {}
                 _ => {
                     return Err(format!(
                         "unknown setting '{k}' (known: quality, {})",
@@ -299,6 +397,12 @@ impl Settings {
             distance_clamp: self.distance_clamp,
             pattern: (self.pattern == Pattern::Interleaved) as u32,
             light_samples: if ssdo { self.light_samples } else { 0 },
+            layers: self.layers.layers,
+            cameras: self.layers.cameras,
+            light_segment: (self.light_segment == LightSegment::Bias) as u32,
+            env_vpl: 0,
+            vpl_count: 0,
+            _pad: [0; 2],
         }
     }
 }
@@ -319,6 +423,12 @@ pub struct SsdoParams {
     pub distance_clamp: f32,
     pub pattern: u32,
     pub light_samples: u32,
+    pub layers: u32,
+    pub cameras: u32,
+    pub light_segment: u32,
+    pub env_vpl: u32,
+    pub vpl_count: u32,
+    pub _pad: [u32; 2],
 }
 
 /// The paper's M×N sample texture with M = 4×4 sets: set m, sample i has a stratified elevation
@@ -368,6 +478,8 @@ struct Ssdo {
     blur_a: BlurChain,
     blur_b: BlurChain,
     blur_indirect: BlurChain,
+    layers: LayerStack,
+    env_lights: Option<EnvLights>,
     // Keep the technique's own textures alive.
     _textures: Vec<wgpu::Texture>,
 }
@@ -376,26 +488,92 @@ fn create_ssao(
     ctx: &TechniqueContext,
     params: &TechniqueParams,
 ) -> Result<Box<dyn Technique>, RenderError> {
-    create(ctx, params, false)
+    create(ctx, params, Variant::Ssao)
 }
 
 fn create_ssdo(
     ctx: &TechniqueContext,
     params: &TechniqueParams,
 ) -> Result<Box<dyn Technique>, RenderError> {
-    create(ctx, params, true)
+    create(ctx, params, Variant::Ssdo)
+}
+
+fn create_ssdo_vpl(
+    ctx: &TechniqueContext,
+    params: &TechniqueParams,
+) -> Result<Box<dyn Technique>, RenderError> {
+    create(ctx, params, Variant::SsdoVpl)
+}
+
+/// The environment lights of ssdo-vpl: their table (`GpuLight`s with their shadow layers) and
+/// shadow maps.
+struct EnvLights {
+    table: wgpu::Buffer,
+    count: u32,
+    shadows: ShadowPass,
+}
+
+impl EnvLights {
+    fn new(ctx: &TechniqueContext, settings: &Settings) -> Self {
+        let env = ctx.env;
+        let lights = crate::vpl::environment_lights(
+            env.source(),
+            env.rotation,
+            env.intensity,
+            settings.vpls,
+        );
+        let kinds: Vec<_> = lights.iter().map(|l| l.kind).collect();
+        let shadows = ShadowPass::for_lights(
+            ctx.device,
+            ctx.scene,
+            &kinds,
+            crate::passes::shadow::ShadowSettings {
+                size: settings.vpl_map,
+                max_layers: crate::vpl::MAX_VPLS,
+                ..Default::default()
+            },
+            "vpl shadows",
+        );
+        let table: Vec<crate::gpu_scene::GpuLight> = lights
+            .iter()
+            .zip(&shadows.light_layers)
+            .map(|(l, &(layer, texel))| crate::gpu_scene::gpu_light(l, layer, texel))
+            .collect();
+        let table = if table.is_empty() {
+            vec![crate::gpu_scene::GpuLight::zeroed()]
+        } else {
+            table
+        };
+        EnvLights {
+            table: ctx
+                .device
+                .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                    label: Some("environment lights"),
+                    contents: bytemuck::cast_slice(&table),
+                    usage: wgpu::BufferUsages::STORAGE,
+                }),
+            count: lights.len() as u32,
+            shadows,
+        }
+    }
 }
 
 fn create(
     ctx: &TechniqueContext,
     tp: &TechniqueParams,
-    ssdo: bool,
+    variant: Variant,
 ) -> Result<Box<dyn Technique>, RenderError> {
-    let name = if ssdo { "ssdo" } else { "ssao" };
+    let name = match variant {
+        Variant::Ssao => "ssao",
+        Variant::Ssdo => "ssdo",
+        Variant::SsdoVpl => "ssdo-vpl",
+    };
+    let ssdo = variant != Variant::Ssao;
     let settings = Settings::from_params(tp).map_err(|msg| RenderError::Setting {
         technique: name.into(),
         msg,
     })?;
+    let env_lights = (variant == Variant::SsdoVpl).then(|| EnvLights::new(ctx, &settings));
     let device = ctx.device;
     let t = ctx.targets;
     let c = wgpu::ShaderStages::COMPUTE;
@@ -419,9 +597,17 @@ fn create(
         &views[0], &views[1], &views[2], &views[3], &views[4], &views[5],
     );
 
+    let mut gpu_params = settings.params(ssdo);
+    if let Some(e) = &env_lights {
+        gpu_params.env_vpl = 1;
+        gpu_params.vpl_count = e.count;
+        // The VPLs take the light table: the scene's lights keep the direct pass's shadow-mapped
+        // light irradiance.
+        gpu_params.light_segment = 1;
+    }
     let params = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
         label: Some("ssdo params"),
-        contents: bytemuck::bytes_of(&settings.params(ssdo)),
+        contents: bytemuck::bytes_of(&gpu_params),
         usage: wgpu::BufferUsages::UNIFORM,
     });
     let sets = interleaved_sets(settings.samples);
@@ -446,6 +632,7 @@ fn create(
     ];
     direct_entries.extend(GpuEnvironment::layout_entries());
     direct_entries.extend(ShadowPass::layout_entries());
+    direct_entries.extend(LayerStack::layout_entries(false));
     direct_entries.extend([
         util::storage_texture(20, HDR_FORMAT),
         util::storage_texture(21, HDR_FORMAT),
@@ -465,22 +652,30 @@ fn create(
         util::storage_texture(27, AO_FORMAT),
     ]);
     let resolve_layout = layout("ssdo resolve", &resolve_entries);
-    let bounce_layout = layout(
-        "ssdo bounce",
-        &[
-            util::uniform(0, c),
-            util::uniform(5, c),
-            util::storage_buffer(6, c),
-            util::texture(8, c, true),
-            util::texture(9, c, false),
-            util::texture(10, c, true),
-            util::texture(11, c, true),
-            util::texture(28, c, true),
-            util::texture(29, c, true),
-            util::storage_texture(30, HDR_FORMAT),
-        ],
-    );
+    let mut bounce_entries = vec![
+        util::uniform(0, c),
+        util::uniform(5, c),
+        util::storage_buffer(6, c),
+        util::texture(8, c, true),
+        util::texture(9, c, false),
+        util::texture(10, c, true),
+        util::texture(11, c, true),
+        util::texture(28, c, true),
+        util::texture(29, c, true),
+        util::storage_texture(30, HDR_FORMAT),
+    ];
+    bounce_entries.extend(LayerStack::layout_entries(true));
+    let bounce_layout = layout("ssdo bounce", &bounce_entries);
     let shadows = ctx.shadows;
+    let stack = LayerStack::new(
+        device,
+        t,
+        ctx.scene,
+        ctx.env,
+        shadows,
+        ctx.frame,
+        settings.layers,
+    );
     let mut direct_res = vec![
         (0, ctx.frame.as_entire_binding()),
         (5, params.as_entire_binding()),
@@ -492,7 +687,16 @@ fn create(
         (22, R::TextureView(&t.light_irradiance.view)),
     ];
     direct_res.extend(ctx.env.bindings());
-    direct_res.extend(shadows.bindings(ctx.scene));
+    match &env_lights {
+        Some(e) => direct_res.extend([
+            (13, e.table.as_entire_binding()),
+            (14, e.shadows.matrices.as_entire_binding()),
+            (15, R::TextureView(&e.shadows.array_view)),
+            (16, R::Sampler(&e.shadows.compare_sampler)),
+        ]),
+        None => direct_res.extend(shadows.bindings(ctx.scene)),
+    }
+    direct_res.extend(stack.bindings(false));
     let mut resolve_res = vec![
         (0, ctx.frame.as_entire_binding()),
         (5, params.as_entire_binding()),
@@ -503,7 +707,7 @@ fn create(
         (27, R::TextureView(&t.ao.view)),
     ];
     resolve_res.extend(ctx.env.bindings());
-    let bounce_res = [
+    let mut bounce_res = vec![
         (0, ctx.frame.as_entire_binding()),
         (5, params.as_entire_binding()),
         (6, sample_buffer.as_entire_binding()),
@@ -515,6 +719,7 @@ fn create(
         (29, R::TextureView(&t.light_irradiance.view)),
         (30, R::TextureView(raw_indirect)),
     ];
+    bounce_res.extend(stack.bindings(true));
     let blur = BilateralBlur::new(
         device,
         BlurSettings {
@@ -557,6 +762,8 @@ fn create(
             &t.indirect_irradiance.view,
         ),
         blur,
+        layers: stack,
+        env_lights,
         _textures: textures,
     }))
 }
@@ -566,12 +773,20 @@ impl Technique for Ssdo {
         self.name
     }
 
+    fn prepare(&self, queue: &wgpu::Queue, camera: &nearfield_scene::Camera) {
+        self.layers.prepare(queue, camera);
+    }
+
     fn encode(
         &self,
         encoder: &mut wgpu::CommandEncoder,
         profiler: &mut GpuProfiler,
         _frame: super::FrameInfo,
     ) {
+        if let Some(e) = &self.env_lights {
+            e.shadows.encode(encoder, profiler);
+        }
+        self.layers.encode(encoder, profiler);
         super::dispatch_screen(
             encoder,
             profiler,

@@ -52,6 +52,18 @@ struct SsdoParams {
     pattern: u32,
     // Points on each light's segment (0: no screen-space light occlusion).
     light_samples: u32,
+    // Depth layers of the main view (1..=4) and additional cameras (0..=4), passes/layers.rs.
+    layers: u32,
+    cameras: u32,
+    // Light segment: 0 length R (Sec. 4 screen-space shadows), 1 the shadow map's bias
+    // (Sec. 5 screen-space shadow correction).
+    light_segment: u32,
+    // ssdo-vpl: 1 = the environment is `vpl_count` directional lights in the light table
+    // (bindings 13..=16 then hold them, not the scene's lights).
+    env_vpl: u32,
+    vpl_count: u32,
+    pad0: u32,
+    pad1: u32,
 }
 
 @group(0) @binding(5) var<uniform> params: SsdoParams;
@@ -71,9 +83,12 @@ struct SsdoParams {
 @group(0) @binding(28) var env_irradiance: texture_2d<f32>;
 @group(0) @binding(29) var light_irradiance: texture_2d<f32>;
 @group(0) @binding(30) var out_indirect: texture_storage_2d<rgba16float, write>;
+// Direct radiance of the peeled layers and additional cameras (passes/layers.rs).
+@group(0) @binding(45) var peel_radiance: texture_2d_array<f32>;
+@group(0) @binding(46) var cam_radiance: texture_2d_array<f32>;
 
 fn sample_config() -> SampleConfig {
-    return SampleConfig(params.samples, params.pattern, params.radius, params.fade);
+    return SampleConfig(params.samples, params.pattern, params.radius, params.fade, params.layers, params.cameras);
 }
 
 fn luminance(c: vec3<f32>) -> f32 {
@@ -128,11 +143,16 @@ fn direct(@builtin(global_invocation_id) id: vec3<u32>) {
         // SSAO: A = pow(max(0, 1 − scale·S), contrast), S the cosine-weighted occluded fraction.
         visibility = pow(max(0.0, 1.0 - params.scale * (1.0 - ao)), params.contrast);
     }
-    textureStore(out_a, pixel, vec4<f32>(l_dir, visibility));
     textureStore(out_b, pixel, vec4<f32>(ao, 0.0, 0.0, 1.0));
+    if params.env_vpl == 1u {
+        textureStore(out_a, pixel, vec4<f32>(vpl_environment(here), 1.0));
+        return;
+    }
+    textureStore(out_a, pixel, vec4<f32>(l_dir, visibility));
 
-    // Lights (paper Sec. 4): points on a segment of length R towards each light; the light is
-    // blocked in screen space as much as its most occluded point, on top of its shadow map.
+    // Lights: points on a segment towards each light — of length R (paper Sec. 4) or the length
+    // the shadow map's bias hides (light_segment=bias, Sec. 5 screen-space shadow correction);
+    // the light is blocked as much as its most occluded point, on top of its shadow map.
     if params.technique == 1u && params.light_samples > 0u {
         var irradiance = vec3<f32>(0.0);
         for (var li = 0u; li < frame.counts.y; li++) {
@@ -142,19 +162,54 @@ fn direct(@builtin(global_invocation_id) id: vec3<u32>) {
             if n_l <= 0.0 {
                 continue;
             }
-            var seg_length = params.radius;
-            if u32(l.position.w) != 0u {
-                seg_length = min(seg_length, distance(l.position.xyz, here.p));
-            }
+            let shadowed = shadow_visibility(l, here.p, here.n);
             var blocked = 0.0;
-            for (var k = 0u; k < params.light_samples; k++) {
-                let t = (f32(k) + 0.5) / f32(params.light_samples) * seg_length;
-                blocked = max(blocked, occlusion(here.p, inc.to_light, t, sample_config()).amount);
+            if shadowed > 0.0 {
+                blocked = segment_blocked(here, l, inc.to_light);
             }
-            irradiance += inc.irradiance * n_l * shadow_visibility(l, here.p, here.n) * (1.0 - blocked);
+            irradiance += inc.irradiance * n_l * shadowed * (1.0 - blocked);
         }
         textureStore(out_light_irradiance, pixel, vec4<f32>(irradiance / PI, 1.0));
     }
+}
+
+// Amount of light towards `to_light` that the screen-space test finds blocked on the segment
+// the shadow map's bias hides (paper Sec. 5, Fig. 8): the most occluded of `light_samples`
+// points on P → P + b·l, or on P → P + R·l (Sec. 4) for light_segment 0.
+fn segment_blocked(here: Surface, l: GpuLight, to_light: vec3<f32>) -> f32 {
+    var seg_length = params.radius;
+    if params.light_segment == 1u {
+        seg_length = shadow_bias_length(l, here.p, here.n);
+    }
+    if u32(l.position.w) != 0u {
+        seg_length = min(seg_length, distance(l.position.xyz, here.p));
+    }
+    var blocked = 0.0;
+    for (var k = 0u; k < params.light_samples; k++) {
+        let t = (f32(k) + 0.5) / f32(params.light_samples) * seg_length;
+        blocked = max(blocked, occlusion(here.p, to_light, t, sample_config()).amount);
+    }
+    return blocked;
+}
+
+// ssdo-vpl (paper Sec. 5, Fig. 10): (1/π) Σ_k E_k max(0, n·ω_k) V_k with V_k the k-th
+// environment light's shadow map, corrected in screen space on its bias segment.
+fn vpl_environment(here: Surface) -> vec3<f32> {
+    var e = vec3<f32>(0.0);
+    for (var k = 0u; k < params.vpl_count; k++) {
+        let l = lights[k];
+        let to_light = -l.position.xyz;
+        let n_l = dot(here.n, to_light);
+        if n_l <= 0.0 {
+            continue;
+        }
+        var v = shadow_visibility(l, here.p, here.n);
+        if v > 0.0 && params.light_samples > 0u {
+            v *= 1.0 - segment_blocked(here, l, to_light);
+        }
+        e += l.color.rgb * (n_l * v);
+    }
+    return e / PI;
 }
 
 @compute @workgroup_size(8, 8, 1)
@@ -171,7 +226,7 @@ fn resolve(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     let a = textureLoad(in_a, pixel, 0);
     var env = a.w * env_irradiance_sh(normalize(nw.xyz));
-    if params.technique == 1u && params.mode == 1u {
+    if params.technique == 1u && (params.mode == 1u || params.env_vpl == 1u) {
         env = a.rgb;
     }
     textureStore(out_env_irradiance, pixel, vec4<f32>(env, 1.0));
@@ -201,13 +256,22 @@ fn bounce(@builtin(global_invocation_id) id: vec3<u32>) {
         if occ.amount <= 0.0 {
             continue;
         }
-        let transfer = sender_transfer(here, surface_at(occ.pixel), area, params.radius, params.distance_clamp);
+        let transfer = sender_transfer(here, occ.sender, area, params.radius, params.distance_clamp);
         if transfer <= 0.0 {
             continue;
         }
-        // Sender radiance: its blurred direct irradiance × albedo (Lambertian), plus emission.
-        let irradiance = textureLoad(env_irradiance, occ.pixel, 0).rgb + textureLoad(light_irradiance, occ.pixel, 0).rgb;
-        let l_pixel = textureLoad(gb_albedo, occ.pixel, 0).rgb * irradiance + textureLoad(gb_emissive, occ.pixel, 0).rgb;
+        var l_pixel: vec3<f32>;
+        if occ.source == 0u {
+            // Sender radiance: its blurred direct irradiance × albedo (Lambertian), plus emission.
+            let irradiance = textureLoad(env_irradiance, occ.pixel, 0).rgb + textureLoad(light_irradiance, occ.pixel, 0).rgb;
+            l_pixel = textureLoad(gb_albedo, occ.pixel, 0).rgb * irradiance + textureLoad(gb_emissive, occ.pixel, 0).rgb;
+        } else if occ.source < CAMERA_SOURCE {
+            // A peeled layer (e.g. the back face of a solid): its direct radiance.
+            l_pixel = textureLoad(peel_radiance, occ.pixel, occ.source - 1u, 0).rgb;
+        } else {
+            // An additional camera's view (e.g. a surface hidden in the main view).
+            l_pixel = textureLoad(cam_radiance, occ.pixel, occ.source - CAMERA_SOURCE, 0).rgb;
+        }
         l_ind += l_pixel * (transfer * params.strength * occ.amount);
     }
     textureStore(out_indirect, pixel, vec4<f32>(l_ind, 1.0));

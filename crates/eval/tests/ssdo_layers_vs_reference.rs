@@ -1,0 +1,177 @@
+//! SSDO Sec. 4–5 measured against the reference (masked as `compare` masks):
+//! - screen-space shadow correction (`light_segment=bias`) restores the contact shadows a
+//!   512² shadow map loses on `builtin:contact`: the `light-irradiance` RMSE in the band around
+//!   the cube falls;
+//! - depth peeling only ever frees samples (a sample is occluded with two layers only if it is
+//!   with one), so `ao` with `layers=2` is never below `ao` with one layer on `builtin:gap`, and
+//!   somewhere above it;
+//! - the layers, the additional cameras and the environment lights render without GPU errors
+//!   and give finite AOVs.
+//!
+//! README's "Beyond one depth layer" section lists the full numbers and the commands.
+
+use nearfield_eval::metrics::{self, Mask, MaskSettings};
+use nearfield_reference::{ReferenceAov, ReferenceSettings};
+use nearfield_render::passes::shadow::ShadowSettings;
+use nearfield_render::{Aov, AovImage, GpuContext, RenderSettings, Renderer, TechniqueParams};
+use nearfield_scene::builtin;
+
+fn context() -> Option<GpuContext> {
+    match GpuContext::new(None) {
+        Ok(c) => Some(c),
+        Err(e) if std::env::var("REQUIRE_GPU").as_deref() == Ok("1") => {
+            panic!("REQUIRE_GPU=1 but {e}")
+        }
+        Err(_) => None,
+    }
+}
+
+fn render(
+    ctx: &GpuContext,
+    scene_name: &str,
+    method: &str,
+    radius: f32,
+    size: (u32, u32),
+    shadow_size: u32,
+    aov: Aov,
+) -> (AovImage, Vec<f32>) {
+    let scene = builtin::scene(scene_name).unwrap();
+    let env = scene.default_env.load().unwrap();
+    let (name, set) = nearfield_render::technique::split_spec(method);
+    let params = TechniqueParams {
+        samples: None,
+        radius: Some(radius),
+        set,
+    };
+    let mut r = Renderer::new(
+        ctx,
+        &scene,
+        &env,
+        scene.default_camera(),
+        name,
+        &params,
+        RenderSettings {
+            size,
+            shadows: ShadowSettings {
+                size: shadow_size,
+                ..Default::default()
+            },
+            ..Default::default()
+        },
+    )
+    .unwrap();
+    r.render_frame();
+    let img = r.read_aov(aov);
+    let depth = r.read_aov(Aov::Depth).pixels.iter().map(|p| p[0]).collect();
+    (img, depth)
+}
+
+#[test]
+fn shadow_correction_restores_contact_shadows() {
+    let Some(ctx) = context() else { return };
+    let size = (320, 180);
+    let scene = builtin::scene("contact").unwrap();
+    let env = scene.default_env.load().unwrap();
+    let reference = nearfield_reference::render(
+        &scene,
+        &env,
+        &scene.default_camera(),
+        &ReferenceSettings {
+            aov: ReferenceAov::LightIrradiance,
+            size,
+            radius: 0.1,
+            spp: 64,
+            seed: 1,
+            max_depth: 1,
+        },
+        false,
+    );
+    let ref_alpha: Vec<f32> = reference.value.iter().map(|p| p[3]).collect();
+    let band_error = |method: &str| {
+        let (img, depth) = render(
+            &ctx,
+            "contact",
+            method,
+            0.1,
+            size,
+            512,
+            Aov::LightIrradiance,
+        );
+        let alpha: Vec<f32> = img.pixels.iter().map(|p| p[3]).collect();
+        let mut mask = Mask::new(
+            size,
+            &alpha,
+            &depth,
+            &ref_alpha,
+            &reference.depth,
+            MaskSettings {
+                border: 3,
+                depth_tolerance: 0.01,
+            },
+        );
+        // The band around the cube and its contact with the plane.
+        mask.restrict([95, 62, 165, 100]);
+        metrics::metrics(&img.pixels, &reference.value, &mask).rmse
+    };
+    let plain = band_error("ssdo:light_samples=0");
+    let corrected = band_error("ssdo:light_segment=bias");
+    eprintln!(
+        "contact band light-irradiance RMSE: shadow map {plain:.4} → corrected {corrected:.4}"
+    );
+    // Measured 0.122 → 0.070 (README); the bound leaves room for driver differences.
+    assert!(
+        corrected < 0.8 * plain,
+        "correction {corrected} not below 0.8 × {plain}"
+    );
+}
+
+#[test]
+fn a_second_layer_only_frees_samples() {
+    let Some(ctx) = context() else { return };
+    let size = (160, 90);
+    let (one, _) = render(&ctx, "gap", "ssdo:blur=off", 0.5, size, 2048, Aov::Ao);
+    let (two, _) = render(
+        &ctx,
+        "gap",
+        "ssdo:blur=off+layers=2",
+        0.5,
+        size,
+        2048,
+        Aov::Ao,
+    );
+    let mut raised = 0;
+    for (a, b) in one.pixels.iter().zip(&two.pixels) {
+        assert!(
+            b[0] >= a[0] - 1e-5,
+            "layers=2 ao {} below one layer's {}",
+            b[0],
+            a[0]
+        );
+        if b[0] > a[0] + 1e-3 {
+            raised += 1;
+        }
+    }
+    assert!(
+        raised > 50,
+        "only {raised} pixels freed by the second layer"
+    );
+}
+
+#[test]
+fn layers_cameras_and_environment_lights_render() {
+    let Some(ctx) = context() else { return };
+    for method in [
+        "ssdo:layers=4+cameras=4",
+        "ssao:layers=2+cameras=1",
+        "s3ho:layers=2+cameras=2",
+        "ssdo-vpl:vpls=16+vpl_map=256+layers=2",
+    ] {
+        let (img, _) = render(&ctx, "columns", method, 0.5, (96, 54), 1024, Aov::Diffuse);
+        let lit = img.pixels.iter().filter(|p| p[3] > 0.0).count();
+        assert!(lit > 1000, "{method}: {lit} surface pixels");
+        assert!(
+            img.pixels.iter().all(|p| p.iter().all(|c| c.is_finite())),
+            "{method}: non-finite diffuse"
+        );
+    }
+}

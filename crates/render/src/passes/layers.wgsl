@@ -1,0 +1,51 @@
+// layers.wgsl — direct radiance of the extra layers (passes/layers.rs): for every texel of a
+// peeled layer or an additional camera, ρ × (unoccluded SH irradiance of the environment +
+// (1/π) Σ E_l · shadow-map visibility) + emission. This is the outgoing diffuse radiance of
+// DESIGN.md's `indirect-irradiance` senders (lit with full visibility by the environment).
+
+struct ShadeParams {
+    // Index in `layer_views` of this set's first layer, and the number of layers.
+    first_view: u32,
+    count: u32,
+    pad0: u32,
+    pad1: u32,
+}
+
+@group(0) @binding(40) var<storage, read> layer_views: array<LayerView>;
+@group(0) @binding(50) var<uniform> shade_params: ShadeParams;
+@group(0) @binding(51) var layer_normal: texture_2d_array<f32>;
+@group(0) @binding(52) var layer_albedo: texture_2d_array<f32>;
+@group(0) @binding(53) var layer_emissive: texture_2d_array<f32>;
+@group(0) @binding(54) var layer_depth: texture_2d_array<f32>;
+@group(0) @binding(55) var layer_radiance: texture_storage_2d_array<rgba16float, write>;
+
+@compute @workgroup_size(8, 8, 1)
+fn shade(@builtin(global_invocation_id) id: vec3<u32>) {
+    let size = textureDimensions(layer_normal);
+    if id.x >= size.x || id.y >= size.y || id.z >= shade_params.count {
+        return;
+    }
+    let pixel = id.xy;
+    let k = id.z;
+    let nw = textureLoad(layer_normal, pixel, k, 0);
+    let depth = textureLoad(layer_depth, pixel, k, 0).r;
+    if nw.w == 0.0 || depth <= 0.0 {
+        textureStore(layer_radiance, pixel, k, vec4<f32>(0.0));
+        return;
+    }
+    let n = normalize(nw.xyz);
+    let p = layer_position(layer_views[shade_params.first_view + k], pixel, depth);
+    var irradiance = env_irradiance_sh(n);
+    for (var li = 0u; li < frame.counts.y; li++) {
+        let l = lights[li];
+        let inc = incident(l, p);
+        let n_l = dot(n, inc.to_light);
+        if n_l <= 0.0 {
+            continue;
+        }
+        irradiance += inc.irradiance * (n_l * shadow_visibility(l, p, n) / PI);
+    }
+    let albedo = textureLoad(layer_albedo, pixel, k, 0).rgb;
+    let emissive = textureLoad(layer_emissive, pixel, k, 0).rgb;
+    textureStore(layer_radiance, pixel, k, vec4<f32>(albedo * irradiance + emissive, 1.0));
+}
