@@ -10,7 +10,7 @@ use nearfield_scene::{Camera, CameraFile, EnvSource, Environment, Scene, SceneSo
 #[derive(Args, Clone, Debug)]
 pub struct SceneOpts {
     /// Scene: a .gltf/.glb/.obj/.ply file or builtin:NAME (cornell, boxes, city, plane, wall,
-    /// closed-box).
+    /// closed-box, gap, columns, contact).
     #[arg(default_value = "builtin:cornell")]
     pub scene: String,
     /// Image size in pixels, WIDTHxHEIGHT (each 1..=8192).

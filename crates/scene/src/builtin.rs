@@ -158,14 +158,6 @@ impl Builder {
         );
     }
 
-    /// A closed box (all six faces, outward) from y = base to base + size.y: a slab that need not
-    /// rest on anything.
-    fn slab(&mut self, material: u32, center_xz: Vec2, size: Vec3, base: f32) {
-        self.block(material, center_xz, size, base, 0.0);
-        let h = Vec2::new(0.5 * size.x, 0.5 * size.z);
-        self.floor(material, center_xz - h, center_xz + h, base, true);
-    }
-
     fn finish(mut self, camera: Camera, env: EnvSource) -> Scene {
         self.scene.meshes.retain(|m| !m.indices.is_empty());
         self.scene.cameras = vec![camera];
@@ -384,17 +376,43 @@ fn closed_box() -> Scene {
     )
 }
 
-/// SSDO Fig. 5: a thin floating slab (1.2 × 0.06 × 1.2 m, its underside 0.25 m above the floor)
-/// seen from above; the floor just beyond its far edge is in view, and points of the gap under
-/// the slab lie behind it from the camera.
+/// SSDO Fig. 5: three thin posts (4 × 4 cm, 1.5 m tall) stand 0.3 m in front of a wall; points
+/// of the gap between a post and the wall lie behind the post from the camera, so one depth
+/// layer takes them for the inside of a solid (a dark halo on the wall and the floor around each
+/// post), while rays from the wall through the gap mostly reach the sky.
 fn gap() -> Scene {
     let mut b = Builder::new("gap");
     let floor = b.material(Material::diffuse("floor", Vec3::splat(0.7)));
-    let slab = b.material(Material::diffuse("slab", Vec3::new(0.7, 0.6, 0.45)));
-    b.floor(floor, Vec2::splat(-3.0), Vec2::splat(3.0), 0.0, false);
-    b.slab(slab, Vec2::ZERO, Vec3::new(1.2, 0.06, 1.2), 0.25);
+    let wall = b.material(Material::diffuse("wall", Vec3::splat(0.75)));
+    let posts = b.material(Material::diffuse("posts", Vec3::new(0.7, 0.6, 0.45)));
+    // The floor ends at the wall: nothing lies behind the wall for a second layer to find.
+    b.floor(
+        floor,
+        Vec2::new(-3.0, -1.0),
+        Vec2::new(3.0, 3.0),
+        0.0,
+        false,
+    );
+    b.quad(
+        wall,
+        [
+            Vec3::new(-3.0, 0.0, -1.0),
+            Vec3::new(3.0, 0.0, -1.0),
+            Vec3::new(3.0, 2.5, -1.0),
+            Vec3::new(-3.0, 2.5, -1.0),
+        ],
+    );
+    for x in [-0.6, 0.0, 0.6] {
+        b.block(
+            posts,
+            Vec2::new(x, -0.7),
+            Vec3::new(0.04, 1.5, 0.04),
+            0.0,
+            0.0,
+        );
+    }
     b.finish(
-        Camera::new(Vec3::new(0.0, 3.0, 1.5), Vec3::new(0.0, 0.0, -0.9), 40.0),
+        Camera::new(Vec3::new(0.0, 1.0, 2.2), Vec3::new(0.0, 0.6, -1.0), 40.0),
         EnvSource::Sky,
     )
 }

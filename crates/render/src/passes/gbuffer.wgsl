@@ -154,7 +154,10 @@ fn fs_layer(in: VertexOut) -> LayerOut {
         let near = layer_view.projection.x;
         let far = layer_view.projection.y;
         let before = far * near / (far - d * (far - near));
-        if d >= 1.0 || depth <= before * (1.0 + 1e-4) + 1e-6 {
+        // The layer before is re-rasterized with the same matrix, so its fragments land on the
+        // stored depth to within a few ulps; a relative view-depth tolerance alone fails where the
+        // buffer's resolution (≈ t² ulp / near) is coarser than it (small near planes).
+        if d >= 1.0 || in.clip.z <= d + 4.0 * 1.2e-7 || depth <= before * (1.0 + 1e-4) + 1e-6 {
             discard;
         }
     }
@@ -172,5 +175,51 @@ fn fs_layer(in: VertexOut) -> LayerOut {
     o.albedo = vec4<f32>(m.base, 1.0);
     o.emissive = vec4<f32>(m.emissive, 1.0);
     o.view_depth = vec4<f32>(depth, 0.0, 0.0, 0.0);
+    return o;
+}
+
+// ---- Reflective shadow maps (passes/rsm.rs): the scene seen from a light. Targets (all
+// rgba32float, read back by the CPU): 0 world position (w = 1 on surfaces), 1 unit normal turned
+// towards the light, 2 base colour ρ.
+
+struct RsmView {
+    clip_from_world: mat4x4<f32>,
+    // xyz: light position (w = 1) or direction towards the light (w = 0).
+    to_light: vec4<f32>,
+}
+
+@group(0) @binding(7) var<uniform> rsm_view: RsmView;
+
+@vertex
+fn vs_rsm(v: VertexIn) -> VertexOut {
+    var o: VertexOut;
+    o.clip = rsm_view.clip_from_world * vec4<f32>(v.position, 1.0);
+    o.world = v.position;
+    o.normal = v.normal;
+    o.uv = v.uv;
+    o.material = v.material;
+    return o;
+}
+
+struct RsmOut {
+    @location(0) position: vec4<f32>,
+    @location(1) normal: vec4<f32>,
+    @location(2) albedo: vec4<f32>,
+}
+
+@fragment
+fn fs_rsm(in: VertexOut) -> RsmOut {
+    let duv_dx = dpdx(in.uv);
+    let duv_dy = dpdy(in.uv);
+    let m = surface_material(in, duv_dx, duv_dy);
+    let l = rsm_view.to_light.xyz - in.world * rsm_view.to_light.w;
+    var n = normalize(in.normal);
+    if dot(n, l) < 0.0 {
+        n = -n;
+    }
+    var o: RsmOut;
+    o.position = vec4<f32>(in.world, 1.0);
+    o.normal = vec4<f32>(n, 0.0);
+    o.albedo = vec4<f32>(m.base, 1.0);
     return o;
 }

@@ -24,6 +24,7 @@ use crate::passes::gbuffer;
 use crate::passes::shadow::ShadowPass;
 use crate::profiler::GpuProfiler;
 use crate::targets::{self, FrameTargets};
+use crate::technique::Setting;
 use crate::util;
 use bytemuck::{Pod, Zeroable};
 use glam::Vec3;
@@ -283,6 +284,37 @@ fn depth_texture(device: &wgpu::Device, size: (u32, u32), label: &str) -> wgpu::
 pub fn source() -> String {
     util::compose(&[util::COMMON_WGSL, util::ENV_WGSL, util::LIGHTS_WGSL, SHADER])
 }
+
+/// The `--set` keys of [`LayerSettings`], for the tables of the techniques that take them.
+pub const SETTINGS: [Setting; 4] = [
+    Setting::choice(
+        "layers",
+        &["1", "2", "4"],
+        "1",
+        "depth layers in the blocker test (depth peeling)",
+    ),
+    Setting::integer(
+        "cameras",
+        0.0,
+        4.0,
+        "0",
+        "additional cameras in the blocker test",
+    ),
+    Setting::integer(
+        "camera_scale",
+        1.0,
+        8.0,
+        "2",
+        "resolution divisor of the additional cameras",
+    ),
+    Setting::number(
+        "camera_spread",
+        0.0,
+        4.0,
+        "0.5",
+        "camera displacement (× scene bounding radius)",
+    ),
+];
 
 /// Parses and checks the settings every technique with the shared blocker test takes
 /// (`layers`, `cameras`, `camera_scale`, `camera_spread`); `Ok(false)` for other keys.

@@ -11,6 +11,7 @@ pub mod display;
 pub mod gbuffer;
 pub mod layers;
 pub mod reproject;
+pub mod rsm;
 pub mod shadow;
 pub mod tonemap;
 

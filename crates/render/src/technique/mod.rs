@@ -301,6 +301,7 @@ pub const REGISTRY: &[TechniqueDesc] = &[
     ssdo::SSAO,
     ssdo::SSDO,
     ssdo::SSDO_VPL,
+    ssdo::INSTANT_RADIOSITY,
     s3ho::S3HO,
     s3ho::SSBN,
     horizon::GTAO,

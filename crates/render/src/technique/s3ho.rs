@@ -132,33 +132,10 @@ pub const SETTINGS: &[Setting] = &[
         "smallest sender distance in 1/d² (m)",
     ),
     Setting::toggle("blur", "on", "bilateral filter"),
-    Setting::choice(
-        "layers",
-        &["1", "2", "4"],
-        "1",
-        "depth layers in the blocker test (depth peeling)",
-    ),
-    Setting::integer(
-        "cameras",
-        0.0,
-        4.0,
-        "0",
-        "additional cameras in the blocker test",
-    ),
-    Setting::integer(
-        "camera_scale",
-        1.0,
-        8.0,
-        "2",
-        "resolution divisor of the additional cameras",
-    ),
-    Setting::number(
-        "camera_spread",
-        0.0,
-        4.0,
-        "0.5",
-        "camera displacement (× scene bounding radius)",
-    ),
+    layers::SETTINGS[0],
+    layers::SETTINGS[1],
+    layers::SETTINGS[2],
+    layers::SETTINGS[3],
 ];
 
 impl Settings {

@@ -53,9 +53,6 @@ struct S3hoParams {
 
 @group(0) @binding(5) var<uniform> params: S3hoParams;
 @group(0) @binding(10) var gb_albedo: texture_2d<f32>;
-// Direct radiance of the peeled layers and additional cameras (passes/layers.rs).
-@group(0) @binding(45) var peel_radiance: texture_2d_array<f32>;
-@group(0) @binding(46) var cam_radiance: texture_2d_array<f32>;
 // `sample` outputs.
 @group(0) @binding(20) var out_coeffs0: texture_storage_2d<rgba32uint, write>;
 @group(0) @binding(21) var out_coeffs1: texture_storage_2d<rgba32uint, write>;
@@ -201,10 +198,8 @@ fn sample_pass(@builtin(global_invocation_id) id: vec3<u32>) {
                     if occ.source == 0u {
                         let rho = textureLoad(gb_albedo, occ.pixel, 0).rgb;
                         radiance = rho / PI * incident_at(sender.n, sender.p);
-                    } else if occ.source < CAMERA_SOURCE {
-                        radiance = textureLoad(peel_radiance, occ.pixel, occ.source - 1u, 0).rgb;
                     } else {
-                        radiance = textureLoad(cam_radiance, occ.pixel, occ.source - CAMERA_SOURCE, 0).rgb;
+                        radiance = layer_sender_radiance(occ);
                     }
                     indirect += radiance * (transfer * params.strength * (1.0 - v));
                 }

@@ -57,6 +57,14 @@ pub const SSDO_VPL: TechniqueDesc = TechniqueDesc {
     presets: PRESETS,
 };
 
+pub const INSTANT_RADIOSITY: TechniqueDesc = TechniqueDesc {
+    name: "instant-radiosity",
+    summary: "one bounce of the lights from virtual point lights drawn from reflective shadow maps (shadow-mapped, clamped), plus the screen-space near-field bounce the clamp removes and screen-space shadow correction (ssdo Sec. 5)",
+    create: create_instant_radiosity,
+    settings: SETTINGS,
+    presets: PRESETS,
+};
+
 /// Which technique of this file.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum Variant {
@@ -64,6 +72,8 @@ enum Variant {
     Ssdo,
     /// ssdo with the environment as VPLs (Sec. 5).
     SsdoVpl,
+    /// ssdo with the lights' bounce from VPLs of reflective shadow maps (Sec. 5).
+    InstantRadiosity,
 }
 
 /// How the environment term is formed.
@@ -151,10 +161,17 @@ pub struct Settings {
     /// `layers`, `cameras`, `camera_scale`, `camera_spread`: depth peeling and additional
     /// cameras in the blocker test (passes/layers.rs). Default 1 layer, no cameras.
     pub layers: LayerSettings,
-    /// `vpls` (ssdo-vpl): environment lights, 1..=256. Default 64.
+    /// `vpls` (ssdo-vpl, instant-radiosity): virtual point lights, 1..=256. Default 64.
     pub vpls: u32,
-    /// `vpl_map` (ssdo-vpl): side of each environment light's shadow map, 128..=2048. Default 512.
+    /// `vpl_map` (ssdo-vpl, instant-radiosity): side of each virtual point light's shadow map,
+    /// 128..=2048. Default 512.
     pub vpl_map: u32,
+    /// `rsm` (instant-radiosity): side of each reflective shadow map view, 16..=1024. Default 256.
+    pub rsm: u32,
+    /// `vpl_clamp` (instant-radiosity): smallest distance in a virtual point light's 1/d² (m),
+    /// ≥ 0. With `bounce=on` it must not exceed R: the screen-space bounce adds back what the
+    /// clamp removes. Default 0.5 (the default R).
+    pub vpl_clamp: f32,
 }
 
 /// What part of the ray towards a light is tested in screen space.
@@ -189,6 +206,8 @@ impl Default for Settings {
             layers: LayerSettings::default(),
             vpls: 64,
             vpl_map: 512,
+            rsm: 256,
+            vpl_clamp: 0.5,
         }
     }
 }
@@ -247,46 +266,37 @@ pub const SETTINGS: &[Setting] = &[
         "radius",
         "light segment tested in screen space: R, or the shadow map's bias (shadow correction)",
     ),
-    Setting::choice(
-        "layers",
-        &["1", "2", "4"],
-        "1",
-        "depth layers in the blocker test (depth peeling)",
-    ),
-    Setting::integer(
-        "cameras",
-        0.0,
-        4.0,
-        "0",
-        "additional cameras in the blocker test",
-    ),
-    Setting::integer(
-        "camera_scale",
-        1.0,
-        8.0,
-        "2",
-        "resolution divisor of the additional cameras",
-    ),
-    Setting::number(
-        "camera_spread",
-        0.0,
-        4.0,
-        "0.5",
-        "camera displacement (× scene bounding radius)",
-    ),
+    layers::SETTINGS[0],
+    layers::SETTINGS[1],
+    layers::SETTINGS[2],
+    layers::SETTINGS[3],
     Setting::integer(
         "vpls",
         1.0,
         256.0,
         "64",
-        "environment lights (ssdo-vpl; light_samples = correction points per light)",
+        "virtual point lights (ssdo-vpl, instant-radiosity; light_samples = correction points per light)",
     ),
     Setting::integer(
         "vpl_map",
         128.0,
         2048.0,
         "512",
-        "shadow map side per environment light (ssdo-vpl)",
+        "shadow map side per virtual point light (ssdo-vpl, instant-radiosity)",
+    ),
+    Setting::integer(
+        "rsm",
+        16.0,
+        1024.0,
+        "256",
+        "reflective shadow map side per light view (instant-radiosity)",
+    ),
+    Setting::log(
+        "vpl_clamp",
+        0.0,
+        1e6,
+        "0.5",
+        "smallest distance in a VPL's 1/d² (m; instant-radiosity, ≤ R with bounce=on)",
     ),
     Setting::toggle("blur", "on", "geometry-aware blur"),
     Setting::integer("blur_radius", 0.0, 16.0, "4", "blur half width (pixels)"),
@@ -369,6 +379,8 @@ impl Settings {
                 }
                 "vpls" => s.vpls = super::parse_integer(k, v, 1, crate::vpl::MAX_VPLS)?,
                 "vpl_map" => s.vpl_map = super::parse_integer(k, v, 128, 2048)?,
+                "rsm" => s.rsm = super::parse_integer(k, v, 16, 1024)?,
+                "vpl_clamp" => s.vpl_clamp = super::parse_number(k, v, 0.0, 1e6)?,
                 _ if layers::parse_setting(&mut s.layers, k, v)? => {}
                 _ => {
                     return Err(format!(
@@ -400,9 +412,10 @@ impl Settings {
             layers: self.layers.layers,
             cameras: self.layers.cameras,
             light_segment: (self.light_segment == LightSegment::Bias) as u32,
-            env_vpl: 0,
+            vpl_mode: 0,
             vpl_count: 0,
-            _pad: [0; 2],
+            vpl_clamp: self.vpl_clamp,
+            near: (ssdo && self.bounce) as u32,
         }
     }
 }
@@ -426,9 +439,12 @@ pub struct SsdoParams {
     pub layers: u32,
     pub cameras: u32,
     pub light_segment: u32,
-    pub env_vpl: u32,
+    /// 0 none, 1 the environment as VPLs (direct pass), 2 Instant Radiosity (bounce pass).
+    pub vpl_mode: u32,
     pub vpl_count: u32,
-    pub _pad: [u32; 2],
+    pub vpl_clamp: f32,
+    /// 1: the bounce pass gathers sender pixels.
+    pub near: u32,
 }
 
 /// The paper's M×N sample texture with M = 4×4 sets: set m, sample i has a stratified elevation
@@ -479,7 +495,7 @@ struct Ssdo {
     blur_b: BlurChain,
     blur_indirect: BlurChain,
     layers: LayerStack,
-    env_lights: Option<EnvLights>,
+    vpls: Option<Vpls>,
     // Keep the technique's own textures alive.
     _textures: Vec<wgpu::Texture>,
 }
@@ -505,16 +521,24 @@ fn create_ssdo_vpl(
     create(ctx, params, Variant::SsdoVpl)
 }
 
-/// The environment lights of ssdo-vpl: their table (`GpuLight`s with their shadow layers) and
-/// shadow maps.
-struct EnvLights {
+fn create_instant_radiosity(
+    ctx: &TechniqueContext,
+    params: &TechniqueParams,
+) -> Result<Box<dyn Technique>, RenderError> {
+    create(ctx, params, Variant::InstantRadiosity)
+}
+
+/// The virtual point lights of ssdo-vpl or instant-radiosity: their table (`GpuLight`s with
+/// their shadow layers) and shadow maps.
+struct Vpls {
     table: wgpu::Buffer,
     count: u32,
     shadows: ShadowPass,
 }
 
-impl EnvLights {
-    fn new(ctx: &TechniqueContext, settings: &Settings) -> Self {
+impl Vpls {
+    /// ssdo-vpl: the environment as directional lights.
+    fn environment(ctx: &TechniqueContext, settings: &Settings) -> Self {
         let env = ctx.env;
         let lights = crate::vpl::environment_lights(
             env.source(),
@@ -522,6 +546,62 @@ impl EnvLights {
             env.intensity,
             settings.vpls,
         );
+        Self::new(ctx, settings, &lights, "environment lights")
+    }
+
+    /// instant-radiosity: cosine emitters drawn from the reflective shadow maps of the scene's
+    /// lights, as spot lights about their normals (shadow maps over 160°; shadow_visibility
+    /// counts receivers beyond 80° from the normal, where cos θ < 0.18, as unshadowed), with
+    /// colour Φ/π (ssdo.wgsl `radiosity_bounce`).
+    fn radiosity(ctx: &TechniqueContext, settings: &Settings) -> Self {
+        let texels = crate::passes::rsm::render(
+            ctx.device,
+            ctx.queue,
+            ctx.scene,
+            &ctx.scene.scene_lights,
+            settings.rsm,
+        );
+        // Lift each light off its surface by a thousandth of the scene's radius.
+        let lift = 1e-3 * ctx.scene.bounds.radius();
+        let lights: Vec<nearfield_scene::Light> =
+            crate::vpl::radiosity_lights(&texels, settings.vpls)
+                .iter()
+                .map(|v| nearfield_scene::Light {
+                    kind: nearfield_scene::LightKind::Spot {
+                        position: v.position + v.normal * lift,
+                        direction: v.normal,
+                        inner_cone: std::f32::consts::FRAC_PI_2,
+                        outer_cone: std::f32::consts::FRAC_PI_2,
+                    },
+                    color: v.flux / std::f32::consts::PI,
+                    intensity: 1.0,
+                    range: None,
+                })
+                .collect();
+        log::info!(
+            "instant-radiosity: {} virtual point lights from {} lit reflective-shadow-map texels",
+            lights.len(),
+            texels.len()
+        );
+        Self::new(ctx, settings, &lights, "radiosity lights")
+    }
+
+    /// Bindings 13..=16 (lights.wgsl) with the VPLs as the light table.
+    fn bindings(&self) -> [(u32, R<'_>); 4] {
+        [
+            (13, self.table.as_entire_binding()),
+            (14, self.shadows.matrices.as_entire_binding()),
+            (15, R::TextureView(&self.shadows.array_view)),
+            (16, R::Sampler(&self.shadows.compare_sampler)),
+        ]
+    }
+
+    fn new(
+        ctx: &TechniqueContext,
+        settings: &Settings,
+        lights: &[nearfield_scene::Light],
+        label: &'static str,
+    ) -> Self {
         let kinds: Vec<_> = lights.iter().map(|l| l.kind).collect();
         let shadows = ShadowPass::for_lights(
             ctx.device,
@@ -544,11 +624,11 @@ impl EnvLights {
         } else {
             table
         };
-        EnvLights {
+        Vpls {
             table: ctx
                 .device
                 .create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                    label: Some("environment lights"),
+                    label: Some(label),
                     contents: bytemuck::cast_slice(&table),
                     usage: wgpu::BufferUsages::STORAGE,
                 }),
@@ -567,13 +647,30 @@ fn create(
         Variant::Ssao => "ssao",
         Variant::Ssdo => "ssdo",
         Variant::SsdoVpl => "ssdo-vpl",
+        Variant::InstantRadiosity => "instant-radiosity",
     };
     let ssdo = variant != Variant::Ssao;
     let settings = Settings::from_params(tp).map_err(|msg| RenderError::Setting {
         technique: name.into(),
         msg,
     })?;
-    let env_lights = (variant == Variant::SsdoVpl).then(|| EnvLights::new(ctx, &settings));
+    if variant == Variant::InstantRadiosity
+        && settings.bounce
+        && settings.vpl_clamp > settings.radius
+    {
+        return Err(RenderError::Setting {
+            technique: name.into(),
+            msg: format!(
+                "vpl_clamp {} > radius {}: the screen-space bounce cannot add back what the clamp removes beyond R; set vpl_clamp ≤ radius or bounce=off",
+                settings.vpl_clamp, settings.radius
+            ),
+        });
+    }
+    let vpls = match variant {
+        Variant::SsdoVpl => Some(Vpls::environment(ctx, &settings)),
+        Variant::InstantRadiosity => Some(Vpls::radiosity(ctx, &settings)),
+        _ => None,
+    };
     let device = ctx.device;
     let t = ctx.targets;
     let c = wgpu::ShaderStages::COMPUTE;
@@ -598,11 +695,11 @@ fn create(
     );
 
     let mut gpu_params = settings.params(ssdo);
-    if let Some(e) = &env_lights {
-        gpu_params.env_vpl = 1;
-        gpu_params.vpl_count = e.count;
-        // The VPLs take the light table: the scene's lights keep the direct pass's shadow-mapped
-        // light irradiance.
+    if let Some(v) = &vpls {
+        gpu_params.vpl_mode = if variant == Variant::SsdoVpl { 1 } else { 2 };
+        gpu_params.vpl_count = v.count;
+        // Screen-space correction of the shadow maps' bias (ssdo-vpl: the VPLs take the direct
+        // pass's light table; the scene's lights keep their shadow-mapped light irradiance).
         gpu_params.light_segment = 1;
     }
     let params = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
@@ -665,6 +762,7 @@ fn create(
         util::storage_texture(30, HDR_FORMAT),
     ];
     bounce_entries.extend(LayerStack::layout_entries(true));
+    bounce_entries.extend(ShadowPass::layout_entries());
     let bounce_layout = layout("ssdo bounce", &bounce_entries);
     let shadows = ctx.shadows;
     let stack = LayerStack::new(
@@ -687,14 +785,10 @@ fn create(
         (22, R::TextureView(&t.light_irradiance.view)),
     ];
     direct_res.extend(ctx.env.bindings());
-    match &env_lights {
-        Some(e) => direct_res.extend([
-            (13, e.table.as_entire_binding()),
-            (14, e.shadows.matrices.as_entire_binding()),
-            (15, R::TextureView(&e.shadows.array_view)),
-            (16, R::Sampler(&e.shadows.compare_sampler)),
-        ]),
-        None => direct_res.extend(shadows.bindings(ctx.scene)),
+    // Bindings 13..=16: the VPLs where the pass uses them, else the scene's lights.
+    match (&vpls, variant) {
+        (Some(v), Variant::SsdoVpl) => direct_res.extend(v.bindings()),
+        _ => direct_res.extend(shadows.bindings(ctx.scene)),
     }
     direct_res.extend(stack.bindings(false));
     let mut resolve_res = vec![
@@ -720,6 +814,10 @@ fn create(
         (30, R::TextureView(raw_indirect)),
     ];
     bounce_res.extend(stack.bindings(true));
+    match (&vpls, variant) {
+        (Some(v), Variant::InstantRadiosity) => bounce_res.extend(v.bindings()),
+        _ => bounce_res.extend(shadows.bindings(ctx.scene)),
+    }
     let blur = BilateralBlur::new(
         device,
         BlurSettings {
@@ -732,7 +830,7 @@ fn create(
     Ok(Box::new(Ssdo {
         name,
         size: t.size,
-        bounce: ssdo && settings.bounce,
+        bounce: (ssdo && settings.bounce) || variant == Variant::InstantRadiosity,
         direct: util::compute_pipeline(device, "ssdo direct", &source, "direct", &direct_layout),
         resolve: util::compute_pipeline(
             device,
@@ -763,7 +861,7 @@ fn create(
         ),
         blur,
         layers: stack,
-        env_lights,
+        vpls,
         _textures: textures,
     }))
 }
@@ -783,8 +881,8 @@ impl Technique for Ssdo {
         profiler: &mut GpuProfiler,
         _frame: super::FrameInfo,
     ) {
-        if let Some(e) = &self.env_lights {
-            e.shadows.encode(encoder, profiler);
+        if let Some(v) = &self.vpls {
+            v.shadows.encode(encoder, profiler);
         }
         self.layers.encode(encoder, profiler);
         super::dispatch_screen(

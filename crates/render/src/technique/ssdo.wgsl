@@ -58,12 +58,16 @@ struct SsdoParams {
     // Light segment: 0 length R (Sec. 4 screen-space shadows), 1 the shadow map's bias
     // (Sec. 5 screen-space shadow correction).
     light_segment: u32,
-    // ssdo-vpl: 1 = the environment is `vpl_count` directional lights in the light table
-    // (bindings 13..=16 then hold them, not the scene's lights).
-    env_vpl: u32,
+    // Virtual point lights: 0 none; 1 ssdo-vpl, the environment is `vpl_count` directional
+    // lights in the direct pass's light table (bindings 13..=16 then hold them, not the scene's
+    // lights); 2 instant-radiosity, the bounce pass's light table holds `vpl_count` cosine
+    // emitters (spot lights about their normals with colour Φ/π).
+    vpl_mode: u32,
     vpl_count: u32,
-    pad0: u32,
-    pad1: u32,
+    // instant-radiosity: smallest distance in a VPL's 1/d² (m).
+    vpl_clamp: f32,
+    // 1: the bounce pass gathers sender pixels (ssdo with bounce=on).
+    near: u32,
 }
 
 @group(0) @binding(5) var<uniform> params: SsdoParams;
@@ -83,9 +87,6 @@ struct SsdoParams {
 @group(0) @binding(28) var env_irradiance: texture_2d<f32>;
 @group(0) @binding(29) var light_irradiance: texture_2d<f32>;
 @group(0) @binding(30) var out_indirect: texture_storage_2d<rgba16float, write>;
-// Direct radiance of the peeled layers and additional cameras (passes/layers.rs).
-@group(0) @binding(45) var peel_radiance: texture_2d_array<f32>;
-@group(0) @binding(46) var cam_radiance: texture_2d_array<f32>;
 
 fn sample_config() -> SampleConfig {
     return SampleConfig(params.samples, params.pattern, params.radius, params.fade, params.layers, params.cameras);
@@ -144,7 +145,7 @@ fn direct(@builtin(global_invocation_id) id: vec3<u32>) {
         visibility = pow(max(0.0, 1.0 - params.scale * (1.0 - ao)), params.contrast);
     }
     textureStore(out_b, pixel, vec4<f32>(ao, 0.0, 0.0, 1.0));
-    if params.env_vpl == 1u {
+    if params.vpl_mode == 1u {
         textureStore(out_a, pixel, vec4<f32>(vpl_environment(here), 1.0));
         return;
     }
@@ -226,7 +227,7 @@ fn resolve(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     let a = textureLoad(in_a, pixel, 0);
     var env = a.w * env_irradiance_sh(normalize(nw.xyz));
-    if params.technique == 1u && (params.mode == 1u || params.env_vpl == 1u) {
+    if params.technique == 1u && (params.mode == 1u || params.vpl_mode == 1u) {
         env = a.rgb;
     }
     textureStore(out_env_irradiance, pixel, vec4<f32>(env, 1.0));
@@ -244,8 +245,25 @@ fn bounce(@builtin(global_invocation_id) id: vec3<u32>) {
         textureStore(out_indirect, pixel, vec4<f32>(0.0));
         return;
     }
+    var l_ind = vec3<f32>(0.0);
+    if params.near == 1u {
+        l_ind = screen_bounce(here, pixel);
+    }
+    if params.vpl_mode == 2u {
+        l_ind += radiosity_bounce(here);
+    }
+    textureStore(out_indirect, pixel, vec4<f32>(l_ind, 1.0));
+}
+
+// One bounce from the sender patches (SSDO Sec. 3) in irradiance/π units. With Instant
+// Radiosity (vpl_mode 2) the light that senders reflect of the scene's lights is already in
+// the VPLs beyond `vpl_clamp`: it takes only what the VPLs' clamp removes
+// (`clamp_remainder_transfer`); environment light and emission keep the full transfer. A
+// peeled layer's or additional camera's radiance is not split by source and counts as light.
+fn screen_bounce(here: Surface, pixel: vec2<u32>) -> vec3<f32> {
     let tb = tangent_frame(here.n);
     let n = params.samples;
+    let radiosity = params.vpl_mode == 2u;
     // Sender patch area: the hemisphere's base disc split into N parts.
     let area = PI * params.radius * params.radius / f32(n);
     var l_ind = vec3<f32>(0.0);
@@ -257,22 +275,53 @@ fn bounce(@builtin(global_invocation_id) id: vec3<u32>) {
             continue;
         }
         let transfer = sender_transfer(here, occ.sender, area, params.radius, params.distance_clamp);
-        if transfer <= 0.0 {
+        var remainder = transfer;
+        if radiosity {
+            remainder = clamp_remainder_transfer(here, occ.sender, area, params.distance_clamp, params.vpl_clamp);
+        }
+        if transfer <= 0.0 && remainder <= 0.0 {
             continue;
         }
         var l_pixel: vec3<f32>;
         if occ.source == 0u {
             // Sender radiance: its blurred direct irradiance × albedo (Lambertian), plus emission.
-            let irradiance = textureLoad(env_irradiance, occ.pixel, 0).rgb + textureLoad(light_irradiance, occ.pixel, 0).rgb;
-            l_pixel = textureLoad(gb_albedo, occ.pixel, 0).rgb * irradiance + textureLoad(gb_emissive, occ.pixel, 0).rgb;
-        } else if occ.source < CAMERA_SOURCE {
-            // A peeled layer (e.g. the back face of a solid): its direct radiance.
-            l_pixel = textureLoad(peel_radiance, occ.pixel, occ.source - 1u, 0).rgb;
+            let albedo = textureLoad(gb_albedo, occ.pixel, 0).rgb;
+            let from_env = albedo * textureLoad(env_irradiance, occ.pixel, 0).rgb + textureLoad(gb_emissive, occ.pixel, 0).rgb;
+            let from_lights = albedo * textureLoad(light_irradiance, occ.pixel, 0).rgb;
+            l_pixel = from_env * transfer + from_lights * remainder;
         } else {
-            // An additional camera's view (e.g. a surface hidden in the main view).
-            l_pixel = textureLoad(cam_radiance, occ.pixel, occ.source - CAMERA_SOURCE, 0).rgb;
+            l_pixel = layer_sender_radiance(occ) * remainder;
         }
-        l_ind += l_pixel * (transfer * params.strength * occ.amount);
+        l_ind += l_pixel * (params.strength * occ.amount);
     }
-    textureStore(out_indirect, pixel, vec4<f32>(l_ind, 1.0));
+    return l_ind;
+}
+
+// Instant Radiosity (Keller 1997; SSDO paper Sec. 5, Fig. 11): (1/π) Σ_k (Φ_k/π) cos θ_k cos θ_x
+// V_k / max(d², vpl_clamp²), V_k the k-th VPL's shadow map (PCF) corrected in screen space on
+// its bias segment (`light_samples` points, as for the scene's lights). The clamp keeps the
+// singularity of receivers near a VPL out of the image; screen_bounce adds back what it removes.
+fn radiosity_bounce(here: Surface) -> vec3<f32> {
+    let c2 = params.vpl_clamp * params.vpl_clamp;
+    var e = vec3<f32>(0.0);
+    for (var k = 0u; k < params.vpl_count; k++) {
+        let l = lights[k];
+        let d = l.position.xyz - here.p;
+        let dist2 = dot(d, d);
+        if dist2 <= 0.0 {
+            continue;
+        }
+        let dir = d * inverseSqrt(dist2);
+        let cos_x = dot(here.n, dir);
+        let cos_v = -dot(l.direction.xyz, dir);
+        if cos_x <= 0.0 || cos_v <= 0.0 {
+            continue;
+        }
+        var v = shadow_visibility(l, here.p, here.n);
+        if v > 0.0 && params.light_samples > 0u {
+            v *= 1.0 - segment_blocked(here, l, dir);
+        }
+        e += l.color.rgb * (cos_x * cos_v * v / max(dist2, c2));
+    }
+    return e / PI;
 }
