@@ -90,20 +90,7 @@ fn shadow_correction_restores_contact_shadows() {
     let size = (320, 180);
     let scene = builtin::scene("contact").unwrap();
     let env = scene.default_env.load().unwrap();
-    let reference = nearfield_reference::render(
-        &scene,
-        &env,
-        &scene.default_camera(),
-        &ReferenceSettings {
-            aov: ReferenceAov::LightIrradiance,
-            size,
-            radius: 0.1,
-            spp: 64,
-            seed: 1,
-            max_depth: 1,
-        },
-        false,
-    );
+    let reference = reference(&scene, &env, ReferenceAov::LightIrradiance, size, 0.1, 64);
     let band_error = |method: &str| {
         let (img, depth) = render(
             &ctx,
@@ -180,6 +167,26 @@ fn layers_cameras_and_environment_lights_render() {
     }
 }
 
+/// The reference's `aov` from the scene's camera (seed 1).
+fn reference(
+    scene: &nearfield_scene::Scene,
+    env: &nearfield_scene::Environment,
+    aov: ReferenceAov,
+    size: (u32, u32),
+    radius: f32,
+    spp: u32,
+) -> nearfield_reference::ReferenceImage {
+    let settings = ReferenceSettings {
+        aov,
+        size,
+        radius,
+        spp,
+        seed: 1,
+        max_depth: 1,
+    };
+    nearfield_reference::render(scene, env, &scene.default_camera(), &settings, false)
+}
+
 /// RMSE of `img` against `reference` under compare's mask, optionally restricted to a region.
 fn masked_rmse(
     img: &AovImage,
@@ -213,20 +220,7 @@ fn a_second_layer_lets_marched_rays_pass_behind_thin_posts() {
     let size = (160, 90);
     let scene = builtin::scene("gap").unwrap();
     let env = scene.default_env.load().unwrap();
-    let reference = nearfield_reference::render(
-        &scene,
-        &env,
-        &scene.default_camera(),
-        &ReferenceSettings {
-            aov: ReferenceAov::Ao,
-            size,
-            radius: 0.5,
-            spp: 64,
-            seed: 1,
-            max_depth: 1,
-        },
-        false,
-    );
+    let reference = reference(&scene, &env, ReferenceAov::Ao, size, 0.5, 64);
     let error = |method: &str| {
         let (img, depth) = render(&ctx, "gap", method, 0.5, size, 2048, Aov::Ao);
         masked_rmse(&img, &depth, &reference, size, None)
@@ -244,19 +238,13 @@ fn instant_radiosity_matches_one_bounce_and_the_near_field_helps() {
     let size = (160, 90);
     let scene = builtin::scene("closed-box").unwrap();
     let env = nearfield_scene::Environment::constant(glam::Vec3::ZERO);
-    let reference = nearfield_reference::render(
+    let reference = reference(
         &scene,
         &env,
-        &scene.default_camera(),
-        &ReferenceSettings {
-            aov: ReferenceAov::IndirectIrradiance,
-            size,
-            radius: f32::INFINITY,
-            spp: 256,
-            seed: 1,
-            max_depth: 1,
-        },
-        false,
+        ReferenceAov::IndirectIrradiance,
+        size,
+        f32::INFINITY,
+        256,
     );
     let error = |method: &str, region| {
         let (img, depth) = render_in(

@@ -44,15 +44,20 @@ struct VertexOut {
     @location(3) @interpolate(flat) material: u32,
 }
 
-@vertex
-fn vs_main(v: VertexIn) -> VertexOut {
+// A vertex seen through `clip_from_world` (the camera, a layer's view or a light's).
+fn transform_vertex(v: VertexIn, clip_from_world: mat4x4<f32>) -> VertexOut {
     var o: VertexOut;
-    o.clip = frame.clip_from_world * vec4<f32>(v.position, 1.0);
+    o.clip = clip_from_world * vec4<f32>(v.position, 1.0);
     o.world = v.position;
     o.normal = v.normal;
     o.uv = v.uv;
     o.material = v.material;
     return o;
+}
+
+@vertex
+fn vs_main(v: VertexIn) -> VertexOut {
+    return transform_vertex(v, frame.clip_from_world);
 }
 
 struct GBufferOut {
@@ -126,13 +131,7 @@ fn fs_main(in: VertexOut, @builtin(front_facing) front: bool) -> GBufferOut {
 
 @vertex
 fn vs_layer(v: VertexIn) -> VertexOut {
-    var o: VertexOut;
-    o.clip = layer_view.clip_from_world * vec4<f32>(v.position, 1.0);
-    o.world = v.position;
-    o.normal = v.normal;
-    o.uv = v.uv;
-    o.material = v.material;
-    return o;
+    return transform_vertex(v, layer_view.clip_from_world);
 }
 
 struct LayerOut {
@@ -192,13 +191,7 @@ struct RsmView {
 
 @vertex
 fn vs_rsm(v: VertexIn) -> VertexOut {
-    var o: VertexOut;
-    o.clip = rsm_view.clip_from_world * vec4<f32>(v.position, 1.0);
-    o.world = v.position;
-    o.normal = v.normal;
-    o.uv = v.uv;
-    o.material = v.material;
-    return o;
+    return transform_vertex(v, rsm_view.clip_from_world);
 }
 
 struct RsmOut {
