@@ -287,6 +287,20 @@ fn occlusion(p: vec3<f32>, omega: vec3<f32>, lambda: f32, cfg: SampleConfig) -> 
     return best.o;
 }
 
+// The blocker test along a direction (ray marching): `steps` points at λ·k/steps, k = 1..steps;
+// the first occluded one decides (steps = 1: the paper's single point at λ).
+fn march_occlusion(p: vec3<f32>, omega: vec3<f32>, lambda: f32, steps: u32, cfg: SampleConfig) -> Occlusion {
+    var o: Occlusion;
+    o.amount = 0.0;
+    for (var k = 1u; k <= steps; k++) {
+        o = occlusion(p, omega, lambda * f32(k) / f32(steps), cfg);
+        if o.amount > 0.0 {
+            break;
+        }
+    }
+    return o;
+}
+
 // Distance d from a receiver to a sender patch and the product of their cosines cos θ_s cos θ_r
 // (0 when either surface faces away).
 fn patch_cosines(receiver: Surface, sender: Surface) -> vec2<f32> {

@@ -167,15 +167,7 @@ fn sample_pass(@builtin(global_invocation_id) id: vec3<u32>) {
         let omega = normalize(tb.t * s.x + tb.b * s.y + here.n * s.z);
         let length_j = s.w * params.radius;
         // Ray marching: the first occluded point decides.
-        var occ: Occlusion;
-        occ.amount = 0.0;
-        for (var k = 1u; k <= params.steps; k++) {
-            let o = occlusion(here.p, omega, length_j * f32(k) / f32(params.steps), c);
-            if o.amount > 0.0 {
-                occ = o;
-                break;
-            }
-        }
+        let occ = march_occlusion(here.p, omega, length_j, params.steps, c);
         var v = 1.0 - occ.amount;
         if occ.amount > 0.0 && params.lambda > 0.0 {
             v = max(v, 1.0 - 1.0 / (1.0 + params.lambda * occ.distance));

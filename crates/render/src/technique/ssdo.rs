@@ -123,6 +123,9 @@ pub fn check_sampling(samples: u32, radius: f32) -> Result<(), String> {
 pub struct Settings {
     /// `samples`: directions per pixel N, 1..=256. Default 16.
     pub samples: u32,
+    /// `steps`: points tested per direction at λ·k/steps (ray marching; the first occluded one
+    /// decides), 1..=16. Default 1 (the paper's single point at λ).
+    pub steps: u32,
     /// `radius`: hemisphere radius R in metres, > 0 and finite. Default 0.5.
     pub radius: f32,
     /// `mode`: visibility | radiance. Default visibility.
@@ -187,6 +190,7 @@ impl Default for Settings {
     fn default() -> Self {
         Settings {
             samples: 16,
+            steps: 1,
             radius: 0.5,
             mode: Mode::Visibility,
             bounce: true,
@@ -215,6 +219,13 @@ impl Default for Settings {
 /// Every `--set` key with its range and default (the fields of [`Settings`]).
 pub const SETTINGS: &[Setting] = &[
     Setting::integer("samples", 1.0, 256.0, "16", "directions per pixel N"),
+    Setting::integer(
+        "steps",
+        1.0,
+        16.0,
+        "1",
+        "points tested per direction (ray marching; 1: one point at λ)",
+    ),
     Setting::log("radius", 1e-6, 1e6, "0.5", "hemisphere radius R (m)"),
     Setting::choice(
         "mode",
@@ -369,6 +380,7 @@ impl Settings {
                 "blur_depth" => s.blur_depth = super::parse_number(k, v, 1e-4, 10.0)?,
                 "blur_normal" => s.blur_normal = super::parse_number(k, v, 0.0, 128.0)?,
                 "samples" => s.samples = super::parse_integer(k, v, 1, 256)?,
+                "steps" => s.steps = super::parse_integer(k, v, 1, 16)?,
                 "radius" => s.radius = super::parse_number(k, v, 1e-6, 1e6)?,
                 "light_segment" => {
                     s.light_segment = match v.as_str() {
@@ -416,6 +428,7 @@ impl Settings {
             vpl_count: 0,
             vpl_clamp: self.vpl_clamp,
             near: (ssdo && self.bounce) as u32,
+            steps: self.steps,
         }
     }
 }
@@ -445,6 +458,7 @@ pub struct SsdoParams {
     pub vpl_clamp: f32,
     /// 1: the bounce pass gathers sender pixels.
     pub near: u32,
+    pub steps: u32,
 }
 
 /// The paper's M×N sample texture with M = 4×4 sets: set m, sample i has a stratified elevation

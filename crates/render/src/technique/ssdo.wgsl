@@ -68,6 +68,9 @@ struct SsdoParams {
     vpl_clamp: f32,
     // 1: the bounce pass gathers sender pixels (ssdo with bounce=on).
     near: u32,
+    // Points tested per direction (ray marching, the first occluded decides); 1: the paper's
+    // single point at λ.
+    steps: u32,
 }
 
 @group(0) @binding(5) var<uniform> params: SsdoParams;
@@ -122,7 +125,7 @@ fn direct(@builtin(global_invocation_id) id: vec3<u32>) {
         let s = sample_local(i, pixel, sample_config());
         let omega = normalize(tb.t * s.x + tb.b * s.y + here.n * s.z);
         let lambda = s.w * params.radius;
-        let v = 1.0 - occlusion(here.p, omega, lambda, sample_config()).amount;
+        let v = 1.0 - march_occlusion(here.p, omega, lambda, params.steps, sample_config()).amount;
         let cos_theta = max(s.z, 0.0);
         ao_num += v * cos_theta;
         ao_den += cos_theta;
@@ -270,7 +273,7 @@ fn screen_bounce(here: Surface, pixel: vec2<u32>) -> vec3<f32> {
     for (var i = 0u; i < n; i++) {
         let s = sample_local(i, pixel, sample_config());
         let omega = normalize(tb.t * s.x + tb.b * s.y + here.n * s.z);
-        let occ = occlusion(here.p, omega, s.w * params.radius, sample_config());
+        let occ = march_occlusion(here.p, omega, s.w * params.radius, params.steps, sample_config());
         if occ.amount <= 0.0 {
             continue;
         }
