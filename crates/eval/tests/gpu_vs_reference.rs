@@ -9,7 +9,6 @@ use nearfield_reference::{ReferenceAov, ReferenceSettings, irradiance::exact_irr
 use nearfield_render::{Aov, GpuContext, RenderSettings, Renderer, TechniqueParams};
 use nearfield_scene::{Camera, EnvSource, Material, Mesh, Scene, builtin, sh};
 use rayon::prelude::*;
-use std::path::PathBuf;
 
 fn context() -> Option<GpuContext> {
     match GpuContext::new(None) {
@@ -56,16 +55,9 @@ fn sphere() -> Scene {
 #[test]
 fn none_differs_from_the_reference_by_sh_truncation_only() {
     let Some(ctx) = context() else { return };
-    let hdr = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("../../../shared/assets/env/st_fagans_interior_1k.hdr");
-    if !hdr.exists() {
-        assert!(
-            std::env::var("REQUIRE_GPU").as_deref() != Ok("1"),
-            "{} missing",
-            hdr.display()
-        );
+    let Some(hdr) = nearfield_eval::shared_asset("env/st_fagans_interior_1k.hdr") else {
         return;
-    }
+    };
     let env = EnvSource::File(hdr).load().unwrap();
     let coeffs = sh::project_environment(&env, 9);
     let plane = builtin::scene("plane").unwrap();

@@ -244,16 +244,9 @@ fn a_second_layer_lets_marched_rays_pass_behind_thin_posts() {
 #[test]
 fn environment_lights_with_correction_beat_their_shadow_maps_alone() {
     let Some(ctx) = context() else { return };
-    let hdr = std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("../../../shared/assets/env/rooitou_park_1k.hdr");
-    if !hdr.exists() {
-        assert!(
-            std::env::var("REQUIRE_GPU").as_deref() != Ok("1"),
-            "{} missing",
-            hdr.display()
-        );
+    let Some(hdr) = nearfield_eval::shared_asset("env/rooitou_park_1k.hdr") else {
         return;
-    }
+    };
     let size = (320, 180);
     let scene = builtin::scene("contact").unwrap();
     let env = nearfield_scene::EnvSource::File(hdr).load().unwrap();

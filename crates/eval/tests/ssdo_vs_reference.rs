@@ -7,7 +7,6 @@ use nearfield_eval::metrics::{self, Mask, MaskSettings};
 use nearfield_reference::{ReferenceAov, ReferenceSettings};
 use nearfield_render::{Aov, GpuContext, RenderSettings, Renderer, TechniqueParams};
 use nearfield_scene::{EnvSource, builtin};
-use std::path::PathBuf;
 
 fn context() -> Option<GpuContext> {
     match GpuContext::new(None) {
@@ -22,17 +21,9 @@ fn context() -> Option<GpuContext> {
 #[test]
 fn ssdo_beats_ssao_and_the_bounce_helps() {
     let Some(ctx) = context() else { return };
-    let hdr = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("../../../shared/assets/env/rooitou_park_1k.hdr");
     let mut envs = vec![("sky", EnvSource::Sky)];
-    if hdr.exists() {
+    if let Some(hdr) = nearfield_eval::shared_asset("env/rooitou_park_1k.hdr") {
         envs.push(("rooitou_park_1k", EnvSource::File(hdr)));
-    } else {
-        assert!(
-            std::env::var("REQUIRE_GPU").as_deref() != Ok("1"),
-            "{} missing",
-            hdr.display()
-        );
     }
     let scene = builtin::scene("cornell").unwrap();
     let camera = scene.default_camera();
