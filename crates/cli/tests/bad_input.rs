@@ -119,6 +119,7 @@ fn every_bad_input_exits_2_with_one_line() {
         (vec!["render".into(), "--method".into(), "ssdo:cameras=9".into()], "cameras=9"),
         (vec!["render".into(), "--method".into(), "instant-radiosity:vpl_clamp=2".into(), "--size".into(), "64x36".into()], "vpl_clamp 2 > radius"),
         (vec!["render".into(), "--method".into(), "instant-radiosity:rsm=8".into()], "rsm"),
+        (vec!["render".into(), "--method".into(), "ssdo:steps=17".into()], "steps"),
         (vec!["compare".into(), "--methods".into(), "ssdo".into(), "--region".into(), "1,2,3".into()], "--region"),
         (vec!["compare".into(), "--methods".into(), "ssdo".into(), "--region".into(), "50,0,10,10".into()], "--region"),
         (vec!["render".into(), "--aov".into(), "magic".into()], "unknown AOV"),
