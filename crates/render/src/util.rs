@@ -121,6 +121,73 @@ pub fn compute_pipeline(
     })
 }
 
+/// A mesh raster pipeline as every nearfield raster pass draws one: `Vertex` triangle lists,
+/// one bind group, `targets::DEPTH_FORMAT` depth tested `Less` and written, colour targets
+/// written without blending. What differs between the passes is in here.
+pub struct RasterPipeline<'a> {
+    pub label: &'a str,
+    pub layout: &'a wgpu::BindGroupLayout,
+    pub module: &'a wgpu::ShaderModule,
+    pub vertex: &'a str,
+    pub fragment: &'a str,
+    pub color_formats: &'a [wgpu::TextureFormat],
+    /// `None` draws both faces (double-sided materials, peeling, shadow and light views).
+    pub cull: Option<wgpu::Face>,
+    pub depth_bias: wgpu::DepthBiasState,
+}
+
+/// Creates the pipeline `p` describes.
+pub fn raster_pipeline(device: &wgpu::Device, p: &RasterPipeline) -> wgpu::RenderPipeline {
+    let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+        label: Some(p.label),
+        bind_group_layouts: &[Some(p.layout)],
+        immediate_size: 0,
+    });
+    let targets: Vec<Option<wgpu::ColorTargetState>> = p
+        .color_formats
+        .iter()
+        .map(|&format| {
+            Some(wgpu::ColorTargetState {
+                format,
+                blend: None,
+                write_mask: wgpu::ColorWrites::ALL,
+            })
+        })
+        .collect();
+    device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+        label: Some(p.label),
+        layout: Some(&pipeline_layout),
+        vertex: wgpu::VertexState {
+            module: p.module,
+            entry_point: Some(p.vertex),
+            compilation_options: Default::default(),
+            buffers: &[Some(crate::gpu_scene::Vertex::layout())],
+        },
+        primitive: wgpu::PrimitiveState {
+            topology: wgpu::PrimitiveTopology::TriangleList,
+            front_face: wgpu::FrontFace::Ccw,
+            cull_mode: p.cull,
+            ..Default::default()
+        },
+        depth_stencil: Some(wgpu::DepthStencilState {
+            format: crate::targets::DEPTH_FORMAT,
+            depth_write_enabled: Some(true),
+            depth_compare: Some(wgpu::CompareFunction::Less),
+            stencil: Default::default(),
+            bias: p.depth_bias,
+        }),
+        multisample: Default::default(),
+        fragment: Some(wgpu::FragmentState {
+            module: p.module,
+            entry_point: Some(p.fragment),
+            compilation_options: Default::default(),
+            targets: &targets,
+        }),
+        multiview_mask: None,
+        cache: None,
+    })
+}
+
 /// Binds `(binding, resource)` pairs into a bind group.
 pub fn bind_group(
     device: &wgpu::Device,

@@ -2,7 +2,7 @@
 //! `crate::targets` for the formats. Single-sided geometry is drawn with back-face culling,
 //! double-sided geometry without (its back faces get flipped normals).
 
-use crate::gpu_scene::{GpuScene, Vertex};
+use crate::gpu_scene::GpuScene;
 use crate::profiler::GpuProfiler;
 use crate::targets::{self, FrameTargets};
 use crate::util;
@@ -51,59 +51,27 @@ impl GBufferPass {
             label: Some("gbuffer"),
             source: wgpu::ShaderSource::Wgsl(source().into()),
         });
-        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("gbuffer"),
-            bind_group_layouts: &[Some(&layout)],
-            immediate_size: 0,
-        });
-        let color = |format| {
-            Some(wgpu::ColorTargetState {
-                format,
-                blend: None,
-                write_mask: wgpu::ColorWrites::ALL,
-            })
-        };
-        let targets = [
-            color(targets::NORMAL_FORMAT),
-            color(targets::ALBEDO_FORMAT),
-            color(targets::MATERIAL_FORMAT),
-            color(targets::EMISSIVE_FORMAT),
-            color(targets::MOTION_FORMAT),
-            color(targets::VIEW_DEPTH_FORMAT),
-        ];
         let pipeline = |cull: Option<wgpu::Face>| {
-            device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-                label: Some("gbuffer"),
-                layout: Some(&pipeline_layout),
-                vertex: wgpu::VertexState {
+            util::raster_pipeline(
+                device,
+                &util::RasterPipeline {
+                    label: "gbuffer",
+                    layout: &layout,
                     module: &module,
-                    entry_point: Some("vs_main"),
-                    compilation_options: Default::default(),
-                    buffers: &[Some(Vertex::layout())],
+                    vertex: "vs_main",
+                    fragment: "fs_main",
+                    color_formats: &[
+                        targets::NORMAL_FORMAT,
+                        targets::ALBEDO_FORMAT,
+                        targets::MATERIAL_FORMAT,
+                        targets::EMISSIVE_FORMAT,
+                        targets::MOTION_FORMAT,
+                        targets::VIEW_DEPTH_FORMAT,
+                    ],
+                    cull,
+                    depth_bias: Default::default(),
                 },
-                primitive: wgpu::PrimitiveState {
-                    topology: wgpu::PrimitiveTopology::TriangleList,
-                    front_face: wgpu::FrontFace::Ccw,
-                    cull_mode: cull,
-                    ..Default::default()
-                },
-                depth_stencil: Some(wgpu::DepthStencilState {
-                    format: targets::DEPTH_FORMAT,
-                    depth_write_enabled: Some(true),
-                    depth_compare: Some(wgpu::CompareFunction::Less),
-                    stencil: Default::default(),
-                    bias: Default::default(),
-                }),
-                multisample: Default::default(),
-                fragment: Some(wgpu::FragmentState {
-                    module: &module,
-                    entry_point: Some("fs_main"),
-                    compilation_options: Default::default(),
-                    targets: &targets,
-                }),
-                multiview_mask: None,
-                cache: None,
-            })
+            )
         };
         GBufferPass {
             culled: pipeline(Some(wgpu::Face::Back)),

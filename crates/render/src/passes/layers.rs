@@ -19,7 +19,7 @@
 //! cameras. The blocker test that reads them is `occlusion()` in shaders/screen_samples.wgsl.
 
 use crate::gpu_env::GpuEnvironment;
-use crate::gpu_scene::{GpuScene, Vertex};
+use crate::gpu_scene::GpuScene;
 use crate::passes::gbuffer;
 use crate::passes::shadow::ShadowPass;
 use crate::profiler::GpuProfiler;
@@ -442,55 +442,24 @@ impl LayerStack {
             label: Some("layers raster"),
             source: wgpu::ShaderSource::Wgsl(gbuffer::source().into()),
         });
-        let raster_pipeline_layout =
-            device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-                label: Some("layers raster"),
-                bind_group_layouts: &[Some(&raster_layout)],
-                immediate_size: 0,
-            });
-        let color = |format| {
-            Some(wgpu::ColorTargetState {
-                format,
-                blend: None,
-                write_mask: wgpu::ColorWrites::ALL,
-            })
-        };
-        let raster = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some("layers raster"),
-            layout: Some(&raster_pipeline_layout),
-            vertex: wgpu::VertexState {
+        let raster = util::raster_pipeline(
+            device,
+            &util::RasterPipeline {
+                label: "layers raster",
+                layout: &raster_layout,
                 module: &module,
-                entry_point: Some("vs_layer"),
-                compilation_options: Default::default(),
-                buffers: &[Some(Vertex::layout())],
-            },
-            primitive: wgpu::PrimitiveState {
-                topology: wgpu::PrimitiveTopology::TriangleList,
-                cull_mode: None,
-                ..Default::default()
-            },
-            depth_stencil: Some(wgpu::DepthStencilState {
-                format: targets::DEPTH_FORMAT,
-                depth_write_enabled: Some(true),
-                depth_compare: Some(wgpu::CompareFunction::Less),
-                stencil: Default::default(),
-                bias: Default::default(),
-            }),
-            multisample: Default::default(),
-            fragment: Some(wgpu::FragmentState {
-                module: &module,
-                entry_point: Some("fs_layer"),
-                compilation_options: Default::default(),
-                targets: &[
-                    color(targets::NORMAL_FORMAT),
-                    color(targets::ALBEDO_FORMAT),
-                    color(targets::EMISSIVE_FORMAT),
-                    color(targets::VIEW_DEPTH_FORMAT),
+                vertex: "vs_layer",
+                fragment: "fs_layer",
+                color_formats: &[
+                    targets::NORMAL_FORMAT,
+                    targets::ALBEDO_FORMAT,
+                    targets::EMISSIVE_FORMAT,
+                    targets::VIEW_DEPTH_FORMAT,
                 ],
-            }),
-            multiview_mask: None,
-            cache: None,
-        });
+                cull: None,
+                depth_bias: Default::default(),
+            },
+        );
 
         // Shading: direct radiance of every layer texel.
         let c = S::COMPUTE;

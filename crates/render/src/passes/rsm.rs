@@ -11,7 +11,7 @@
 //! surface reflects ρ Φ_in (Lambertian). The depth test makes Φ_in the flux of the light's first
 //! hit, i.e. shadowed exactly.
 
-use crate::gpu_scene::{GpuScene, Vertex};
+use crate::gpu_scene::GpuScene;
 use crate::passes::shadow::light_views;
 use crate::util;
 use glam::Vec3;
@@ -79,47 +79,19 @@ pub fn render(
         label: Some("rsm"),
         source: wgpu::ShaderSource::Wgsl(crate::passes::gbuffer::source().into()),
     });
-    let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-        label: Some("rsm"),
-        bind_group_layouts: &[Some(&layout)],
-        immediate_size: 0,
-    });
-    let target = Some(wgpu::ColorTargetState {
-        format: FORMAT,
-        blend: None,
-        write_mask: wgpu::ColorWrites::ALL,
-    });
-    let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-        label: Some("rsm"),
-        layout: Some(&pipeline_layout),
-        vertex: wgpu::VertexState {
+    let pipeline = util::raster_pipeline(
+        device,
+        &util::RasterPipeline {
+            label: "rsm",
+            layout: &layout,
             module: &module,
-            entry_point: Some("vs_rsm"),
-            compilation_options: Default::default(),
-            buffers: &[Some(Vertex::layout())],
+            vertex: "vs_rsm",
+            fragment: "fs_rsm",
+            color_formats: &[FORMAT, FORMAT, FORMAT],
+            cull: None,
+            depth_bias: Default::default(),
         },
-        primitive: wgpu::PrimitiveState {
-            topology: wgpu::PrimitiveTopology::TriangleList,
-            cull_mode: None,
-            ..Default::default()
-        },
-        depth_stencil: Some(wgpu::DepthStencilState {
-            format: crate::targets::DEPTH_FORMAT,
-            depth_write_enabled: Some(true),
-            depth_compare: Some(wgpu::CompareFunction::Less),
-            stencil: Default::default(),
-            bias: Default::default(),
-        }),
-        multisample: Default::default(),
-        fragment: Some(wgpu::FragmentState {
-            module: &module,
-            entry_point: Some("fs_rsm"),
-            compilation_options: Default::default(),
-            targets: &[target.clone(), target.clone(), target],
-        }),
-        multiview_mask: None,
-        cache: None,
-    });
+    );
     let texture = |label: &str, format: wgpu::TextureFormat, usage: wgpu::TextureUsages| {
         device.create_texture(&wgpu::TextureDescriptor {
             label: Some(label),

@@ -14,7 +14,7 @@
 //!   point) before the lookup, against acne on curved and lit-at-grazing surfaces. Both shift
 //!   shadows by about a texel: contact shadows start that much late.
 
-use crate::gpu_scene::{GpuScene, Vertex};
+use crate::gpu_scene::GpuScene;
 use crate::profiler::GpuProfiler;
 use crate::targets::DEPTH_FORMAT;
 use crate::util;
@@ -248,47 +248,24 @@ impl ShadowPass {
             label: Some("shadow"),
             source: wgpu::ShaderSource::Wgsl(SHADER.into()),
         });
-        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("shadow"),
-            bind_group_layouts: &[Some(&layout)],
-            immediate_size: 0,
-        });
-        let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some("shadow"),
-            layout: Some(&pipeline_layout),
-            vertex: wgpu::VertexState {
+        // No culling: single-sided walls (open boxes) must still cast shadows.
+        let pipeline = util::raster_pipeline(
+            device,
+            &util::RasterPipeline {
+                label: "shadow",
+                layout: &layout,
                 module: &module,
-                entry_point: Some("vs_main"),
-                compilation_options: Default::default(),
-                buffers: &[Some(Vertex::layout())],
-            },
-            // No culling: single-sided walls (open boxes) must still cast shadows.
-            primitive: wgpu::PrimitiveState {
-                topology: wgpu::PrimitiveTopology::TriangleList,
-                cull_mode: None,
-                ..Default::default()
-            },
-            depth_stencil: Some(wgpu::DepthStencilState {
-                format: DEPTH_FORMAT,
-                depth_write_enabled: Some(true),
-                depth_compare: Some(wgpu::CompareFunction::Less),
-                stencil: Default::default(),
-                bias: wgpu::DepthBiasState {
+                vertex: "vs_main",
+                fragment: "fs_main",
+                color_formats: &[],
+                cull: None,
+                depth_bias: wgpu::DepthBiasState {
                     constant: 2,
                     slope_scale: 2.0,
                     clamp: 0.0,
                 },
-            }),
-            multisample: Default::default(),
-            fragment: Some(wgpu::FragmentState {
-                module: &module,
-                entry_point: Some("fs_main"),
-                compilation_options: Default::default(),
-                targets: &[],
-            }),
-            multiview_mask: None,
-            cache: None,
-        });
+            },
+        );
         let compare_sampler = device.create_sampler(&wgpu::SamplerDescriptor {
             label: Some("shadow compare"),
             address_mode_u: wgpu::AddressMode::ClampToEdge,
