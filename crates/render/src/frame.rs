@@ -46,21 +46,41 @@ pub struct FrameUniforms {
     pub prev_world_from_view: [[f32; 4]; 4],
     /// xyz camera position; w unused.
     pub camera_position: [f32; 4],
-    /// width, height, 1/width, 1/height.
-    pub size: [f32; 4],
-    /// near, far, aspect, tan(yfov/2).
-    pub projection: [f32; 4],
-    /// env rotation (rad), env intensity, specular mip count, radiance mip count.
-    pub env_params: [f32; 4],
-    /// exposure (EV), tonemap operator, shadow normal offset (texels), unused.
-    pub post: [f32; 4],
+    /// Width, height (pixels).
+    pub size: [f32; 2],
+    /// 1/width, 1/height.
+    pub inv_size: [f32; 2],
+    /// Near and far plane (m), aspect (w/h), tan(yfov/2).
+    pub near: f32,
+    pub far: f32,
+    pub aspect: f32,
+    pub tan_half_fov: f32,
+    /// The environment's rotation about +Y (rad), intensity, specular and radiance mip counts.
+    pub env_rotation: f32,
+    pub env_intensity: f32,
+    pub env_specular_mips: f32,
+    pub env_radiance_mips: f32,
+    /// Exposure (EV), tonemap operator ([`Tonemap::index`]), shadow normal offset (texels).
+    pub exposure: f32,
+    pub tonemap: u32,
+    pub shadow_normal_offset: f32,
+    pub _pad0: f32,
     /// Last frame's near, far, aspect, tan(yfov/2).
-    pub prev_projection: [f32; 4],
-    /// frame index, light count, seed, selected AOV.
-    pub counts: [u32; 4],
-    /// 1 when last frame's buffers may be reused (0 on the first frame and after a camera cut),
-    /// frames since the last cut, unused, unused.
-    pub history: [u32; 4],
+    pub prev_near: f32,
+    pub prev_far: f32,
+    pub prev_aspect: f32,
+    pub prev_tan_half_fov: f32,
+    /// Frame index, light count, seed, selected AOV.
+    pub frame_index: u32,
+    pub light_count: u32,
+    pub seed: u32,
+    pub aov: u32,
+    /// 1 when last frame's buffers may be reused (0 on the first frame and after a camera cut);
+    /// frames since the last cut.
+    pub history_valid: u32,
+    pub frames_since_cut: u32,
+    pub _pad1: u32,
+    pub _pad2: u32,
 }
 
 /// The camera matrices of one frame.
@@ -89,6 +109,16 @@ impl CameraMatrices {
     }
 }
 
+/// The post settings of a frame.
+#[derive(Clone, Copy, Debug)]
+pub struct PostUniforms {
+    /// EV stops.
+    pub exposure: f32,
+    pub tonemap: Tonemap,
+    /// Shadow receivers' offset along the normal, in shadow-map texels.
+    pub shadow_normal_offset: f32,
+}
+
 /// Everything that goes into [`FrameUniforms`] besides the environment and post settings.
 pub struct FrameInputs<'a> {
     pub camera: &'a Camera,
@@ -105,7 +135,7 @@ pub struct FrameInputs<'a> {
 }
 
 impl FrameUniforms {
-    pub fn new(f: &FrameInputs, env_params: [f32; 4], post: [f32; 4], aov: u32) -> Self {
+    pub fn new(f: &FrameInputs, env_params: [f32; 4], post: PostUniforms, aov: u32) -> Self {
         let clip_from_world = f.current.clip_from_world();
         let world_from_view = f.current.view_from_world.inverse();
         let eye: Vec3 = f.camera.eye;
@@ -118,28 +148,32 @@ impl FrameUniforms {
             prev_view_from_world: f.previous.view_from_world.to_cols_array_2d(),
             prev_world_from_view: f.previous.view_from_world.inverse().to_cols_array_2d(),
             camera_position: [eye.x, eye.y, eye.z, 0.0],
-            size: [
-                f.size.0 as f32,
-                f.size.1 as f32,
-                1.0 / f.size.0 as f32,
-                1.0 / f.size.1 as f32,
-            ],
-            projection: [
-                f.current.near,
-                f.current.far,
-                f.size.0 as f32 / f.size.1 as f32,
-                (0.5 * f.camera.yfov).tan(),
-            ],
-            env_params,
-            post,
-            prev_projection: [
-                f.previous.near,
-                f.previous.far,
-                f.size.0 as f32 / f.size.1 as f32,
-                f.previous_tan_half_fov,
-            ],
-            counts: [f.frame_index, f.light_count, f.seed, aov],
-            history: [f.history.0 as u32, f.history.1, 0, 0],
+            size: [f.size.0 as f32, f.size.1 as f32],
+            inv_size: [1.0 / f.size.0 as f32, 1.0 / f.size.1 as f32],
+            near: f.current.near,
+            far: f.current.far,
+            aspect: f.size.0 as f32 / f.size.1 as f32,
+            tan_half_fov: (0.5 * f.camera.yfov).tan(),
+            env_rotation: env_params[0],
+            env_intensity: env_params[1],
+            env_specular_mips: env_params[2],
+            env_radiance_mips: env_params[3],
+            exposure: post.exposure,
+            tonemap: post.tonemap.index(),
+            shadow_normal_offset: post.shadow_normal_offset,
+            _pad0: 0.0,
+            prev_near: f.previous.near,
+            prev_far: f.previous.far,
+            prev_aspect: f.size.0 as f32 / f.size.1 as f32,
+            prev_tan_half_fov: f.previous_tan_half_fov,
+            frame_index: f.frame_index,
+            light_count: f.light_count,
+            seed: f.seed,
+            aov,
+            history_valid: f.history.0 as u32,
+            frames_since_cut: f.history.1,
+            _pad1: 0,
+            _pad2: 0,
         }
     }
 }

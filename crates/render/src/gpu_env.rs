@@ -1,6 +1,7 @@
 //! The environment on the GPU: the lat-long radiance map with box-filtered mips, the
 //! GGX-prefiltered specular chain (passes/env_prefilter.wgsl) and the order-3 SH projection.
 
+use crate::bindings::{PassLayout, kind};
 use crate::util;
 use bytemuck::{Pod, Zeroable};
 use glam::Vec3;
@@ -18,6 +19,36 @@ pub const MAX_RADIANCE_WIDTH: u32 = 2048;
 pub const F16_MAX: f32 = 65000.0;
 /// Size of the pre-convolved diffuse map (lat-long; irradiance varies slowly).
 pub const IRRADIANCE_SIZE: (u32, u32) = (64, 32);
+
+/// The environment's mip chains: env_prefilter.wgsl.
+pub const PREFILTER_WGSL: &str = include_str!("passes/env_prefilter.wgsl");
+
+crate::bind_group! {
+    /// Group 1 of the environment's `downsample` and `prefilter` kernels (group 0 is empty).
+    pub struct PrefilterBindings: COMPUTE {
+        /// `PrefilterParams`.
+        params: buffer = kind::UNIFORM,
+        /// The finer mip (downsample) or the whole radiance chain (prefilter) (rgba16float).
+        source: view = kind::TEXTURE,
+        /// Repeats in u, clamps in v, trilinear.
+        source_sampler: sampler = kind::SAMPLER,
+        /// The level written (rgba16float).
+        destination: view = kind::write(wgpu::TextureFormat::Rgba16Float),
+    }
+}
+
+/// The binding declarations the reflection test checks.
+pub fn pass_layouts() -> Vec<PassLayout> {
+    ["downsample", "prefilter"]
+        .into_iter()
+        .map(|entry_point| PassLayout {
+            name: "env_prefilter",
+            source: PREFILTER_WGSL.to_string(),
+            entry_point,
+            group1: PrefilterBindings::SLOTS,
+        })
+        .collect()
+}
 
 /// `PrefilterParams` in env_prefilter.wgsl.
 #[repr(C)]
@@ -130,20 +161,22 @@ impl GpuEnvironment {
         });
 
         // Build both chains.
-        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("env prefilter"),
-            entries: &[
-                util::uniform(0, wgpu::ShaderStages::COMPUTE),
-                util::texture(1, wgpu::ShaderStages::COMPUTE, true),
-                util::sampler(2, wgpu::ShaderStages::COMPUTE),
-                util::storage_texture(3, wgpu::TextureFormat::Rgba16Float),
-            ],
-        });
-        let source = include_str!("passes/env_prefilter.wgsl");
-        let downsample =
-            util::compute_pipeline(device, "env downsample", source, "downsample", &layout);
-        let prefilter =
-            util::compute_pipeline(device, "env prefilter", source, "prefilter", &layout);
+        let layout = PrefilterBindings::layout(device);
+        let module = crate::passes::shader_module(device, "env prefilter", PREFILTER_WGSL);
+        let downsample = crate::passes::standalone_pipeline(
+            device,
+            "env downsample",
+            &module,
+            "downsample",
+            &layout,
+        );
+        let prefilter = crate::passes::standalone_pipeline(
+            device,
+            "env prefilter",
+            &module,
+            "prefilter",
+            &layout,
+        );
         let mip_view = |t: &wgpu::Texture, level: u32| {
             t.create_view(&wgpu::TextureViewDescriptor {
                 base_mip_level: level,
@@ -166,20 +199,16 @@ impl GpuEnvironment {
             });
             let src = mip_view(&radiance, level);
             let dst = mip_view(&radiance, level + 1);
-            let bg = util::bind_group(
-                device,
-                "env downsample",
-                &layout,
-                &[
-                    (0, params.as_entire_binding()),
-                    (1, wgpu::BindingResource::TextureView(&src)),
-                    (2, wgpu::BindingResource::Sampler(&sampler)),
-                    (3, wgpu::BindingResource::TextureView(&dst)),
-                ],
-            );
+            let bg = PrefilterBindings {
+                params: &params,
+                source: &src,
+                source_sampler: &sampler,
+                destination: &dst,
+            }
+            .bind_group(device, &layout);
             let mut pass = encoder.begin_compute_pass(&Default::default());
             pass.set_pipeline(&downsample);
-            pass.set_bind_group(0, &bg, &[]);
+            pass.set_bind_group(1, &bg, &[]);
             let (gx, gy) = util::groups_8x8(((w >> (level + 1)).max(1), (h >> (level + 1)).max(1)));
             pass.dispatch_workgroups(gx, gy, 1);
             drop(pass);
@@ -198,20 +227,16 @@ impl GpuEnvironment {
                 usage: wgpu::BufferUsages::UNIFORM,
             });
             let dst = mip_view(&specular, level);
-            let bg = util::bind_group(
-                device,
-                "env prefilter",
-                &layout,
-                &[
-                    (0, params.as_entire_binding()),
-                    (1, wgpu::BindingResource::TextureView(&radiance_view)),
-                    (2, wgpu::BindingResource::Sampler(&sampler)),
-                    (3, wgpu::BindingResource::TextureView(&dst)),
-                ],
-            );
+            let bg = PrefilterBindings {
+                params: &params,
+                source: &radiance_view,
+                source_sampler: &sampler,
+                destination: &dst,
+            }
+            .bind_group(device, &layout);
             let mut pass = encoder.begin_compute_pass(&Default::default());
             pass.set_pipeline(&prefilter);
-            pass.set_bind_group(0, &bg, &[]);
+            pass.set_bind_group(1, &bg, &[]);
             let (gx, gy) = util::groups_8x8(((sw >> level).max(1), (sh_ >> level).max(1)));
             pass.dispatch_workgroups(gx, gy, 1);
             drop(pass);
@@ -291,35 +316,14 @@ impl GpuEnvironment {
         &self.source
     }
 
-    /// `Frame.env_params`: rotation, intensity (already in the SH; textures are raw), specular
-    /// mip count, radiance mip count.
+    /// `Frame`'s env_rotation, env_intensity (already in the SH; textures are raw),
+    /// env_specular_mips, env_radiance_mips.
     pub fn params(&self) -> [f32; 4] {
         [
             self.rotation,
             self.intensity,
             self.specular_view.texture().mip_level_count() as f32,
             self.radiance_mips as f32,
-        ]
-    }
-
-    /// Bind group entries 1..=4 of every pass that includes env.wgsl.
-    pub fn bindings(&self) -> [(u32, wgpu::BindingResource<'_>); 4] {
-        [
-            (1, wgpu::BindingResource::TextureView(&self.radiance_view)),
-            (2, wgpu::BindingResource::TextureView(&self.specular_view)),
-            (3, wgpu::BindingResource::Sampler(&self.sampler)),
-            (4, self.sh_buffer.as_entire_binding()),
-        ]
-    }
-
-    /// Layout entries matching [`Self::bindings`].
-    pub fn layout_entries() -> [wgpu::BindGroupLayoutEntry; 4] {
-        let s = wgpu::ShaderStages::COMPUTE;
-        [
-            util::texture(1, s, true),
-            util::texture(2, s, true),
-            util::sampler(3, s),
-            util::uniform(4, s),
         ]
     }
 }

@@ -7,6 +7,7 @@
 //! `technique/`); the shared WGSL preludes are in `shaders/`.
 
 pub mod aov;
+pub mod bindings;
 pub mod context;
 pub mod error;
 pub mod frame;
@@ -15,6 +16,7 @@ pub mod gpu_scene;
 pub mod passes;
 pub mod profiler;
 pub mod renderer;
+pub mod settings;
 pub mod targets;
 pub mod technique;
 pub mod util;
@@ -29,26 +31,45 @@ pub use technique::TechniqueParams;
 /// The wgpu this crate is built on (for adapter information and the like).
 pub use wgpu;
 
+/// Every pass's binding declaration (WGSL as compiled, entry point, group-1 slots): what the
+/// reflection test compares with naga's view of the WGSL.
+pub fn pass_layouts() -> Vec<bindings::PassLayout> {
+    use technique::{horizon, s3ho, ssdo};
+    let mut v = vec![
+        passes::tonemap::pass_layout(),
+        passes::composite::pass_layout(),
+        passes::aov::pass_layout(),
+        passes::direct_lighting::pass_layout(),
+        passes::bilateral_blur::pass_layout(),
+        passes::display::pass_layout(),
+        technique::none::pass_layout(),
+        ssdo::direct::pass_layout(),
+        ssdo::resolve::pass_layout(),
+        ssdo::bounce::pass_layout(),
+        s3ho::sample::pass_layout(),
+        s3ho::filter::pass_layout(),
+        s3ho::shade::pass_layout(),
+        horizon::split::pass_layout(),
+        horizon::search::pass_layout(),
+        horizon::merge::pass_layout(),
+        horizon::accumulate::pass_layout(),
+        horizon::outputs::pass_layout(),
+    ];
+    v.extend(passes::gbuffer::pass_layouts());
+    v.extend(passes::shadow::pass_layouts());
+    v.extend(passes::rsm::pass_layouts());
+    v.extend(passes::layers::pass_layouts());
+    v.extend(passes::reproject::pass_layouts());
+    v.extend(gpu_env::pass_layouts());
+    v
+}
+
 /// Every WGSL program as compiled (preludes included): (name, source). Tests validate each with
 /// naga.
 pub fn shader_sources() -> Vec<(&'static str, String)> {
-    vec![
-        ("gbuffer", passes::gbuffer::source()),
-        ("shadow", passes::shadow::SHADER.to_string()),
-        ("direct_lighting", passes::direct_lighting::source()),
-        ("composite", passes::composite::source()),
-        ("tonemap", passes::tonemap::source()),
-        ("aov", passes::aov::source()),
-        ("display", passes::display::source()),
-        (
-            "env_prefilter",
-            include_str!("passes/env_prefilter.wgsl").to_string(),
-        ),
-        ("technique/none", technique::none::source()),
-        ("technique/ssdo", technique::ssdo::source()),
-        ("technique/s3ho", technique::s3ho::source()),
-        ("technique/horizon", technique::horizon::source()),
-        ("bilateral_blur", passes::bilateral_blur::source()),
-        ("reproject", passes::reproject::source()),
-    ]
+    let mut seen = std::collections::BTreeMap::new();
+    for p in pass_layouts() {
+        seen.entry(p.name).or_insert(p.source);
+    }
+    seen.into_iter().collect()
 }

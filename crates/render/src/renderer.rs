@@ -5,11 +5,11 @@
 use crate::RenderError;
 use crate::aov::{Aov, AovImage};
 use crate::context::GpuContext;
-use crate::frame::{CameraMatrices, FrameInputs, FrameUniforms, Tonemap};
+use crate::frame::{CameraMatrices, FrameInputs, FrameUniforms, PostUniforms, Tonemap};
 use crate::gpu_env::GpuEnvironment;
 use crate::gpu_scene::GpuScene;
 use crate::passes::{
-    self, ScreenPass,
+    self, FrameGroup, ScreenPass,
     gbuffer::GBufferPass,
     shadow::{ShadowPass, ShadowSettings},
 };
@@ -50,6 +50,8 @@ pub struct Renderer {
     pub env: GpuEnvironment,
     pub targets: FrameTargets,
     frame_buffer: wgpu::Buffer,
+    /// Group 0 of every pass: the frame's uniforms and the environment.
+    frame_group: FrameGroup,
     gbuffer: GBufferPass,
     shadows: ShadowPass,
     passes: Passes,
@@ -101,11 +103,12 @@ impl Renderer {
         });
         let shadows = ShadowPass::new(&device, &gpu_scene, settings.shadows);
         gpu_scene.write_lights(&queue, &shadows.light_layers);
-        let gbuffer = GBufferPass::new(&device, &frame_buffer, &gpu_scene);
+        let frame_group = FrameGroup::new(&device, &frame_buffer, &gpu_env);
+        let gbuffer = GBufferPass::new(&device, &frame_group, &gpu_scene);
         let passes = Passes::new(
             &device,
             &queue,
-            &frame_buffer,
+            &frame_group,
             &targets,
             &gpu_scene,
             &gpu_env,
@@ -125,6 +128,7 @@ impl Renderer {
             env: gpu_env,
             targets,
             frame_buffer,
+            frame_group,
             gbuffer,
             shadows,
             passes,
@@ -150,7 +154,7 @@ impl Renderer {
         let passes = Passes::new(
             &self.device,
             &self.queue,
-            &self.frame_buffer,
+            &self.frame_group,
             &self.targets,
             &self.scene,
             &self.env,
@@ -203,11 +207,17 @@ impl Renderer {
             &mut self.env,
             GpuEnvironment::new(&self.device, &self.queue, env),
         );
+        let old_group = std::mem::replace(
+            &mut self.frame_group,
+            FrameGroup::new(&self.device, &self.frame_buffer, &self.env),
+        );
         let (spec, params) = (self.technique_spec.clone(), self.technique_params.clone());
         if let Err(e) = self.rebuild_passes(&spec, &params) {
             self.env = old;
+            self.frame_group = old_group;
             return Err(e);
         }
+        self.gbuffer.set_frame(&self.frame_group);
         Ok(())
     }
 
@@ -305,12 +315,11 @@ impl Renderer {
                 history: (self.history_valid(), self.frames_since_cut),
             },
             self.env.params(),
-            [
-                s.exposure,
-                s.tonemap.index() as f32,
-                s.shadows.normal_offset_texels,
-                0.0,
-            ],
+            PostUniforms {
+                exposure: s.exposure,
+                tonemap: s.tonemap,
+                shadow_normal_offset: s.shadows.normal_offset_texels,
+            },
             aov.shader_id(),
         )
     }
@@ -338,13 +347,14 @@ impl Renderer {
                 label: Some("frame"),
             });
         let size = self.settings.size;
-        let side = (self.frame_index % 2) as usize;
         let p = &mut self.profiler;
         p.begin_frame();
         self.gbuffer
             .encode(&mut encoder, p, &self.targets, &self.scene);
         self.shadows.encode(&mut encoder, p);
-        self.passes.direct.encode(&mut encoder, p, size, side);
+        self.passes
+            .direct
+            .encode(&mut encoder, p, size, self.frame_index);
         self.passes.technique.encode(
             &mut encoder,
             p,
@@ -383,16 +393,13 @@ impl Renderer {
         });
         // Same matrices as the last frame; only the AOV selector differs.
         let mut u = self.uniforms(current, aov);
-        u.counts[0] = last;
+        u.frame_index = last;
         self.queue
             .write_buffer(&self.frame_buffer, 0, bytemuck::bytes_of(&u));
         let mut encoder = self.device.create_command_encoder(&Default::default());
-        self.passes.aov.encode(
-            &mut encoder,
-            &mut self.quiet,
-            self.settings.size,
-            (last % 2) as usize,
-        );
+        self.passes
+            .aov
+            .encode(&mut encoder, &mut self.quiet, self.settings.size, last);
         self.queue.submit([encoder.finish()]);
     }
 
@@ -503,7 +510,7 @@ impl Passes {
     fn new(
         device: &wgpu::Device,
         queue: &wgpu::Queue,
-        frame: &wgpu::Buffer,
+        frame_group: &FrameGroup,
         targets: &FrameTargets,
         scene: &GpuScene,
         env: &GpuEnvironment,
@@ -513,7 +520,7 @@ impl Passes {
         params: &TechniqueParams,
     ) -> Result<Self, RenderError> {
         let desc = technique::find(spec)?;
-        let direct = passes::direct_lighting::new(device, frame, targets, scene, env, shadows);
+        let direct = passes::direct_lighting::new(device, frame_group, targets, scene, shadows);
         let mut params = params.clone();
         params.set.extend(technique::split_spec(spec).1);
         let params = technique::expand_presets(desc, &params)?;
@@ -521,7 +528,7 @@ impl Passes {
             &TechniqueContext {
                 device,
                 queue,
-                frame,
+                frame_group,
                 targets,
                 env,
                 scene,
@@ -533,9 +540,9 @@ impl Passes {
         Ok(Passes {
             direct,
             technique,
-            composite: passes::composite::new(device, frame, targets, env),
-            tonemap: passes::tonemap::new(device, frame, targets),
-            aov: passes::aov::new(device, frame, targets),
+            composite: passes::composite::new(device, frame_group, targets),
+            tonemap: passes::tonemap::new(device, frame_group, targets),
+            aov: passes::aov::new(device, frame_group, targets),
         })
     }
 }

@@ -4,13 +4,17 @@ use wgpu::{BindGroupLayoutEntry, BindingType, ShaderStages};
 
 /// Shared WGSL: the `Frame` uniform and view-space helpers.
 pub const COMMON_WGSL: &str = include_str!("shaders/common.wgsl");
-/// Shared WGSL: environment bindings (1..=4), lat-long lookups and SH irradiance.
+/// Shared WGSL: environment bindings (group 0), lat-long lookups and SH irradiance.
 pub const ENV_WGSL: &str = include_str!("shaders/env.wgsl");
-/// Shared WGSL: light table, shadow maps (bindings 13..=16) and light irradiance.
+/// Shared WGSL: light table, shadow maps and light irradiance (names the bindings its passes
+/// declare).
 pub const LIGHTS_WGSL: &str = include_str!("shaders/lights.wgsl");
-/// Shared WGSL: hemisphere sample patterns and the screen-space visibility test (bindings 6, 8, 9).
-pub const SCREEN_SAMPLES_WGSL: &str = include_str!("shaders/screen_samples.wgsl");
 
+/// Shared WGSL: the scene's vertices and materials for raster passes (names the bindings its
+/// passes declare).
+pub const MATERIALS_WGSL: &str = include_str!("shaders/materials.wgsl");
+/// Shared WGSL: the G-buffer surface at a pixel (names the bindings its passes declare).
+pub const SURFACE_WGSL: &str = include_str!("shaders/surface.wgsl");
 /// Shared WGSL: tonemap operators and the sRGB transfer function.
 pub const TONEMAP_OPS_WGSL: &str = include_str!("shaders/tonemap_ops.wgsl");
 
@@ -122,10 +126,13 @@ pub fn compute_pipeline(
 }
 
 /// A mesh raster pipeline as every nearfield raster pass draws one: `Vertex` triangle lists,
-/// one bind group, `targets::DEPTH_FORMAT` depth tested `Less` and written, colour targets
+/// group 0 (the frame, where the pass reads it) and group 1 (its own), `targets::DEPTH_FORMAT` depth tested `Less` and written, colour targets
 /// written without blending. What differs between the passes is in here.
 pub struct RasterPipeline<'a> {
     pub label: &'a str,
+    /// Group 0: the frame's layout, or `None` for a pass that does not read the frame.
+    pub frame: Option<&'a wgpu::BindGroupLayout>,
+    /// Group 1: the pass's own resources.
     pub layout: &'a wgpu::BindGroupLayout,
     pub module: &'a wgpu::ShaderModule,
     pub vertex: &'a str,
@@ -140,7 +147,7 @@ pub struct RasterPipeline<'a> {
 pub fn raster_pipeline(device: &wgpu::Device, p: &RasterPipeline) -> wgpu::RenderPipeline {
     let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
         label: Some(p.label),
-        bind_group_layouts: &[Some(p.layout)],
+        bind_group_layouts: &[p.frame, Some(p.layout)],
         immediate_size: 0,
     });
     let targets: Vec<Option<wgpu::ColorTargetState>> = p

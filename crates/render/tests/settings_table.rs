@@ -153,3 +153,34 @@ fn quality_expands_first_and_explicit_settings_refine_it() {
             .contains("low, medium, high, ultra")
     );
 }
+
+#[test]
+fn readme_settings_tables_are_generated_from_the_declarations() {
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../README.md");
+    let readme = std::fs::read_to_string(path).unwrap();
+    let regenerated = nearfield_render::settings::rewrite_readme(&readme).unwrap();
+    assert!(
+        readme == regenerated,
+        "README's settings tables differ from the declarations; regenerate them with \
+         `cargo run -p nearfield-render --example settings_tables -- --write README.md`"
+    );
+    // Every technique with settings shows one of the generated tables.
+    for desc in technique::REGISTRY
+        .iter()
+        .filter(|d| !d.settings.is_empty())
+    {
+        assert!(
+            nearfield_render::settings::FAMILIES
+                .iter()
+                .any(|(_, names, table, _)| {
+                    table
+                        .iter()
+                        .map(|s| s.key)
+                        .eq(desc.settings.iter().map(|s| s.key))
+                        && names.split(", ").any(|n| n == desc.name)
+                }),
+            "{}: its table is not among the README's",
+            desc.name
+        );
+    }
+}

@@ -60,62 +60,24 @@ fn check(source: &str, name: &str, size: usize, offsets: &[(&str, usize)]) {
 #[test]
 fn host_and_shader_structs_agree() {
     let common = nearfield_render::util::COMMON_WGSL;
+    macro_rules! offsets {
+        ($t:ty: $($f:ident),*) => { [$((stringify!($f), offset_of!($t, $f))),*] };
+    }
     check(
         common,
         "Frame",
         size_of::<FrameUniforms>(),
-        &[
-            (
-                "clip_from_world",
-                offset_of!(FrameUniforms, clip_from_world),
-            ),
-            (
-                "world_from_clip",
-                offset_of!(FrameUniforms, world_from_clip),
-            ),
-            (
-                "view_from_world",
-                offset_of!(FrameUniforms, view_from_world),
-            ),
-            (
-                "world_from_view",
-                offset_of!(FrameUniforms, world_from_view),
-            ),
-            (
-                "prev_clip_from_world",
-                offset_of!(FrameUniforms, prev_clip_from_world),
-            ),
-            (
-                "prev_view_from_world",
-                offset_of!(FrameUniforms, prev_view_from_world),
-            ),
-            (
-                "prev_world_from_view",
-                offset_of!(FrameUniforms, prev_world_from_view),
-            ),
-            (
-                "camera_position",
-                offset_of!(FrameUniforms, camera_position),
-            ),
-            ("size", offset_of!(FrameUniforms, size)),
-            ("projection", offset_of!(FrameUniforms, projection)),
-            ("env_params", offset_of!(FrameUniforms, env_params)),
-            ("post", offset_of!(FrameUniforms, post)),
-            (
-                "prev_projection",
-                offset_of!(FrameUniforms, prev_projection),
-            ),
-            ("counts", offset_of!(FrameUniforms, counts)),
-            ("history", offset_of!(FrameUniforms, history)),
-        ],
+        &offsets!(FrameUniforms: clip_from_world, world_from_clip, view_from_world,
+            world_from_view, prev_clip_from_world, prev_view_from_world, prev_world_from_view,
+            camera_position, size, inv_size, near, far, aspect, tan_half_fov, env_rotation,
+            env_intensity, env_specular_mips, env_radiance_mips, exposure, tonemap,
+            shadow_normal_offset, _pad0, prev_near, prev_far, prev_aspect, prev_tan_half_fov,
+            frame_index, light_count, seed, aov, history_valid, frames_since_cut, _pad1, _pad2),
     );
     use nearfield_render::passes::reproject::ReprojectParams;
     use nearfield_render::technique::horizon::HorizonParams;
-    macro_rules! offsets {
-        ($t:ty: $($f:ident),*) => { vec![$((stringify!($f), offset_of!($t, $f))),*] };
-    }
     check(
-        &nearfield_render::technique::horizon::source(),
+        &nearfield_render::technique::horizon::search::source(),
         "HorizonParams",
         size_of::<HorizonParams>(),
         &offsets!(HorizonParams: radius, slices, steps, falloff, max_pixels, scale, indirect,
@@ -129,8 +91,8 @@ fn host_and_shader_structs_agree() {
         &[
             ("reject_depth", offset_of!(ReprojectParams, reject_depth)),
             ("reject_normal", offset_of!(ReprojectParams, reject_normal)),
-            ("_pad0", offset_of!(ReprojectParams, _pad)),
-            ("_pad1", offset_of!(ReprojectParams, _pad) + 4),
+            ("_pad0", offset_of!(ReprojectParams, _pad0)),
+            ("_pad1", offset_of!(ReprojectParams, _pad1)),
         ],
     );
     use nearfield_render::passes::display::DisplayParams;
@@ -138,11 +100,8 @@ fn host_and_shader_structs_agree() {
         &nearfield_render::passes::display::source(),
         "DisplayParams",
         size_of::<DisplayParams>(),
-        &[
-            ("size", offset_of!(DisplayParams, size)),
-            ("mode", offset_of!(DisplayParams, mode)),
-            ("range", offset_of!(DisplayParams, range)),
-        ],
+        &offsets!(DisplayParams: width, height, split, divider, mode_a, mode_b, tonemap,
+            coverage, exposure, lo, hi, _pad0),
     );
     let material = [
         ("base_color", offset_of!(GpuMaterial, base_color)),
@@ -183,5 +142,56 @@ fn host_and_shader_structs_agree() {
             ("source_height", offset_of!(PrefilterParams, source_height)),
             ("source_mips", offset_of!(PrefilterParams, source_mips)),
         ],
+    );
+    // The structs of the passes' own parameters.
+    use nearfield_render::passes::bilateral_blur::BlurParams;
+    use nearfield_render::passes::layers::{LayerView, ShadeParams};
+    use nearfield_render::passes::rsm::RsmView;
+    use nearfield_render::technique::{s3ho::S3hoParams, ssdo::SsdoParams};
+    for source in [
+        nearfield_render::technique::ssdo::direct::source(),
+        nearfield_render::technique::ssdo::resolve::source(),
+        nearfield_render::technique::ssdo::bounce::source(),
+    ] {
+        check(
+            &source,
+            "SsdoParams",
+            size_of::<SsdoParams>(),
+            &offsets!(SsdoParams: radius, samples, mode, technique, lod, contrast, scale, fade,
+                strength, distance_clamp, pattern, light_samples, layers, cameras, light_segment,
+                vpl_mode, vpl_count, vpl_clamp, near, steps),
+        );
+    }
+    check(
+        &nearfield_render::technique::s3ho::sample::source(),
+        "S3hoParams",
+        size_of::<S3hoParams>(),
+        &offsets!(S3hoParams: radius, samples, pattern, fade, steps, lambda, technique, indirect,
+            strength, distance_clamp, layers, cameras),
+    );
+    check(
+        &nearfield_render::passes::bilateral_blur::source(),
+        "BlurParams",
+        size_of::<BlurParams>(),
+        &offsets!(BlurParams: direction, radius, enabled, depth_sigma, normal_power, _pad0, _pad1),
+    );
+    check(
+        common,
+        "LayerView",
+        size_of::<LayerView>(),
+        &offsets!(LayerView: clip_from_world, view_from_world, world_from_view, size, inv_size,
+            near, far, aspect, tan_half_fov, peel, exit, _pad0, _pad1, _pad2),
+    );
+    check(
+        &nearfield_render::passes::layers::source(),
+        "ShadeParams",
+        size_of::<ShadeParams>(),
+        &offsets!(ShadeParams: first_view, count, _pad0, _pad1),
+    );
+    check(
+        &nearfield_render::passes::rsm::source(),
+        "RsmView",
+        size_of::<RsmView>(),
+        &offsets!(RsmView: clip_from_world, to_light),
     );
 }

@@ -1,10 +1,10 @@
-//! AOV extraction (compute): writes one AOV as float RGBA (alpha = surface coverage) into the
-//! readback image. See aov.wgsl and `crate::Aov`.
+//! AOV extraction (compute): one AOV of the last frame into `targets.aov` (rgba32float), as
+//! DESIGN.md defines it. See aov.wgsl.
 
-use super::ScreenPass;
+use super::{ComputeStep, FrameGroup, PingPong, ScreenPass};
+use crate::bindings::{PassLayout, kind};
 use crate::targets::{AOV_FORMAT, FrameTargets};
 use crate::util;
-use wgpu::BindingResource as R;
 
 pub const SHADER: &str = include_str!("aov.wgsl");
 
@@ -12,43 +12,71 @@ pub fn source() -> String {
     util::compose(&[util::COMMON_WGSL, SHADER])
 }
 
-pub fn new(device: &wgpu::Device, frame: &wgpu::Buffer, targets: &FrameTargets) -> ScreenPass {
-    let c = wgpu::ShaderStages::COMPUTE;
-    let mut entries = vec![util::uniform(0, c)];
-    // view depth (10) and ao (13) are r32float: unfilterable.
-    entries.extend((8..=18).map(|b| util::texture(b, c, b != 10 && b != 13)));
-    entries.push(util::storage_texture(19, AOV_FORMAT));
-    entries.push(util::texture(20, c, true));
-    let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-        label: Some("aov"),
-        entries: &entries,
+crate::bind_group! {
+    /// Group 1 of the AOV pass: every image an AOV is made of.
+    pub struct AovBindings: COMPUTE {
+        /// World normal (rgba16float).
+        gb_normal: view = kind::TEXTURE,
+        /// Base colour ρ (rgba8unorm).
+        gb_albedo: view = kind::TEXTURE,
+        /// View depth (r32float, m).
+        gb_view_depth: view = kind::TEXTURE_UNFILTERABLE,
+        /// Motion (rgba16float: previous − current pixel position in rg).
+        gb_motion: view = kind::TEXTURE,
+        /// The linear HDR frame (rgba16float).
+        radiance: view = kind::TEXTURE,
+        /// `ao` (r32float).
+        ao: view = kind::TEXTURE_UNFILTERABLE,
+        /// `env-irradiance` (rgba16float).
+        env_irradiance: view = kind::TEXTURE,
+        /// `light-irradiance` (rgba16float).
+        light_irradiance: view = kind::TEXTURE,
+        /// `indirect-irradiance` (rgba16float).
+        indirect_irradiance: view = kind::TEXTURE,
+        /// Specular radiance (rgba16float).
+        specular: view = kind::TEXTURE,
+        /// The frame's direct radiance (rgba16float).
+        direct_radiance: view = kind::TEXTURE,
+        /// Emitted radiance (rgba16float).
+        gb_emissive: view = kind::TEXTURE,
+        /// The extracted AOV (rgba32float).
+        out_aov: view = kind::write(AOV_FORMAT),
+    }
+}
+
+/// The binding declaration the reflection test checks.
+pub fn pass_layout() -> PassLayout {
+    PassLayout {
+        name: "aov",
+        source: source(),
+        entry_point: "main",
+        group1: AovBindings::SLOTS,
+    }
+}
+
+pub fn new(device: &wgpu::Device, frame: &FrameGroup, targets: &FrameTargets) -> ScreenPass {
+    let layout = AovBindings::layout(device);
+    let module = super::shader_module(device, "aov", &source());
+    let own = PingPong::from_fn(|side| {
+        AovBindings {
+            gb_normal: &targets.normal.view,
+            gb_albedo: &targets.albedo.view,
+            gb_view_depth: &targets.view_depth.view,
+            gb_motion: &targets.motion.view,
+            radiance: &targets.radiance.view,
+            ao: &targets.ao.view,
+            env_irradiance: &targets.env_irradiance.view,
+            light_irradiance: &targets.light_irradiance.view,
+            indirect_irradiance: &targets.indirect_irradiance.view,
+            specular: &targets.specular.view,
+            direct_radiance: &targets.direct_radiance[side].view,
+            gb_emissive: &targets.emissive.view,
+            out_aov: &targets.aov.view,
+        }
+        .bind_group(device, &layout)
     });
-    let bind_groups = targets
-        .direct_radiance
-        .iter()
-        .map(|direct| {
-            let r = [
-                (0, frame.as_entire_binding()),
-                (8, R::TextureView(&targets.normal.view)),
-                (9, R::TextureView(&targets.albedo.view)),
-                (10, R::TextureView(&targets.view_depth.view)),
-                (11, R::TextureView(&targets.motion.view)),
-                (12, R::TextureView(&targets.radiance.view)),
-                (13, R::TextureView(&targets.ao.view)),
-                (14, R::TextureView(&targets.env_irradiance.view)),
-                (15, R::TextureView(&targets.light_irradiance.view)),
-                (16, R::TextureView(&targets.indirect_irradiance.view)),
-                (17, R::TextureView(&targets.specular.view)),
-                (18, R::TextureView(&direct.view)),
-                (19, R::TextureView(&targets.aov.view)),
-                (20, R::TextureView(&targets.emissive.view)),
-            ];
-            util::bind_group(device, "aov", &layout, &r)
-        })
-        .collect();
     ScreenPass {
-        label: "aov",
-        pipeline: util::compute_pipeline(device, "aov", &source(), "main", &layout),
-        bind_groups,
+        step: ComputeStep::new(device, "aov", &module, "main", frame, &layout, &[]),
+        own,
     }
 }

@@ -1,4 +1,4 @@
-// aov.wgsl — copies one AOV (frame.counts.w, numbered as crate::Aov) into an rgba32float image
+// aov.wgsl — copies one AOV (frame.aov, numbered as crate::Aov) into an rgba32float image
 // for output: rgb = the AOV's value exactly as DESIGN.md defines it, a = 1 on surfaces, 0 on
 // background (where rgb = 0, except for `radiance`, which shows the environment).
 //
@@ -8,19 +8,19 @@
 //   10 motion (pixels, rg)  11 specular  12 direct-radiance (kept for the next frame)
 //   13 lambertian = emission + ρ · (env-irradiance + light-irradiance + indirect-irradiance)
 
-@group(0) @binding(8) var gb_normal: texture_2d<f32>;
-@group(0) @binding(9) var gb_albedo: texture_2d<f32>;
-@group(0) @binding(10) var gb_view_depth: texture_2d<f32>;
-@group(0) @binding(11) var gb_motion: texture_2d<f32>;
-@group(0) @binding(12) var radiance: texture_2d<f32>;
-@group(0) @binding(13) var ao: texture_2d<f32>;
-@group(0) @binding(14) var env_irradiance: texture_2d<f32>;
-@group(0) @binding(15) var light_irradiance: texture_2d<f32>;
-@group(0) @binding(16) var indirect_irradiance: texture_2d<f32>;
-@group(0) @binding(17) var specular: texture_2d<f32>;
-@group(0) @binding(18) var direct_radiance: texture_2d<f32>;
-@group(0) @binding(20) var gb_emissive: texture_2d<f32>;
-@group(0) @binding(19) var out_aov: texture_storage_2d<rgba32float, write>;
+@group(1) @binding(0) var gb_normal: texture_2d<f32>;
+@group(1) @binding(1) var gb_albedo: texture_2d<f32>;
+@group(1) @binding(2) var gb_view_depth: texture_2d<f32>;
+@group(1) @binding(3) var gb_motion: texture_2d<f32>;
+@group(1) @binding(4) var radiance: texture_2d<f32>;
+@group(1) @binding(5) var ao: texture_2d<f32>;
+@group(1) @binding(6) var env_irradiance: texture_2d<f32>;
+@group(1) @binding(7) var light_irradiance: texture_2d<f32>;
+@group(1) @binding(8) var indirect_irradiance: texture_2d<f32>;
+@group(1) @binding(9) var specular: texture_2d<f32>;
+@group(1) @binding(10) var direct_radiance: texture_2d<f32>;
+@group(1) @binding(11) var gb_emissive: texture_2d<f32>;
+@group(1) @binding(12) var out_aov: texture_storage_2d<rgba32float, write>;
 
 @compute @workgroup_size(8, 8, 1)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {
@@ -30,7 +30,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     let surface = textureLoad(gb_normal, pixel, 0).w;
     var v = vec3<f32>(0.0);
-    switch frame.counts.w {
+    switch frame.aov {
         case 1u: {
             v = textureLoad(radiance, pixel, 0).rgb;
         }
@@ -78,7 +78,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         default: {
         }
     }
-    if surface == 0.0 && frame.counts.w != 1u {
+    if surface == 0.0 && frame.aov != 1u {
         v = vec3<f32>(0.0);
     }
     textureStore(out_aov, pixel, vec4<f32>(v, surface));

@@ -3,10 +3,11 @@
 //! `BlurChain` (horizontal into a scratch texture, then vertical into the destination), recorded
 //! as two dispatches inside the caller's compute pass.
 
+use super::{ComputeStep, FrameGroup};
+use crate::bindings::{PassLayout, kind};
 use crate::targets::{FrameTargets, HDR_FORMAT};
 use crate::util;
 use bytemuck::{Pod, Zeroable};
-use wgpu::BindingResource as R;
 use wgpu::util::DeviceExt;
 
 pub const SHADER: &str = include_str!("bilateral_blur.wgsl");
@@ -24,7 +25,34 @@ pub struct BlurParams {
     pub enabled: u32,
     pub depth_sigma: f32,
     pub normal_power: f32,
-    pub _pad: [f32; 2],
+    pub _pad0: f32,
+    pub _pad1: f32,
+}
+
+crate::bind_group! {
+    /// Group 1 of one direction of the blur.
+    pub struct BlurBindings: COMPUTE {
+        /// [`BlurParams`]: direction, radius and tolerances.
+        blur: buffer = kind::UNIFORM,
+        /// World normal (rgba16float).
+        gb_normal: view = kind::TEXTURE,
+        /// View depth (r32float, m).
+        gb_view_depth: view = kind::TEXTURE_UNFILTERABLE,
+        /// The image blurred (rgba16float).
+        source: view = kind::TEXTURE,
+        /// The blurred image (rgba16float).
+        destination: view = kind::write(HDR_FORMAT),
+    }
+}
+
+/// The binding declaration the reflection test checks.
+pub fn pass_layout() -> PassLayout {
+    PassLayout {
+        name: "bilateral_blur",
+        source: source(),
+        entry_point: "main",
+        group1: BlurBindings::SLOTS,
+    }
 }
 
 /// Blur settings.
@@ -40,7 +68,7 @@ pub struct BlurSettings {
 }
 
 pub struct BilateralBlur {
-    pipeline: wgpu::ComputePipeline,
+    step: ComputeStep,
     layout: wgpu::BindGroupLayout,
     horizontal: wgpu::Buffer,
     vertical: wgpu::Buffer,
@@ -53,26 +81,17 @@ pub struct BlurChain {
 }
 
 impl BilateralBlur {
-    pub fn new(device: &wgpu::Device, settings: BlurSettings) -> Self {
-        let c = wgpu::ShaderStages::COMPUTE;
-        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("bilateral blur"),
-            entries: &[
-                util::uniform(0, c),
-                util::uniform(5, c),
-                util::texture(8, c, true),
-                util::texture(9, c, false),
-                util::texture(10, c, true),
-                util::storage_texture(11, HDR_FORMAT),
-            ],
-        });
+    pub fn new(device: &wgpu::Device, frame: &FrameGroup, settings: BlurSettings) -> Self {
+        let layout = BlurBindings::layout(device);
+        let module = super::shader_module(device, "bilateral blur", &source());
         let params = |direction: [i32; 2]| BlurParams {
             direction,
             radius: settings.radius as i32,
             enabled: settings.enabled as u32,
             depth_sigma: settings.depth_sigma,
             normal_power: settings.normal_power,
-            _pad: [0.0; 2],
+            _pad0: 0.0,
+            _pad1: 0.0,
         };
         let buffer = |p: BlurParams| {
             device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
@@ -82,7 +101,7 @@ impl BilateralBlur {
             })
         };
         BilateralBlur {
-            pipeline: util::compute_pipeline(device, "bilateral blur", &source(), "main", &layout),
+            step: ComputeStep::new(device, "blur", &module, "main", frame, &layout, &[]),
             horizontal: buffer(params([1, 0])),
             vertical: buffer(params([0, 1])),
             layout,
@@ -93,26 +112,20 @@ impl BilateralBlur {
     pub fn chain(
         &self,
         device: &wgpu::Device,
-        frame: &wgpu::Buffer,
         targets: &FrameTargets,
         source: &wgpu::TextureView,
         scratch: &wgpu::TextureView,
         destination: &wgpu::TextureView,
     ) -> BlurChain {
         let bg = |params: &wgpu::Buffer, from: &wgpu::TextureView, to: &wgpu::TextureView| {
-            util::bind_group(
-                device,
-                "bilateral blur",
-                &self.layout,
-                &[
-                    (0, frame.as_entire_binding()),
-                    (5, params.as_entire_binding()),
-                    (8, R::TextureView(&targets.normal.view)),
-                    (9, R::TextureView(&targets.view_depth.view)),
-                    (10, R::TextureView(from)),
-                    (11, R::TextureView(to)),
-                ],
-            )
+            BlurBindings {
+                blur: params,
+                gb_normal: &targets.normal.view,
+                gb_view_depth: &targets.view_depth.view,
+                source: from,
+                destination: to,
+            }
+            .bind_group(device, &self.layout)
         };
         BlurChain {
             horizontal: bg(&self.horizontal, source, scratch),
@@ -123,10 +136,7 @@ impl BilateralBlur {
     /// Records both dispatches of `chain` into an open compute pass.
     pub fn dispatch(&self, pass: &mut wgpu::ComputePass, chain: &BlurChain, size: (u32, u32)) {
         let (gx, gy) = util::groups_8x8(size);
-        pass.set_pipeline(&self.pipeline);
-        pass.set_bind_group(0, &chain.horizontal, &[]);
-        pass.dispatch_workgroups(gx, gy, 1);
-        pass.set_bind_group(0, &chain.vertical, &[]);
-        pass.dispatch_workgroups(gx, gy, 1);
+        self.step.dispatch(pass, &chain.horizontal, (gx, gy, 1));
+        self.step.dispatch(pass, &chain.vertical, (gx, gy, 1));
     }
 }

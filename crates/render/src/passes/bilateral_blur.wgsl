@@ -23,11 +23,11 @@ struct BlurParams {
     _pad1: f32,
 }
 
-@group(0) @binding(5) var<uniform> blur: BlurParams;
-@group(0) @binding(8) var gb_normal: texture_2d<f32>;
-@group(0) @binding(9) var gb_view_depth: texture_2d<f32>;
-@group(0) @binding(10) var source: texture_2d<f32>;
-@group(0) @binding(11) var destination: texture_storage_2d<rgba16float, write>;
+@group(1) @binding(0) var<uniform> blur: BlurParams;
+@group(1) @binding(1) var gb_normal: texture_2d<f32>;
+@group(1) @binding(2) var gb_view_depth: texture_2d<f32>;
+@group(1) @binding(3) var source: texture_2d<f32>;
+@group(1) @binding(4) var destination: texture_storage_2d<rgba16float, write>;
 
 @compute @workgroup_size(8, 8, 1)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {
@@ -44,7 +44,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     let n = normalize(nw.xyz);
     let z = textureLoad(gb_view_depth, pixel, 0).r;
     let x = world_position(pixel, z);
-    let size = vec2<i32>(frame.size.xy);
+    let size = vec2<i32>(frame.size);
     let sigma = max(f32(blur.radius) * 0.5, 0.5);
     var sum = vec4<f32>(0.0);
     var weight = 0.0;

@@ -1,11 +1,10 @@
 //! Composite (compute): assembles the linear HDR `radiance` from the G-buffer, direct lighting
 //! and the near-field technique's outputs. See composite.wgsl.
 
-use super::ScreenPass;
-use crate::gpu_env::GpuEnvironment;
+use super::{ComputeStep, FrameGroup, ScreenPass};
+use crate::bindings::{PassLayout, kind};
 use crate::targets::{FrameTargets, HDR_FORMAT};
 use crate::util;
-use wgpu::BindingResource as R;
 
 pub const SHADER: &str = include_str!("composite.wgsl");
 
@@ -13,37 +12,57 @@ pub fn source() -> String {
     util::compose(&[util::COMMON_WGSL, util::ENV_WGSL, SHADER])
 }
 
-pub fn new(
-    device: &wgpu::Device,
-    frame: &wgpu::Buffer,
-    targets: &FrameTargets,
-    env: &GpuEnvironment,
-) -> ScreenPass {
-    let c = wgpu::ShaderStages::COMPUTE;
-    let mut entries = vec![util::uniform(0, c)];
-    entries.extend(GpuEnvironment::layout_entries());
-    entries.extend((8..=15).map(|b| util::texture(b, c, true)));
-    entries.push(util::storage_texture(16, HDR_FORMAT));
-    let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-        label: Some("composite"),
-        entries: &entries,
-    });
-    let mut r = vec![(0, frame.as_entire_binding())];
-    r.extend(env.bindings());
-    r.extend([
-        (8, R::TextureView(&targets.normal.view)),
-        (9, R::TextureView(&targets.albedo.view)),
-        (10, R::TextureView(&targets.material.view)),
-        (11, R::TextureView(&targets.emissive.view)),
-        (12, R::TextureView(&targets.light_irradiance.view)),
-        (13, R::TextureView(&targets.specular.view)),
-        (14, R::TextureView(&targets.env_irradiance.view)),
-        (15, R::TextureView(&targets.indirect_irradiance.view)),
-        (16, R::TextureView(&targets.radiance.view)),
-    ]);
-    ScreenPass {
-        label: "composite",
-        pipeline: util::compute_pipeline(device, "composite", &source(), "main", &layout),
-        bind_groups: vec![util::bind_group(device, "composite", &layout, &r)],
+crate::bind_group! {
+    /// Group 1 of the composite pass.
+    pub struct CompositeBindings: COMPUTE {
+        /// World normal (rgba16float, xyz unit; a = 0 on background).
+        gb_normal: view = kind::TEXTURE,
+        /// Base colour ρ, linear (rgba8unorm).
+        gb_albedo: view = kind::TEXTURE,
+        /// F0 / metallic / roughness (rgba8unorm).
+        gb_material: view = kind::TEXTURE,
+        /// Emitted radiance (rgba16float).
+        gb_emissive: view = kind::TEXTURE,
+        /// (1/π) Σ E_l with shadows (rgba16float).
+        light_irradiance: view = kind::TEXTURE,
+        /// Specular radiance (rgba16float).
+        specular: view = kind::TEXTURE,
+        /// The technique's `env-irradiance` (rgba16float).
+        env_irradiance: view = kind::TEXTURE,
+        /// The technique's `indirect-irradiance` (rgba16float).
+        indirect_irradiance: view = kind::TEXTURE,
+        /// The linear HDR frame (rgba16float).
+        out_radiance: view = kind::write(HDR_FORMAT),
     }
+}
+
+/// The binding declaration the reflection test checks.
+pub fn pass_layout() -> PassLayout {
+    PassLayout {
+        name: "composite",
+        source: source(),
+        entry_point: "main",
+        group1: CompositeBindings::SLOTS,
+    }
+}
+
+pub fn new(device: &wgpu::Device, frame: &FrameGroup, targets: &FrameTargets) -> ScreenPass {
+    let layout = CompositeBindings::layout(device);
+    let module = super::shader_module(device, "composite", &source());
+    let own = CompositeBindings {
+        gb_normal: &targets.normal.view,
+        gb_albedo: &targets.albedo.view,
+        gb_material: &targets.material.view,
+        gb_emissive: &targets.emissive.view,
+        light_irradiance: &targets.light_irradiance.view,
+        specular: &targets.specular.view,
+        env_irradiance: &targets.env_irradiance.view,
+        indirect_irradiance: &targets.indirect_irradiance.view,
+        out_radiance: &targets.radiance.view,
+    }
+    .bind_group(device, &layout);
+    ScreenPass::single(
+        ComputeStep::new(device, "composite", &module, "main", frame, &layout, &[]),
+        own,
+    )
 }

@@ -6,15 +6,15 @@
 // radiance), and the environment seen through the pixel (mip 0) on background. Specular light is
 // not occluded by the near-field technique (as in the SSDO textbook chapter: "specular untouched").
 
-@group(0) @binding(8) var gb_normal: texture_2d<f32>;
-@group(0) @binding(9) var gb_albedo: texture_2d<f32>;
-@group(0) @binding(10) var gb_material: texture_2d<f32>;
-@group(0) @binding(11) var gb_emissive: texture_2d<f32>;
-@group(0) @binding(12) var light_irradiance: texture_2d<f32>;
-@group(0) @binding(13) var specular: texture_2d<f32>;
-@group(0) @binding(14) var env_irradiance: texture_2d<f32>;
-@group(0) @binding(15) var indirect_irradiance: texture_2d<f32>;
-@group(0) @binding(16) var out_radiance: texture_storage_2d<rgba16float, write>;
+@group(1) @binding(0) var gb_normal: texture_2d<f32>;
+@group(1) @binding(1) var gb_albedo: texture_2d<f32>;
+@group(1) @binding(2) var gb_material: texture_2d<f32>;
+@group(1) @binding(3) var gb_emissive: texture_2d<f32>;
+@group(1) @binding(4) var light_irradiance: texture_2d<f32>;
+@group(1) @binding(5) var specular: texture_2d<f32>;
+@group(1) @binding(6) var env_irradiance: texture_2d<f32>;
+@group(1) @binding(7) var indirect_irradiance: texture_2d<f32>;
+@group(1) @binding(8) var out_radiance: texture_storage_2d<rgba16float, write>;
 
 @compute @workgroup_size(8, 8, 1)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {

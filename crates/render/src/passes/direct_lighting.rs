@@ -1,13 +1,12 @@
-//! Direct lighting (compute): light irradiance with shadows, specular (lights + prefiltered
-//! environment) and the direct radiance kept for the next frame. See direct_lighting.wgsl.
+//! Direct lighting (compute): light irradiance with shadows, specular, and the direct radiance
+//! that near-field techniques gather (kept for the next frame). See direct_lighting.wgsl.
 
-use super::ScreenPass;
 use super::shadow::ShadowPass;
-use crate::gpu_env::GpuEnvironment;
+use super::{ComputeStep, FrameGroup, PingPong, ScreenPass};
+use crate::bindings::{PassLayout, kind};
 use crate::gpu_scene::GpuScene;
 use crate::targets::{FrameTargets, HDR_FORMAT};
 use crate::util;
-use wgpu::BindingResource as R;
 
 pub const SHADER: &str = include_str!("direct_lighting.wgsl");
 
@@ -15,58 +14,75 @@ pub fn source() -> String {
     util::compose(&[util::COMMON_WGSL, util::ENV_WGSL, util::LIGHTS_WGSL, SHADER])
 }
 
+crate::bind_group! {
+    /// Group 1 of the direct-lighting pass.
+    pub struct DirectLightingBindings: COMPUTE {
+        /// World normal (rgba16float).
+        gb_normal: view = kind::TEXTURE,
+        /// Base colour ρ (rgba8unorm).
+        gb_albedo: view = kind::TEXTURE,
+        /// F0 / metallic / roughness (rgba8unorm).
+        gb_material: view = kind::TEXTURE,
+        /// Emitted radiance (rgba16float).
+        gb_emissive: view = kind::TEXTURE,
+        /// View depth (r32float, m).
+        gb_view_depth: view = kind::TEXTURE_UNFILTERABLE,
+        /// The scene's lights (lights.wgsl `GpuLight`).
+        lights: buffer = kind::STORAGE_READ,
+        /// clip_from_world of every shadow-map layer.
+        shadow_clip_from_world: buffer = kind::STORAGE_READ,
+        /// The shadow maps.
+        shadow_maps: view = kind::TEXTURE_DEPTH_ARRAY,
+        /// Their comparison sampler.
+        shadow_sampler: sampler = kind::SAMPLER_COMPARISON,
+        /// (1/π) Σ E_l with shadows (rgba16float).
+        out_light_irradiance: view = kind::write(HDR_FORMAT),
+        /// Specular radiance (rgba16float).
+        out_specular: view = kind::write(HDR_FORMAT),
+        /// This frame's direct radiance (rgba16float), one side of the ping-pong pair.
+        out_direct_radiance: view = kind::write(HDR_FORMAT),
+    }
+}
+
+/// The binding declaration the reflection test checks.
+pub fn pass_layout() -> PassLayout {
+    PassLayout {
+        name: "direct_lighting",
+        source: source(),
+        entry_point: "main",
+        group1: DirectLightingBindings::SLOTS,
+    }
+}
+
 pub fn new(
     device: &wgpu::Device,
-    frame: &wgpu::Buffer,
+    frame: &FrameGroup,
     targets: &FrameTargets,
     scene: &GpuScene,
-    env: &GpuEnvironment,
     shadows: &ShadowPass,
 ) -> ScreenPass {
-    use wgpu::ShaderStages as S;
-    let c = S::COMPUTE;
-    let mut entries = vec![util::uniform(0, c)];
-    entries.extend(GpuEnvironment::layout_entries());
-    entries.extend([
-        util::texture(8, c, true),
-        util::texture(9, c, true),
-        util::texture(10, c, true),
-        util::texture(11, c, true),
-        util::texture(12, c, false),
-    ]);
-    entries.extend(ShadowPass::layout_entries());
-    entries.extend([
-        util::storage_texture(17, HDR_FORMAT),
-        util::storage_texture(18, HDR_FORMAT),
-        util::storage_texture(19, HDR_FORMAT),
-    ]);
-    let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-        label: Some("direct lighting"),
-        entries: &entries,
+    let layout = DirectLightingBindings::layout(device);
+    let module = super::shader_module(device, "direct lighting", &source());
+    let l = shadows.light_resources(&scene.lights);
+    let own = PingPong::from_fn(|side| {
+        DirectLightingBindings {
+            gb_normal: &targets.normal.view,
+            gb_albedo: &targets.albedo.view,
+            gb_material: &targets.material.view,
+            gb_emissive: &targets.emissive.view,
+            gb_view_depth: &targets.view_depth.view,
+            lights: l.lights,
+            shadow_clip_from_world: l.shadow_clip_from_world,
+            shadow_maps: l.shadow_maps,
+            shadow_sampler: l.shadow_sampler,
+            out_light_irradiance: &targets.light_irradiance.view,
+            out_specular: &targets.specular.view,
+            out_direct_radiance: &targets.direct_radiance[side].view,
+        }
+        .bind_group(device, &layout)
     });
-    let bind_groups = targets
-        .direct_radiance
-        .iter()
-        .map(|out| {
-            let mut r = vec![(0, frame.as_entire_binding())];
-            r.extend(env.bindings());
-            r.extend(shadows.bindings(scene));
-            r.extend([
-                (8, R::TextureView(&targets.normal.view)),
-                (9, R::TextureView(&targets.albedo.view)),
-                (10, R::TextureView(&targets.material.view)),
-                (11, R::TextureView(&targets.emissive.view)),
-                (12, R::TextureView(&targets.view_depth.view)),
-                (17, R::TextureView(&targets.light_irradiance.view)),
-                (18, R::TextureView(&targets.specular.view)),
-                (19, R::TextureView(&out.view)),
-            ]);
-            util::bind_group(device, "direct lighting", &layout, &r)
-        })
-        .collect();
     ScreenPass {
-        label: "direct",
-        pipeline: util::compute_pipeline(device, "direct lighting", &source(), "main", &layout),
-        bind_groups,
+        step: ComputeStep::new(device, "direct", &module, "main", frame, &layout, &[]),
+        own,
     }
 }

@@ -12,16 +12,20 @@
 // techniques gather as indirect light (DESIGN.md's L_o): it is kept for the next frame.
 // Lights and shadows come from shaders/lights.wgsl.
 // Shadows: 3×3 PCF of hardware 2×2 comparisons from the shadow-map array, receiver offset along
-// the normal by `frame.post.z` shadow-map texels (see passes/shadow.rs for both biases).
+// the normal by `frame.shadow_normal_offset` shadow-map texels (see passes/shadow.rs for both biases).
 
-@group(0) @binding(8) var gb_normal: texture_2d<f32>;
-@group(0) @binding(9) var gb_albedo: texture_2d<f32>;
-@group(0) @binding(10) var gb_material: texture_2d<f32>;
-@group(0) @binding(11) var gb_emissive: texture_2d<f32>;
-@group(0) @binding(12) var gb_view_depth: texture_2d<f32>;
-@group(0) @binding(17) var out_light_irradiance: texture_storage_2d<rgba16float, write>;
-@group(0) @binding(18) var out_specular: texture_storage_2d<rgba16float, write>;
-@group(0) @binding(19) var out_direct_radiance: texture_storage_2d<rgba16float, write>;
+@group(1) @binding(0) var gb_normal: texture_2d<f32>;
+@group(1) @binding(1) var gb_albedo: texture_2d<f32>;
+@group(1) @binding(2) var gb_material: texture_2d<f32>;
+@group(1) @binding(3) var gb_emissive: texture_2d<f32>;
+@group(1) @binding(4) var gb_view_depth: texture_2d<f32>;
+@group(1) @binding(5) var<storage, read> lights: array<GpuLight>;
+@group(1) @binding(6) var<storage, read> shadow_clip_from_world: array<mat4x4<f32>>;
+@group(1) @binding(7) var shadow_maps: texture_depth_2d_array;
+@group(1) @binding(8) var shadow_sampler: sampler_comparison;
+@group(1) @binding(9) var out_light_irradiance: texture_storage_2d<rgba16float, write>;
+@group(1) @binding(10) var out_specular: texture_storage_2d<rgba16float, write>;
+@group(1) @binding(11) var out_direct_radiance: texture_storage_2d<rgba16float, write>;
 
 fn d_ggx(n_h: f32, a: f32) -> f32 {
     let a2 = a * a;
@@ -76,7 +80,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
 
     var irradiance = vec3<f32>(0.0);
     var specular = vec3<f32>(0.0);
-    for (var i = 0u; i < frame.counts.y; i++) {
+    for (var i = 0u; i < frame.light_count; i++) {
         let l = lights[i];
         let inc = incident(l, p);
         let n_l = dot(n, inc.to_light);

@@ -4,10 +4,10 @@
 //! [`DisplayPass::output`]; anyone can use it to look at a float image.
 
 use crate::aov::Aov;
+use crate::bindings::{PassLayout, kind};
 use crate::frame::Tonemap;
 use crate::util;
 use bytemuck::{Pod, Zeroable};
-use wgpu::BindingResource as R;
 
 pub const SHADER: &str = include_str!("display.wgsl");
 
@@ -78,9 +78,45 @@ pub struct DisplayPost {
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable)]
 pub struct DisplayParams {
-    pub size: [u32; 4],
-    pub mode: [u32; 4],
-    pub range: [f32; 4],
+    /// Output size (pixels), the split column (≥ width: A only), the divider's half-width.
+    pub width: u32,
+    pub height: u32,
+    pub split: u32,
+    pub divider: u32,
+    /// [`DisplayMode`] of each side, [`Tonemap::index`], coverage bits (1: A, 2: B).
+    pub mode_a: u32,
+    pub mode_b: u32,
+    pub tonemap: u32,
+    pub coverage: u32,
+    /// Exposure (EV) and the false-colour range.
+    pub exposure: f32,
+    pub lo: f32,
+    pub hi: f32,
+    pub _pad0: f32,
+}
+
+crate::bind_group! {
+    /// Group 1 of the display pass (group 0 is empty: it runs outside the frame).
+    pub struct DisplayBindings: COMPUTE {
+        /// `DisplayParams`: size, split column, modes, post settings.
+        params: buffer = kind::UNIFORM,
+        /// The image left of the split (any float format).
+        image_a: view = kind::TEXTURE_UNFILTERABLE,
+        /// The image right of the split.
+        image_b: view = kind::TEXTURE_UNFILTERABLE,
+        /// The presented image (rgba8unorm, sRGB-encoded bytes).
+        out_display: view = kind::write(DISPLAY_FORMAT),
+    }
+}
+
+/// The binding declaration the reflection test checks.
+pub fn pass_layout() -> PassLayout {
+    PassLayout {
+        name: "display",
+        source: source(),
+        entry_point: "main",
+        group1: DisplayBindings::SLOTS,
+    }
 }
 
 pub struct DisplayPass {
@@ -97,17 +133,9 @@ pub struct DisplayPass {
 
 impl DisplayPass {
     pub fn new(device: &wgpu::Device, size: (u32, u32)) -> Self {
-        let c = wgpu::ShaderStages::COMPUTE;
-        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("display"),
-            entries: &[
-                util::uniform(0, c),
-                util::texture(1, c, false),
-                util::texture(2, c, false),
-                util::storage_texture(3, DISPLAY_FORMAT),
-            ],
-        });
-        let pipeline = util::compute_pipeline(device, "display", &source(), "main", &layout);
+        let layout = DisplayBindings::layout(device);
+        let module = super::shader_module(device, "display", &source());
+        let pipeline = super::standalone_pipeline(device, "display", &module, "main", &layout);
         let params = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("display params"),
             size: std::mem::size_of::<DisplayParams>() as u64,
@@ -155,33 +183,33 @@ impl DisplayPass {
         };
         let coverage = a.coverage as u32 | ((b_side.coverage as u32) << 1);
         let p = DisplayParams {
-            size: [w, h, split, 1],
-            mode: [
-                a.mode as u32,
-                b_side.mode as u32,
-                post.tonemap.index(),
-                coverage,
-            ],
-            range: [post.exposure, post.range.0, post.range.1, 0.0],
+            width: w,
+            height: h,
+            split,
+            divider: 1,
+            mode_a: a.mode as u32,
+            mode_b: b_side.mode as u32,
+            tonemap: post.tonemap.index(),
+            coverage,
+            exposure: post.exposure,
+            lo: post.range.0,
+            hi: post.range.1,
+            _pad0: 0.0,
         };
         queue.write_buffer(&self.params, 0, bytemuck::bytes_of(&p));
-        let bind_group = util::bind_group(
-            device,
-            "display",
-            &self.layout,
-            &[
-                (0, self.params.as_entire_binding()),
-                (1, R::TextureView(a.view)),
-                (2, R::TextureView(b_side.view)),
-                (3, R::TextureView(&self.storage_view)),
-            ],
-        );
+        let bind_group = DisplayBindings {
+            params: &self.params,
+            image_a: a.view,
+            image_b: b_side.view,
+            out_display: &self.storage_view,
+        }
+        .bind_group(device, &self.layout);
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
             label: Some("display"),
             timestamp_writes: None,
         });
         pass.set_pipeline(&self.pipeline);
-        pass.set_bind_group(0, &bind_group, &[]);
+        pass.set_bind_group(1, &bind_group, &[]);
         let (gx, gy) = util::groups_8x8(self.size);
         pass.dispatch_workgroups(gx, gy, 1);
     }

@@ -11,18 +11,28 @@
 // grey checkerboard so that a value of 0 stays distinguishable from no surface.
 
 struct DisplayParams {
-    // width, height, split column (≥ width: A only), divider half-width (pixels)
-    size: vec4<u32>,
-    // mode A, mode B, tonemap operator, coverage bits (1: A, 2: B)
-    mode: vec4<u32>,
-    // exposure (EV), lo, hi, unused
-    range: vec4<f32>,
+    // Output width and height (pixels), the split column (≥ width: A only), the divider's
+    // half-width (pixels).
+    width: u32,
+    height: u32,
+    split: u32,
+    divider: u32,
+    // Mode of side A and of side B, tonemap operator, coverage bits (1: A, 2: B).
+    mode_a: u32,
+    mode_b: u32,
+    tonemap: u32,
+    coverage: u32,
+    // Exposure (EV), false-colour range lo..hi.
+    exposure: f32,
+    lo: f32,
+    hi: f32,
+    _pad0: f32,
 }
 
-@group(0) @binding(0) var<uniform> params: DisplayParams;
-@group(0) @binding(1) var image_a: texture_2d<f32>;
-@group(0) @binding(2) var image_b: texture_2d<f32>;
-@group(0) @binding(3) var out_display: texture_storage_2d<rgba8unorm, write>;
+@group(1) @binding(0) var<uniform> params: DisplayParams;
+@group(1) @binding(1) var image_a: texture_2d<f32>;
+@group(1) @binding(2) var image_b: texture_2d<f32>;
+@group(1) @binding(3) var out_display: texture_storage_2d<rgba8unorm, write>;
 
 fn viridis(t_in: f32) -> vec3<f32> {
     var stops = array<vec3<f32>, 9>(
@@ -51,8 +61,8 @@ fn shade(v: vec4<f32>, mode: u32, coverage: bool, pixel: vec2<u32>) -> vec3<f32>
             return v.rgb;
         }
         case 1u: {
-            let c = max(v.rgb, vec3<f32>(0.0)) * exp2(params.range.x);
-            return tonemap_encode(c, params.mode.z);
+            let c = max(v.rgb, vec3<f32>(0.0)) * exp2(params.exposure);
+            return tonemap_encode(c, params.tonemap);
         }
         case 2u: {
             return srgb_encode(clamp(v.rgb, vec3<f32>(0.0), vec3<f32>(1.0)));
@@ -61,11 +71,11 @@ fn shade(v: vec4<f32>, mode: u32, coverage: bool, pixel: vec2<u32>) -> vec3<f32>
             return clamp(0.5 + 0.5 * v.xyz, vec3<f32>(0.0), vec3<f32>(1.0));
         }
         case 4u: {
-            let span = max(params.range.z - params.range.y, 1e-20);
-            return viridis((v.r - params.range.y) / span);
+            let span = max(params.hi - params.lo, 1e-20);
+            return viridis((v.r - params.lo) / span);
         }
         default: {
-            let m = max(params.range.z, 1e-20);
+            let m = max(params.hi, 1e-20);
             return vec3<f32>(clamp(0.5 + 0.5 * v.rg / m, vec2<f32>(0.0), vec2<f32>(1.0)), 0.5);
         }
     }
@@ -74,17 +84,17 @@ fn shade(v: vec4<f32>, mode: u32, coverage: bool, pixel: vec2<u32>) -> vec3<f32>
 @compute @workgroup_size(8, 8, 1)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     let pixel = id.xy;
-    if pixel.x >= params.size.x || pixel.y >= params.size.y {
+    if pixel.x >= params.width || pixel.y >= params.height {
         return;
     }
-    let split = params.size.z;
+    let split = params.split;
     var c: vec3<f32>;
     if pixel.x < split {
-        c = shade(textureLoad(image_a, pixel, 0), params.mode.x, (params.mode.w & 1u) != 0u, pixel);
+        c = shade(textureLoad(image_a, pixel, 0), params.mode_a, (params.coverage & 1u) != 0u, pixel);
     } else {
-        c = shade(textureLoad(image_b, pixel, 0), params.mode.y, (params.mode.w & 2u) != 0u, pixel);
+        c = shade(textureLoad(image_b, pixel, 0), params.mode_b, (params.coverage & 2u) != 0u, pixel);
     }
-    if split < params.size.x && abs(f32(pixel.x) + 0.5 - f32(split)) < f32(params.size.w) {
+    if split < params.width && abs(f32(pixel.x) + 0.5 - f32(split)) < f32(params.divider) {
         c = vec3<f32>(0.92);
     }
     textureStore(out_display, pixel, vec4<f32>(c, 1.0));

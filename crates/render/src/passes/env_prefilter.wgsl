@@ -19,10 +19,10 @@ struct PrefilterParams {
     source_mips: f32,
 }
 
-@group(0) @binding(0) var<uniform> params: PrefilterParams;
-@group(0) @binding(1) var source: texture_2d<f32>;
-@group(0) @binding(2) var source_sampler: sampler;
-@group(0) @binding(3) var destination: texture_storage_2d<rgba16float, write>;
+@group(1) @binding(0) var<uniform> params: PrefilterParams;
+@group(1) @binding(1) var source: texture_2d<f32>;
+@group(1) @binding(2) var source_sampler: sampler;
+@group(1) @binding(3) var destination: texture_storage_2d<rgba16float, write>;
 
 const PI: f32 = 3.14159265358979;
 const SAMPLES: u32 = 128u;

@@ -2,6 +2,8 @@
 //! `crate::targets` for the formats. Single-sided geometry is drawn with back-face culling,
 //! double-sided geometry without (its back faces get flipped normals).
 
+use super::FrameGroup;
+use crate::bindings::{PassLayout, kind};
 use crate::gpu_scene::GpuScene;
 use crate::profiler::GpuProfiler;
 use crate::targets::{self, FrameTargets};
@@ -10,52 +12,67 @@ use crate::util;
 pub const SHADER: &str = include_str!("gbuffer.wgsl");
 
 pub fn source() -> String {
-    util::compose(&[util::COMMON_WGSL, SHADER])
+    util::compose(&[util::COMMON_WGSL, util::MATERIALS_WGSL, SHADER])
+}
+
+crate::bind_group! {
+    /// Group 1 of the G-buffer pass: the scene's materials (shaders/materials.wgsl).
+    pub struct GBufferBindings: VERTEX | FRAGMENT {
+        /// `array<GpuMaterial>` (gpu_scene.rs).
+        materials: buffer = kind::STORAGE_READ,
+        /// Base-colour and emissive textures (rgba8unorm-srgb array).
+        srgb_textures: view = kind::TEXTURE_ARRAY,
+        /// Metallic-roughness textures (rgba8unorm array).
+        linear_textures: view = kind::TEXTURE_ARRAY,
+        /// Repeating, trilinear.
+        material_sampler: sampler = kind::SAMPLER,
+    }
+}
+
+/// The binding declarations the reflection test checks (vertex and fragment stage).
+pub fn pass_layouts() -> Vec<PassLayout> {
+    ["vs_main", "fs_main"]
+        .into_iter()
+        .map(|entry_point| PassLayout {
+            name: "gbuffer",
+            source: source(),
+            entry_point,
+            group1: GBufferBindings::SLOTS,
+        })
+        .collect()
+}
+
+impl GpuScene {
+    /// The material bindings of a raster pass (shaders/materials.wgsl), as the G-buffer binds
+    /// them.
+    pub fn material_bindings(&self) -> GBufferBindings<'_> {
+        GBufferBindings {
+            materials: &self.materials,
+            srgb_textures: &self.srgb_textures,
+            linear_textures: &self.linear_textures,
+            material_sampler: &self.material_sampler,
+        }
+    }
 }
 
 pub struct GBufferPass {
     culled: wgpu::RenderPipeline,
     double_sided: wgpu::RenderPipeline,
+    frame: wgpu::BindGroup,
     bind_group: wgpu::BindGroup,
 }
 
 impl GBufferPass {
-    pub fn new(device: &wgpu::Device, frame: &wgpu::Buffer, scene: &GpuScene) -> Self {
-        use wgpu::ShaderStages as S;
-        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("gbuffer"),
-            entries: &[
-                util::uniform(0, S::VERTEX | S::FRAGMENT),
-                util::storage_buffer(1, S::FRAGMENT),
-                util::texture_array(2, S::FRAGMENT),
-                util::texture_array(3, S::FRAGMENT),
-                util::sampler(4, S::FRAGMENT),
-            ],
-        });
-        let bind_group = util::bind_group(
-            device,
-            "gbuffer",
-            &layout,
-            &[
-                (0, frame.as_entire_binding()),
-                (1, scene.materials.as_entire_binding()),
-                (2, wgpu::BindingResource::TextureView(&scene.srgb_textures)),
-                (
-                    3,
-                    wgpu::BindingResource::TextureView(&scene.linear_textures),
-                ),
-                (4, wgpu::BindingResource::Sampler(&scene.material_sampler)),
-            ],
-        );
-        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some("gbuffer"),
-            source: wgpu::ShaderSource::Wgsl(source().into()),
-        });
+    pub fn new(device: &wgpu::Device, frame: &FrameGroup, scene: &GpuScene) -> Self {
+        let layout = GBufferBindings::layout(device);
+        let bind_group = scene.material_bindings().bind_group(device, &layout);
+        let module = super::shader_module(device, "gbuffer", &source());
         let pipeline = |cull: Option<wgpu::Face>| {
             util::raster_pipeline(
                 device,
                 &util::RasterPipeline {
                     label: "gbuffer",
+                    frame: Some(&frame.layout),
                     layout: &layout,
                     module: &module,
                     vertex: "vs_main",
@@ -76,8 +93,14 @@ impl GBufferPass {
         GBufferPass {
             culled: pipeline(Some(wgpu::Face::Back)),
             double_sided: pipeline(None),
+            frame: frame.bind_group.clone(),
             bind_group,
         }
+    }
+
+    /// Uses `frame` as group 0 from now on (the renderer's, after an environment change).
+    pub fn set_frame(&mut self, frame: &FrameGroup) {
+        self.frame = frame.bind_group.clone();
     }
 
     pub fn encode(
@@ -121,7 +144,8 @@ impl GBufferPass {
             occlusion_query_set: None,
             multiview_mask: None,
         });
-        pass.set_bind_group(0, &self.bind_group, &[]);
+        pass.set_bind_group(0, &self.frame, &[]);
+        pass.set_bind_group(1, &self.bind_group, &[]);
         pass.set_vertex_buffer(0, scene.vertices.slice(..));
         pass.set_index_buffer(scene.indices.slice(..), wgpu::IndexFormat::Uint32);
         if scene.single_sided_indices > 0 {

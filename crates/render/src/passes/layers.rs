@@ -16,28 +16,23 @@
 //!   `indirect-irradiance`, for bounces from peeled and off-screen geometry.
 //!
 //! Views in `views` (one 256-byte [`LayerView`] each): 0..=2 the peeled layers 2..=4, 3..=6 the
-//! cameras. The blocker test that reads them is `occlusion()` in shaders/screen_samples.wgsl.
+//! cameras. The blocker test that reads them is `occlusion()` in technique/samples.wgsl.
 
-use crate::gpu_env::GpuEnvironment;
+use super::{ComputeStep, FrameGroup};
+use crate::bindings::{PassLayout, kind};
 use crate::gpu_scene::GpuScene;
-use crate::passes::gbuffer;
 use crate::passes::shadow::ShadowPass;
 use crate::profiler::GpuProfiler;
 use crate::targets::{self, FrameTargets};
-use crate::technique::Setting;
 use crate::util;
 use bytemuck::{Pod, Zeroable};
 use glam::Vec3;
 use nearfield_scene::{Aabb, Camera};
-use wgpu::BindingResource as R;
 use wgpu::util::DeviceExt;
 
 pub const SHADER: &str = include_str!("layers.wgsl");
 
-/// Most depth layers of the main view (the G-buffer is layer 1).
-pub const MAX_LAYERS: u32 = 4;
-/// Most additional cameras.
-pub const MAX_CAMERAS: u32 = 4;
+pub use crate::settings::layers::{LayerSettings, MAX_CAMERAS, MAX_LAYERS};
 /// Index of the first camera in the views buffer.
 const CAMERA_VIEW_BASE: u32 = 3;
 const VIEW_STRIDE: u64 = 256;
@@ -51,37 +46,6 @@ pub const CAMERA_DIRECTIONS: [[f32; 3]; 4] = [
     [0.3, 0.6, -1.0],
 ];
 
-/// What the extra layers hold.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct LayerSettings {
-    /// Depth layers of the main view, 1..=4 (1: the G-buffer only).
-    pub layers: u32,
-    /// Additional cameras, 0..=4.
-    pub cameras: u32,
-    /// Resolution divisor of the additional cameras, 1..=8.
-    pub camera_scale: u32,
-    /// Camera displacement as a fraction of the scene's bounding-sphere radius.
-    pub camera_spread: f32,
-}
-
-impl Default for LayerSettings {
-    fn default() -> Self {
-        LayerSettings {
-            layers: 1,
-            cameras: 0,
-            camera_scale: 2,
-            camera_spread: 0.5,
-        }
-    }
-}
-
-impl LayerSettings {
-    /// Whether anything beyond the G-buffer is drawn.
-    pub fn active(&self) -> bool {
-        self.layers > 1 || self.cameras > 0
-    }
-}
-
 /// `LayerView` in shaders/common.wgsl.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable)]
@@ -89,39 +53,56 @@ pub struct LayerView {
     pub clip_from_world: [[f32; 4]; 4],
     pub view_from_world: [[f32; 4]; 4],
     pub world_from_view: [[f32; 4]; 4],
-    pub size: [f32; 4],
-    pub projection: [f32; 4],
-    pub flags: [u32; 4],
-    pub pad: [f32; 4],
+    /// Width, height (pixels) and their inverses.
+    pub size: [f32; 2],
+    pub inv_size: [f32; 2],
+    /// Near and far plane (m), aspect, tan(yfov/2).
+    pub near: f32,
+    pub far: f32,
+    pub aspect: f32,
+    pub tan_half_fov: f32,
+    /// 1: peel against the layer before.
+    pub peel: u32,
+    /// 1: an exit layer (normal stored facing away from the camera).
+    pub exit: u32,
+    pub _pad0: u32,
+    pub _pad1: u32,
+    pub _pad2: [f32; 4],
 }
 
 impl LayerView {
-    fn new(camera: &Camera, size: (u32, u32), bounds: Aabb, flags: [u32; 4]) -> Self {
+    /// The view of `camera` at `size`; `peel`: peel against the layer before; `exit`: an exit
+    /// layer.
+    fn new(camera: &Camera, size: (u32, u32), bounds: Aabb, peel: bool, exit: bool) -> Self {
         let m = crate::frame::CameraMatrices::new(camera, size, bounds);
         LayerView {
             clip_from_world: m.clip_from_world().to_cols_array_2d(),
             view_from_world: m.view_from_world.to_cols_array_2d(),
             world_from_view: m.view_from_world.inverse().to_cols_array_2d(),
-            size: [
-                size.0 as f32,
-                size.1 as f32,
-                1.0 / size.0 as f32,
-                1.0 / size.1 as f32,
-            ],
-            projection: [
-                m.near,
-                m.far,
-                size.0 as f32 / size.1 as f32,
-                (0.5 * camera.yfov).tan(),
-            ],
-            flags,
-            pad: [0.0; 4],
+            size: [size.0 as f32, size.1 as f32],
+            inv_size: [1.0 / size.0 as f32, 1.0 / size.1 as f32],
+            near: m.near,
+            far: m.far,
+            aspect: size.0 as f32 / size.1 as f32,
+            tan_half_fov: (0.5 * camera.yfov).tan(),
+            peel: peel as u32,
+            exit: exit as u32,
+            _pad0: 0,
+            _pad1: 0,
+            _pad2: [0.0; 4],
         }
     }
 }
 
 /// The additional cameras of `main` (see the module documentation).
 pub fn camera_views(main: &Camera, bounds: Aabb, settings: &LayerSettings) -> Vec<Camera> {
+    (0..settings.cameras)
+        .map(|c| camera_view(main, bounds, settings, c))
+        .collect()
+}
+
+/// Additional camera `c` of `main`.
+pub fn camera_view(main: &Camera, bounds: Aabb, settings: &LayerSettings, c: u32) -> Camera {
     let back = -main.forward();
     let right = main.up.cross(back).normalize_or(Vec3::X);
     let up = back.cross(right);
@@ -130,21 +111,16 @@ pub fn camera_views(main: &Camera, bounds: Aabb, settings: &LayerSettings) -> Ve
     } else {
         bounds.radius()
     };
-    CAMERA_DIRECTIONS[..settings.cameras as usize]
-        .iter()
-        .map(|d| {
-            let d = Vec3::from(*d).normalize();
-            let offset = (right * d.x + up * d.y + back * d.z) * (settings.camera_spread * radius);
-            let mut c = Camera {
-                eye: main.eye + offset,
-                ..*main
-            };
-            if c.forward().cross(c.up).length() < 1e-3 {
-                c.up = right;
-            }
-            c
-        })
-        .collect()
+    let d = Vec3::from(CAMERA_DIRECTIONS[c as usize]).normalize();
+    let offset = (right * d.x + up * d.y + back * d.z) * (settings.camera_spread * radius);
+    let mut cam = Camera {
+        eye: main.eye + offset,
+        ..*main
+    };
+    if cam.forward().cross(cam.up).length() < 1e-3 {
+        cam.up = right;
+    }
+    cam
 }
 
 /// One set of layer images (an array texture per attribute).
@@ -231,11 +207,32 @@ impl LayerImages {
 /// `ShadeParams` in layers.wgsl.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable)]
-struct ShadeParams {
+pub struct ShadeParams {
     /// Index in the views buffer of this set's first layer.
-    first_view: u32,
-    count: u32,
-    _pad: [u32; 2],
+    pub first_view: u32,
+    pub count: u32,
+    pub _pad0: u32,
+    pub _pad1: u32,
+}
+
+/// What the blocker test binds of the extra layers, under these names (technique/samples.wgsl,
+/// senders.wgsl).
+#[derive(Clone, Copy)]
+pub struct LayerResources<'a> {
+    /// `array<LayerView>`: views 0..2 = peeled layers 2..4, 3..6 = additional cameras.
+    pub layer_views: &'a wgpu::Buffer,
+    /// Peeled layers' normals (rgba16float array, oriented).
+    pub peel_normal: &'a wgpu::TextureView,
+    /// Peeled layers' view depths (r32float array).
+    pub peel_depth: &'a wgpu::TextureView,
+    /// Additional cameras' normals (rgba16float array).
+    pub cam_normal: &'a wgpu::TextureView,
+    /// Additional cameras' view depths (r32float array).
+    pub cam_depth: &'a wgpu::TextureView,
+    /// Peeled layers' direct radiance (rgba16float array).
+    pub peel_radiance: &'a wgpu::TextureView,
+    /// Additional cameras' direct radiance (rgba16float array).
+    pub cam_radiance: &'a wgpu::TextureView,
 }
 
 /// The peeled layers and additional cameras of one technique, with everything to draw them.
@@ -256,7 +253,7 @@ pub struct LayerStack {
     raster: wgpu::RenderPipeline,
     /// Per peeled layer (reading the depth of the layer before), then one for the cameras.
     raster_groups: Vec<wgpu::BindGroup>,
-    shade: wgpu::ComputePipeline,
+    shade: ComputeStep,
     shade_groups: [wgpu::BindGroup; 2],
     // Views the bindings hand out.
     peel_views: [wgpu::TextureView; 3],
@@ -285,57 +282,75 @@ pub fn source() -> String {
     util::compose(&[util::COMMON_WGSL, util::ENV_WGSL, util::LIGHTS_WGSL, SHADER])
 }
 
-/// The `--set` keys of [`LayerSettings`], for the tables of the techniques that take them.
-pub const SETTINGS: [Setting; 4] = [
-    Setting::choice(
-        "layers",
-        &["1", "2", "4"],
-        "1",
-        "depth layers in the blocker test (depth peeling)",
-    ),
-    Setting::integer(
-        "cameras",
-        0.0,
-        4.0,
-        "0",
-        "additional cameras in the blocker test",
-    ),
-    Setting::integer(
-        "camera_scale",
-        1.0,
-        8.0,
-        "2",
-        "resolution divisor of the additional cameras",
-    ),
-    Setting::number(
-        "camera_spread",
-        0.0,
-        4.0,
-        "0.5",
-        "camera displacement (× scene bounding radius)",
-    ),
-];
+/// Shader text of the raster pass (depth peeling, additional cameras).
+pub fn peel_source() -> String {
+    util::compose(&[
+        util::COMMON_WGSL,
+        util::MATERIALS_WGSL,
+        include_str!("peel.wgsl"),
+    ])
+}
 
-/// Parses and checks the settings every technique with the shared blocker test takes
-/// (`layers`, `cameras`, `camera_scale`, `camera_spread`); `Ok(false)` for other keys.
-pub fn parse_setting(s: &mut LayerSettings, key: &str, v: &str) -> Result<bool, String> {
-    use crate::technique::{parse_integer, parse_number};
-    match key {
-        "layers" => {
-            let n = parse_integer(key, v, 1, MAX_LAYERS)?;
-            if n == 3 {
-                return Err(
-                    "layers=3: expected 1, 2 or 4 (layers come in entry/exit pairs)".into(),
-                );
-            }
-            s.layers = n;
-        }
-        "cameras" => s.cameras = parse_integer(key, v, 0, MAX_CAMERAS)?,
-        "camera_scale" => s.camera_scale = parse_integer(key, v, 1, 8)?,
-        "camera_spread" => s.camera_spread = parse_number(key, v, 0.0, 4.0)?,
-        _ => return Ok(false),
+crate::bind_group! {
+    /// Group 1 of the layers' raster pass (peel.wgsl; group 0 is not read).
+    pub struct PeelBindings: VERTEX | FRAGMENT {
+        /// The scene's materials (shaders/materials.wgsl).
+        materials: buffer = kind::STORAGE_READ,
+        srgb_textures: view = kind::TEXTURE_ARRAY,
+        linear_textures: view = kind::TEXTURE_ARRAY,
+        material_sampler: sampler = kind::SAMPLER,
+        /// This layer's `LayerView`, at a dynamic offset into the views buffer.
+        layer_view: buffer_range = kind::uniform_dynamic(VIEW_STRIDE),
+        /// The depth buffer of the layer before (peeling).
+        prev_depth: view = kind::TEXTURE_DEPTH,
     }
-    Ok(true)
+}
+
+crate::bind_group! {
+    /// Group 1 of the layers' shading pass (layers.wgsl).
+    pub struct ShadeBindings: COMPUTE {
+        /// `ShadeParams`: this set's first view and layer count.
+        shade_params: buffer = kind::UNIFORM,
+        /// Every layer's `LayerView`.
+        layer_views: buffer = kind::STORAGE_READ,
+        /// The set's normals (rgba16float array), base colours (rgba8unorm-srgb array),
+        /// emission (rgba16float array), view depths (r32float array).
+        layer_normal: view = kind::TEXTURE_ARRAY,
+        layer_albedo: view = kind::TEXTURE_ARRAY,
+        layer_emissive: view = kind::TEXTURE_ARRAY,
+        layer_depth: view = kind::TEXTURE_ARRAY_UNFILTERABLE,
+        /// Their direct radiance (rgba16float array).
+        layer_radiance: view = kind::write_array(targets::HDR_FORMAT),
+        /// The scene's lights (shaders/lights.wgsl).
+        lights: buffer = kind::STORAGE_READ,
+        shadow_clip_from_world: buffer = kind::STORAGE_READ,
+        shadow_maps: view = kind::TEXTURE_DEPTH_ARRAY,
+        shadow_sampler: sampler = kind::SAMPLER_COMPARISON,
+    }
+}
+
+/// The binding declarations the reflection test checks.
+pub fn pass_layouts() -> Vec<PassLayout> {
+    vec![
+        PassLayout {
+            name: "layers raster",
+            source: peel_source(),
+            entry_point: "vs_layer",
+            group1: PeelBindings::SLOTS,
+        },
+        PassLayout {
+            name: "layers raster",
+            source: peel_source(),
+            entry_point: "fs_layer",
+            group1: PeelBindings::SLOTS,
+        },
+        PassLayout {
+            name: "layers shade",
+            source: source(),
+            entry_point: "shade",
+            group1: ShadeBindings::SLOTS,
+        },
+    ]
 }
 
 impl LayerStack {
@@ -343,9 +358,8 @@ impl LayerStack {
         device: &wgpu::Device,
         targets: &FrameTargets,
         scene: &GpuScene,
-        env: &GpuEnvironment,
+        frame: &FrameGroup,
         shadows: &ShadowPass,
-        frame: &wgpu::Buffer,
         settings: LayerSettings,
     ) -> Self {
         let main_size = targets.size;
@@ -377,58 +391,23 @@ impl LayerStack {
                 | wgpu::BufferUsages::COPY_DST,
         });
 
-        // Raster: vs_layer / fs_layer of gbuffer.wgsl, no culling.
-        use wgpu::ShaderStages as S;
-        let raster_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("layers raster"),
-            entries: &[
-                util::storage_buffer(1, S::FRAGMENT),
-                util::texture_array(2, S::FRAGMENT),
-                util::texture_array(3, S::FRAGMENT),
-                util::sampler(4, S::FRAGMENT),
-                wgpu::BindGroupLayoutEntry {
-                    binding: 5,
-                    visibility: S::VERTEX | S::FRAGMENT,
-                    ty: wgpu::BindingType::Buffer {
-                        ty: wgpu::BufferBindingType::Uniform,
-                        has_dynamic_offset: true,
-                        min_binding_size: wgpu::BufferSize::new(VIEW_STRIDE),
-                    },
-                    count: None,
-                },
-                wgpu::BindGroupLayoutEntry {
-                    binding: 6,
-                    visibility: S::FRAGMENT,
-                    ty: wgpu::BindingType::Texture {
-                        sample_type: wgpu::TextureSampleType::Depth,
-                        view_dimension: wgpu::TextureViewDimension::D2,
-                        multisampled: false,
-                    },
-                    count: None,
-                },
-            ],
-        });
+        // Raster: vs_layer / fs_layer of peel.wgsl, no culling.
+        let raster_layout = PeelBindings::layout(device);
+        let m = scene.material_bindings();
         let raster_group = |prev: &wgpu::TextureView| {
-            util::bind_group(
-                device,
-                "layers raster",
-                &raster_layout,
-                &[
-                    (1, scene.materials.as_entire_binding()),
-                    (2, R::TextureView(&scene.srgb_textures)),
-                    (3, R::TextureView(&scene.linear_textures)),
-                    (4, R::Sampler(&scene.material_sampler)),
-                    (
-                        5,
-                        R::Buffer(wgpu::BufferBinding {
-                            buffer: &views,
-                            offset: 0,
-                            size: wgpu::BufferSize::new(VIEW_STRIDE),
-                        }),
-                    ),
-                    (6, R::TextureView(prev)),
-                ],
-            )
+            PeelBindings {
+                materials: m.materials,
+                srgb_textures: m.srgb_textures,
+                linear_textures: m.linear_textures,
+                material_sampler: m.material_sampler,
+                layer_view: wgpu::BufferBinding {
+                    buffer: &views,
+                    offset: 0,
+                    size: wgpu::BufferSize::new(VIEW_STRIDE),
+                },
+                prev_depth: prev,
+            }
+            .bind_group(device, &raster_layout)
         };
         // Layer 2 reads the G-buffer's depth, layer 3 depth a, layer 4 depth b; cameras read
         // nothing (any depth view will do).
@@ -438,14 +417,12 @@ impl LayerStack {
             raster_group(&peel_depth[1]),
             raster_group(&targets.depth.view),
         ];
-        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some("layers raster"),
-            source: wgpu::ShaderSource::Wgsl(gbuffer::source().into()),
-        });
+        let module = super::shader_module(device, "layers raster", &peel_source());
         let raster = util::raster_pipeline(
             device,
             &util::RasterPipeline {
                 label: "layers raster",
+                frame: None,
                 layout: &raster_layout,
                 module: &module,
                 vertex: "vs_layer",
@@ -462,41 +439,7 @@ impl LayerStack {
         );
 
         // Shading: direct radiance of every layer texel.
-        let c = S::COMPUTE;
-        let mut entries = vec![
-            util::uniform(0, c),
-            util::storage_buffer(40, c),
-            util::uniform(50, c),
-            util::texture_array(51, c),
-            util::texture_array(52, c),
-            util::texture_array(53, c),
-            wgpu::BindGroupLayoutEntry {
-                binding: 54,
-                visibility: c,
-                ty: wgpu::BindingType::Texture {
-                    sample_type: wgpu::TextureSampleType::Float { filterable: false },
-                    view_dimension: wgpu::TextureViewDimension::D2Array,
-                    multisampled: false,
-                },
-                count: None,
-            },
-            wgpu::BindGroupLayoutEntry {
-                binding: 55,
-                visibility: c,
-                ty: wgpu::BindingType::StorageTexture {
-                    access: wgpu::StorageTextureAccess::WriteOnly,
-                    format: targets::HDR_FORMAT,
-                    view_dimension: wgpu::TextureViewDimension::D2Array,
-                },
-                count: None,
-            },
-        ];
-        entries.extend(GpuEnvironment::layout_entries());
-        entries.extend(ShadowPass::layout_entries());
-        let shade_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("layers shade"),
-            entries: &entries,
-        });
+        let shade_layout = ShadeBindings::layout(device);
         let peel_views = [
             array_view(&peel.normal),
             array_view(&peel.depth),
@@ -513,7 +456,8 @@ impl LayerStack {
                 contents: bytemuck::bytes_of(&ShadeParams {
                     first_view,
                     count: images.count,
-                    _pad: [0; 2],
+                    _pad0: 0,
+                    _pad1: 0,
                 }),
                 usage: wgpu::BufferUsages::UNIFORM,
             });
@@ -522,23 +466,33 @@ impl LayerStack {
             let emissive = array_view(&images.emissive);
             let depth = array_view(&images.depth);
             let radiance = array_view(&images.radiance);
-            let mut res = vec![
-                (0, frame.as_entire_binding()),
-                (40, views.as_entire_binding()),
-                (50, params.as_entire_binding()),
-                (51, R::TextureView(&normal)),
-                (52, R::TextureView(&albedo)),
-                (53, R::TextureView(&emissive)),
-                (54, R::TextureView(&depth)),
-                (55, R::TextureView(&radiance)),
-            ];
-            res.extend(env.bindings());
-            res.extend(shadows.bindings(scene));
-            util::bind_group(device, "layers shade", &shade_layout, &res)
+            let l = shadows.light_resources(&scene.lights);
+            ShadeBindings {
+                shade_params: &params,
+                layer_views: &views,
+                layer_normal: &normal,
+                layer_albedo: &albedo,
+                layer_emissive: &emissive,
+                layer_depth: &depth,
+                layer_radiance: &radiance,
+                lights: l.lights,
+                shadow_clip_from_world: l.shadow_clip_from_world,
+                shadow_maps: l.shadow_maps,
+                shadow_sampler: l.shadow_sampler,
+            }
+            .bind_group(device, &shade_layout)
         };
         let shade_groups = [shade_group(&peel, 0), shade_group(&cams, CAMERA_VIEW_BASE)];
-        let shade =
-            util::compute_pipeline(device, "layers shade", &source(), "shade", &shade_layout);
+        let shade_module = super::shader_module(device, "layers shade", &source());
+        let shade = ComputeStep::new(
+            device,
+            "layer shading",
+            &shade_module,
+            "shade",
+            frame,
+            &shade_layout,
+            &[],
+        );
         LayerStack {
             settings,
             peel,
@@ -566,24 +520,20 @@ impl LayerStack {
         if !self.settings.active() {
             return;
         }
-        let mut data = vec![LayerView::zeroed(); (CAMERA_VIEW_BASE + MAX_CAMERAS) as usize];
+        // One LayerView is one VIEW_STRIDE: the array is the buffer's contents as they are.
+        const _: () = assert!(std::mem::size_of::<LayerView>() == VIEW_STRIDE as usize);
+        let mut data = [LayerView::zeroed(); (CAMERA_VIEW_BASE + MAX_CAMERAS) as usize];
         for k in 0..CAMERA_VIEW_BASE {
             // Layers 2 and 4 (k = 0, 2) are exits.
-            let exit = (k % 2 == 0) as u32;
-            data[k as usize] = LayerView::new(camera, self.main_size, self.bounds, [1, exit, 0, 0]);
+            let exit = k % 2 == 0;
+            data[k as usize] = LayerView::new(camera, self.main_size, self.bounds, true, exit);
         }
-        for (c, view) in camera_views(camera, self.bounds, &self.settings)
-            .iter()
-            .enumerate()
-        {
-            data[CAMERA_VIEW_BASE as usize + c] =
-                LayerView::new(view, self.cams.size, self.bounds, [0, 0, 0, 0]);
+        for c in 0..self.settings.cameras {
+            let view = camera_view(camera, self.bounds, &self.settings, c);
+            data[(CAMERA_VIEW_BASE + c) as usize] =
+                LayerView::new(&view, self.cams.size, self.bounds, false, false);
         }
-        let mut bytes = Vec::with_capacity(data.len() * VIEW_STRIDE as usize);
-        for v in &data {
-            bytes.extend_from_slice(bytemuck::bytes_of(v));
-        }
-        queue.write_buffer(&self.views, 0, &bytes);
+        queue.write_buffer(&self.views, 0, bytemuck::cast_slice(&data));
     }
 
     /// Records the peeling passes ("depth peeling"), the additional cameras ("extra cameras")
@@ -630,7 +580,7 @@ impl LayerStack {
                 multiview_mask: None,
             });
             pass.set_pipeline(&self.raster);
-            pass.set_bind_group(0, group, &[(view as u64 * VIEW_STRIDE) as u32]);
+            pass.set_bind_group(1, group, &[(view as u64 * VIEW_STRIDE) as u32]);
             pass.set_vertex_buffer(0, self.vertices.slice(..));
             pass.set_index_buffer(self.indices.slice(..), wgpu::IndexFormat::Uint32);
             pass.draw_indexed(0..self.index_count, 0, 0..1);
@@ -668,7 +618,6 @@ impl LayerStack {
             label: Some("layer shading"),
             timestamp_writes: profiler.compute("layer shading"),
         });
-        pass.set_pipeline(&self.shade);
         for (images, group) in [
             (&self.peel, &self.shade_groups[0]),
             (&self.cams, &self.shade_groups[1]),
@@ -677,54 +626,21 @@ impl LayerStack {
                 continue;
             }
             let (gx, gy) = util::groups_8x8(images.size);
-            pass.set_bind_group(0, group, &[]);
-            pass.dispatch_workgroups(gx, gy, images.count);
+            self.shade
+                .dispatch(&mut pass, group, (gx, gy, images.count));
         }
     }
 
-    /// Layout entries 40..=44 (views, peeled and camera normals and depths) of passes that
-    /// include shaders/screen_samples.wgsl, and 45, 46 (peeled and camera radiance) where
-    /// `radiance`.
-    pub fn layout_entries(radiance: bool) -> Vec<wgpu::BindGroupLayoutEntry> {
-        let c = wgpu::ShaderStages::COMPUTE;
-        let unfilterable = |binding| wgpu::BindGroupLayoutEntry {
-            binding,
-            visibility: c,
-            ty: wgpu::BindingType::Texture {
-                sample_type: wgpu::TextureSampleType::Float { filterable: false },
-                view_dimension: wgpu::TextureViewDimension::D2Array,
-                multisampled: false,
-            },
-            count: None,
-        };
-        let mut e = vec![
-            util::storage_buffer(40, c),
-            util::texture_array(41, c),
-            unfilterable(42),
-            util::texture_array(43, c),
-            unfilterable(44),
-        ];
-        if radiance {
-            e.extend([util::texture_array(45, c), util::texture_array(46, c)]);
+    /// The layer images a pass that includes technique/samples.wgsl (and senders.wgsl) binds.
+    pub fn resources(&self) -> LayerResources<'_> {
+        LayerResources {
+            layer_views: &self.views,
+            peel_normal: &self.peel_views[0],
+            peel_depth: &self.peel_views[1],
+            cam_normal: &self.cam_views[0],
+            cam_depth: &self.cam_views[1],
+            peel_radiance: &self.peel_views[2],
+            cam_radiance: &self.cam_views[2],
         }
-        e
-    }
-
-    /// Bindings matching [`Self::layout_entries`].
-    pub fn bindings(&self, radiance: bool) -> Vec<(u32, wgpu::BindingResource<'_>)> {
-        let mut b = vec![
-            (40, self.views.as_entire_binding()),
-            (41, R::TextureView(&self.peel_views[0])),
-            (42, R::TextureView(&self.peel_views[1])),
-            (43, R::TextureView(&self.cam_views[0])),
-            (44, R::TextureView(&self.cam_views[1])),
-        ];
-        if radiance {
-            b.extend([
-                (45, R::TextureView(&self.peel_views[2])),
-                (46, R::TextureView(&self.cam_views[2])),
-            ]);
-        }
-        b
     }
 }

@@ -7,17 +7,21 @@ struct ShadeParams {
     // Index in `layer_views` of this set's first layer, and the number of layers.
     first_view: u32,
     count: u32,
-    pad0: u32,
-    pad1: u32,
+    _pad0: u32,
+    _pad1: u32,
 }
 
-@group(0) @binding(40) var<storage, read> layer_views: array<LayerView>;
-@group(0) @binding(50) var<uniform> shade_params: ShadeParams;
-@group(0) @binding(51) var layer_normal: texture_2d_array<f32>;
-@group(0) @binding(52) var layer_albedo: texture_2d_array<f32>;
-@group(0) @binding(53) var layer_emissive: texture_2d_array<f32>;
-@group(0) @binding(54) var layer_depth: texture_2d_array<f32>;
-@group(0) @binding(55) var layer_radiance: texture_storage_2d_array<rgba16float, write>;
+@group(1) @binding(1) var<storage, read> layer_views: array<LayerView>;
+@group(1) @binding(0) var<uniform> shade_params: ShadeParams;
+@group(1) @binding(2) var layer_normal: texture_2d_array<f32>;
+@group(1) @binding(3) var layer_albedo: texture_2d_array<f32>;
+@group(1) @binding(4) var layer_emissive: texture_2d_array<f32>;
+@group(1) @binding(5) var layer_depth: texture_2d_array<f32>;
+@group(1) @binding(6) var layer_radiance: texture_storage_2d_array<rgba16float, write>;
+@group(1) @binding(7) var<storage, read> lights: array<GpuLight>;
+@group(1) @binding(8) var<storage, read> shadow_clip_from_world: array<mat4x4<f32>>;
+@group(1) @binding(9) var shadow_maps: texture_depth_2d_array;
+@group(1) @binding(10) var shadow_sampler: sampler_comparison;
 
 @compute @workgroup_size(8, 8, 1)
 fn shade(@builtin(global_invocation_id) id: vec3<u32>) {
@@ -36,7 +40,7 @@ fn shade(@builtin(global_invocation_id) id: vec3<u32>) {
     let n = normalize(nw.xyz);
     let p = layer_position(layer_views[shade_params.first_view + k], pixel, depth);
     var irradiance = env_irradiance_sh(n);
-    for (var li = 0u; li < frame.counts.y; li++) {
+    for (var li = 0u; li < frame.light_count; li++) {
         let l = lights[li];
         let inc = incident(l, p);
         let n_l = dot(n, inc.to_light);

@@ -15,33 +15,201 @@ pub mod rsm;
 pub mod shadow;
 pub mod tonemap;
 
+use crate::bindings::FrameBindings;
+use crate::gpu_env::GpuEnvironment;
 use crate::profiler::GpuProfiler;
 use crate::util;
 
-/// A compute pass over the screen (8×8 workgroups) with prebuilt bind groups: variant `i`
-/// usually selects the direct-radiance ping-pong side.
-pub struct ScreenPass {
-    pub label: &'static str,
-    pub pipeline: wgpu::ComputePipeline,
-    pub bind_groups: Vec<wgpu::BindGroup>,
+/// Group 0 of every pass of the frame ([`FrameBindings`]): its layout and bind group, made once
+/// per environment by the renderer.
+pub struct FrameGroup {
+    pub layout: wgpu::BindGroupLayout,
+    pub bind_group: wgpu::BindGroup,
 }
 
-impl ScreenPass {
-    /// Records the dispatch; allocates nothing.
+impl FrameGroup {
+    pub fn new(device: &wgpu::Device, frame: &wgpu::Buffer, env: &GpuEnvironment) -> Self {
+        let layout = FrameBindings::layout(device);
+        let bind_group = FrameBindings {
+            frame,
+            env_radiance: &env.radiance_view,
+            env_specular: &env.specular_view,
+            env_sampler: &env.sampler,
+            env_sh: &env.sh_buffer,
+            env_irradiance_map: &env.irradiance_view,
+        }
+        .bind_group(device, &layout);
+        FrameGroup { layout, bind_group }
+    }
+}
+
+/// Two of a thing a pass keeps across frames: this frame writes one side and reads the other.
+pub struct PingPong<T> {
+    sides: [T; 2],
+}
+
+impl<T> PingPong<T> {
+    /// Side 0 and side 1.
+    pub fn new(side0: T, side1: T) -> Self {
+        PingPong {
+            sides: [side0, side1],
+        }
+    }
+
+    /// Builds each side from its index (0, 1).
+    pub fn from_fn(mut f: impl FnMut(usize) -> T) -> Self {
+        PingPong {
+            sides: [f(0), f(1)],
+        }
+    }
+
+    /// The side that frame `index` writes.
+    pub fn current(&self, index: u32) -> &T {
+        &self.sides[(index % 2) as usize]
+    }
+
+    /// The side that frame `index` reads (what frame `index − 1` wrote).
+    pub fn previous(&self, index: u32) -> &T {
+        &self.sides[((index + 1) % 2) as usize]
+    }
+
+    /// Side `i` (0 or 1).
+    pub fn side(&self, i: usize) -> &T {
+        &self.sides[i % 2]
+    }
+}
+
+/// A compute shader module: compiled once, its entry points made into pipelines with group 0
+/// (the frame) and the pass's own group 1.
+pub fn shader_module(device: &wgpu::Device, label: &str, source: &str) -> wgpu::ShaderModule {
+    device.create_shader_module(wgpu::ShaderModuleDescriptor {
+        label: Some(label),
+        source: wgpu::ShaderSource::Wgsl(source.into()),
+    })
+}
+
+/// A compute pipeline outside the frame (environment prefiltering, the viewer's display): group
+/// 0 is empty, group 1 is `layout`.
+pub fn standalone_pipeline(
+    device: &wgpu::Device,
+    label: &str,
+    module: &wgpu::ShaderModule,
+    entry_point: &str,
+    layout: &wgpu::BindGroupLayout,
+) -> wgpu::ComputePipeline {
+    let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+        label: Some(label),
+        bind_group_layouts: &[None, Some(layout)],
+        immediate_size: 0,
+    });
+    device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+        label: Some(label),
+        layout: Some(&pipeline_layout),
+        module,
+        entry_point: Some(entry_point),
+        compilation_options: Default::default(),
+        cache: None,
+    })
+}
+
+/// One compute kernel of a pass: its pipeline (group 0 = frame, group 1 = `layout`), built once;
+/// the bind groups it runs with are the pass's.
+pub struct ComputeStep {
+    pub label: &'static str,
+    pub pipeline: wgpu::ComputePipeline,
+    frame: wgpu::BindGroup,
+}
+
+impl ComputeStep {
+    /// `constants` are the WGSL `override` constants (counts) the pipeline is specialised for.
+    pub fn new(
+        device: &wgpu::Device,
+        label: &'static str,
+        module: &wgpu::ShaderModule,
+        entry_point: &str,
+        frame: &FrameGroup,
+        layout: &wgpu::BindGroupLayout,
+        constants: &[(&str, f64)],
+    ) -> Self {
+        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some(label),
+            bind_group_layouts: &[Some(&frame.layout), Some(layout)],
+            immediate_size: 0,
+        });
+        let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+            label: Some(label),
+            layout: Some(&pipeline_layout),
+            module,
+            entry_point: Some(entry_point),
+            compilation_options: wgpu::PipelineCompilationOptions {
+                constants,
+                ..Default::default()
+            },
+            cache: None,
+        });
+        ComputeStep {
+            label,
+            pipeline,
+            frame: frame.bind_group.clone(),
+        }
+    }
+
+    /// Records this kernel over `size` pixels (8×8 groups) as its own timed pass.
     pub fn encode(
         &self,
         encoder: &mut wgpu::CommandEncoder,
         profiler: &mut GpuProfiler,
+        own: &wgpu::BindGroup,
         size: (u32, u32),
-        variant: usize,
     ) {
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
             label: Some(self.label),
             timestamp_writes: profiler.compute(self.label),
         });
-        pass.set_pipeline(&self.pipeline);
-        pass.set_bind_group(0, &self.bind_groups[variant % self.bind_groups.len()], &[]);
         let (gx, gy) = util::groups_8x8(size);
-        pass.dispatch_workgroups(gx, gy, 1);
+        self.dispatch(&mut pass, own, (gx, gy, 1));
+    }
+
+    /// Records this kernel inside an open pass, over `groups` workgroups.
+    pub fn dispatch(
+        &self,
+        pass: &mut wgpu::ComputePass,
+        own: &wgpu::BindGroup,
+        groups: (u32, u32, u32),
+    ) {
+        pass.set_pipeline(&self.pipeline);
+        pass.set_bind_group(0, &self.frame, &[]);
+        pass.set_bind_group(1, own, &[]);
+        pass.dispatch_workgroups(groups.0, groups.1, groups.2);
+    }
+}
+
+/// A pass of one kernel over the screen (8×8 workgroups) with its group 1 built once, one
+/// bind group per ping-pong side of the direct radiance (the same one twice where it reads
+/// none).
+pub struct ScreenPass {
+    pub step: ComputeStep,
+    pub own: PingPong<wgpu::BindGroup>,
+}
+
+impl ScreenPass {
+    /// A pass whose group 1 does not depend on the frame's side.
+    pub fn single(step: ComputeStep, own: wgpu::BindGroup) -> Self {
+        ScreenPass {
+            step,
+            own: PingPong::new(own.clone(), own),
+        }
+    }
+
+    /// Records the dispatch of frame `frame_index`; allocates nothing.
+    pub fn encode(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        profiler: &mut GpuProfiler,
+        size: (u32, u32),
+        frame_index: u32,
+    ) {
+        self.step
+            .encode(encoder, profiler, self.own.current(frame_index), size);
     }
 }

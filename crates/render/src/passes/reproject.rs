@@ -3,11 +3,12 @@
 //! [`Reprojection::output`], a full-resolution rgba16float image (alpha 1 wherever some valid
 //! value was found anywhere in the image).
 
+use super::{ComputeStep, FrameGroup, PingPong};
+use crate::bindings::{PassLayout, kind};
 use crate::profiler::GpuProfiler;
 use crate::targets::{FrameTargets, HDR_FORMAT};
 use crate::util;
 use bytemuck::{Pod, Zeroable};
-use wgpu::BindingResource as R;
 use wgpu::util::DeviceExt;
 
 pub const SHADER: &str = include_str!("reproject.wgsl");
@@ -16,25 +17,7 @@ pub fn source() -> String {
     util::compose(&[util::COMMON_WGSL, SHADER])
 }
 
-/// How last frame's pixels reach this frame.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum ReprojectMode {
-    /// Forward: last frame's pixels move to their new place (depth-tested, atomics).
-    Scatter,
-    /// Backward: this frame's pixels fetch through their motion vectors.
-    Gather,
-}
-
-impl ReprojectMode {
-    /// `scatter|gather`.
-    pub fn parse(key: &str, v: &str) -> Result<Self, String> {
-        match v {
-            "scatter" => Ok(ReprojectMode::Scatter),
-            "gather" => Ok(ReprojectMode::Gather),
-            _ => Err(format!("{key}={v}: expected scatter or gather")),
-        }
-    }
-}
+pub use crate::settings::horizon::ReprojectMode;
 
 /// `ReprojectParams` in reproject.wgsl.
 #[repr(C)]
@@ -45,7 +28,8 @@ pub struct ReprojectParams {
     pub reject_depth: f32,
     /// Smallest cosine between last frame's and this frame's normal.
     pub reject_normal: f32,
-    pub _pad: [f32; 2],
+    pub _pad0: f32,
+    pub _pad1: f32,
 }
 
 /// Last frame's inputs of one ping-pong side: its geometry (rgba32float: world normal, view
@@ -55,17 +39,100 @@ pub struct History<'a> {
     pub radiance: &'a wgpu::TextureView,
 }
 
+crate::bind_group! {
+    /// Group 1 of the reprojection kernels (scatter_depth, scatter_color, scatter_resolve, gather).
+    pub struct ReprojectBindings: COMPUTE {
+        /// `ReprojectParams`: the same-surface tolerances.
+        params: buffer = kind::UNIFORM,
+        /// This frame's world normal (rgba16float).
+        gb_normal: view = kind::TEXTURE,
+        /// This frame's view depth (r32float, m).
+        gb_view_depth: view = kind::TEXTURE_UNFILTERABLE,
+        /// This frame's motion (rg16float, previous − current pixel position).
+        gb_motion: view = kind::TEXTURE,
+        /// Last frame's geometry (rgba32float: world normal, view depth).
+        prev_geometry: view = kind::TEXTURE_UNFILTERABLE,
+        /// Last frame's radiance (rgba16float).
+        prev_radiance: view = kind::TEXTURE,
+        /// Nearest landing depth per pixel (atomic u32 bits; reset by scatter_resolve).
+        zbuffer: buffer = kind::STORAGE_READ_WRITE,
+        /// The winner's radiance per pixel.
+        colors: buffer = kind::STORAGE_READ_WRITE,
+        /// The raw reprojection, alpha 0 in holes (rgba16float, level 0 of the push chain).
+        out_reprojected: view = kind::write(HDR_FORMAT),
+    }
+}
+
+crate::bind_group! {
+    /// Group 1 of `push`: level k → level k + 1.
+    pub struct PushBindings: COMPUTE {
+        /// Level k (rgba16float, alpha = coverage).
+        fine: view = kind::TEXTURE,
+        /// Level k + 1.
+        level_out: view = kind::write(HDR_FORMAT),
+    }
+}
+
+crate::bind_group! {
+    /// Group 1 of `pull`: level k of the push chain and level k + 1 filled → level k filled.
+    pub struct PullBindings: COMPUTE {
+        /// Level k of the push chain.
+        fine: view = kind::TEXTURE,
+        /// Level k, filled.
+        level_out: view = kind::write(HDR_FORMAT),
+        /// Level k + 1, filled (or the coarsest push level).
+        coarse: view = kind::TEXTURE,
+        /// Bilinear.
+        coarse_sampler: sampler = kind::SAMPLER,
+    }
+}
+
+/// The binding declarations the reflection test checks.
+pub fn pass_layouts() -> Vec<PassLayout> {
+    let mut v: Vec<PassLayout> = [
+        "scatter_depth",
+        "scatter_color",
+        "scatter_resolve",
+        "gather",
+    ]
+    .into_iter()
+    .map(|entry_point| PassLayout {
+        name: "reproject",
+        source: source(),
+        entry_point,
+        group1: ReprojectBindings::SLOTS,
+    })
+    .collect();
+    v.push(PassLayout {
+        name: "push_pull",
+        source: push_pull_source(),
+        entry_point: "push",
+        group1: PushBindings::SLOTS,
+    });
+    v.push(PassLayout {
+        name: "push_pull",
+        source: push_pull_source(),
+        entry_point: "pull",
+        group1: PullBindings::SLOTS,
+    });
+    v
+}
+
+pub fn push_pull_source() -> String {
+    util::compose(&[util::COMMON_WGSL, include_str!("push_pull.wgsl")])
+}
+
 pub struct Reprojection {
     mode: ReprojectMode,
     size: (u32, u32),
-    scatter_depth: wgpu::ComputePipeline,
-    scatter_color: wgpu::ComputePipeline,
-    scatter_resolve: wgpu::ComputePipeline,
-    gather: wgpu::ComputePipeline,
-    push: wgpu::ComputePipeline,
-    pull: wgpu::ComputePipeline,
-    /// Indexed by this frame's side: reads last frame's side.
-    main: [wgpu::BindGroup; 2],
+    scatter_depth: ComputeStep,
+    scatter_color: ComputeStep,
+    scatter_resolve: ComputeStep,
+    gather: ComputeStep,
+    push: ComputeStep,
+    pull: ComputeStep,
+    /// What a frame on each side binds: it reads last frame's side.
+    main: PingPong<wgpu::BindGroup>,
     /// Level k → k + 1, with the size of level k + 1.
     push_levels: Vec<(wgpu::BindGroup, (u32, u32))>,
     /// Level k + 1 → k for k from the coarsest down, with the size of level k.
@@ -75,7 +142,9 @@ pub struct Reprojection {
     /// The filled image (level 0 of the pull chain).
     pub output: wgpu::TextureView,
     pub output_texture: wgpu::Texture,
-    _keep: (wgpu::Buffer, wgpu::Buffer, wgpu::Buffer),
+    /// The params buffer (`write_buffer` target) and the scatter buffers.
+    pub params: wgpu::Buffer,
+    _keep: (wgpu::Buffer, wgpu::Buffer),
 }
 
 fn mip_view(texture: &wgpu::Texture, level: u32) -> wgpu::TextureView {
@@ -94,14 +163,13 @@ impl Reprojection {
     /// `history[s]` is what frame side `s` wrote; a frame on side `s` reads `history[1 − s]`.
     pub fn new(
         device: &wgpu::Device,
-        frame: &wgpu::Buffer,
+        frame: &FrameGroup,
         targets: &FrameTargets,
         history: [History; 2],
         mode: ReprojectMode,
         params: ReprojectParams,
     ) -> Self {
         let size = targets.size;
-        let c = wgpu::ShaderStages::COMPUTE;
         let levels = 32 - size.0.max(size.1).leading_zeros();
         let chain = |label: &str, count: u32| {
             device.create_texture(&wgpu::TextureDescriptor {
@@ -139,51 +207,11 @@ impl Reprojection {
         let params_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("reprojection params"),
             contents: bytemuck::bytes_of(&params),
-            usage: wgpu::BufferUsages::UNIFORM,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
         });
-        let rw_buffer = |binding| wgpu::BindGroupLayoutEntry {
-            binding,
-            visibility: c,
-            ty: wgpu::BindingType::Buffer {
-                ty: wgpu::BufferBindingType::Storage { read_only: false },
-                has_dynamic_offset: false,
-                min_binding_size: None,
-            },
-            count: None,
-        };
-        let main_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("reprojection"),
-            entries: &[
-                util::uniform(0, c),
-                util::uniform(5, c),
-                util::texture(8, c, true),
-                util::texture(9, c, false),
-                util::texture(10, c, false),
-                util::texture(11, c, true),
-                rw_buffer(12),
-                rw_buffer(13),
-                util::storage_texture(14, HDR_FORMAT),
-                util::texture(15, c, true),
-            ],
-        });
-        let push_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("push"),
-            entries: &[
-                util::uniform(0, c),
-                util::texture(16, c, true),
-                util::storage_texture(17, HDR_FORMAT),
-            ],
-        });
-        let pull_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("pull"),
-            entries: &[
-                util::uniform(0, c),
-                util::texture(16, c, true),
-                util::storage_texture(17, HDR_FORMAT),
-                util::texture(18, c, true),
-                util::sampler(19, c),
-            ],
-        });
+        let main_layout = ReprojectBindings::layout(device);
+        let push_layout = PushBindings::layout(device);
+        let pull_layout = PullBindings::layout(device);
         let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
             label: Some("pull"),
             mag_filter: wgpu::FilterMode::Linear,
@@ -192,37 +220,27 @@ impl Reprojection {
         });
         let raw_view = mip_view(&push_tex, 0);
         let main_bg = |h: &History| {
-            util::bind_group(
-                device,
-                "reprojection",
-                &main_layout,
-                &[
-                    (0, frame.as_entire_binding()),
-                    (5, params_buffer.as_entire_binding()),
-                    (8, R::TextureView(&targets.normal.view)),
-                    (9, R::TextureView(&targets.view_depth.view)),
-                    (10, R::TextureView(h.geometry)),
-                    (11, R::TextureView(h.radiance)),
-                    (12, zbuffer.as_entire_binding()),
-                    (13, colors.as_entire_binding()),
-                    (14, R::TextureView(&raw_view)),
-                    (15, R::TextureView(&targets.motion.view)),
-                ],
-            )
+            ReprojectBindings {
+                params: &params_buffer,
+                gb_normal: &targets.normal.view,
+                gb_view_depth: &targets.view_depth.view,
+                gb_motion: &targets.motion.view,
+                prev_geometry: h.geometry,
+                prev_radiance: h.radiance,
+                zbuffer: &zbuffer,
+                colors: &colors,
+                out_reprojected: &raw_view,
+            }
+            .bind_group(device, &main_layout)
         };
-        let main = [main_bg(&history[1]), main_bg(&history[0])];
+        let main = PingPong::new(main_bg(&history[1]), main_bg(&history[0]));
         let push_levels = (0..levels - 1)
             .map(|k| {
-                let bg = util::bind_group(
-                    device,
-                    "push",
-                    &push_layout,
-                    &[
-                        (0, frame.as_entire_binding()),
-                        (16, R::TextureView(&mip_view(&push_tex, k))),
-                        (17, R::TextureView(&mip_view(&push_tex, k + 1))),
-                    ],
-                );
+                let bg = PushBindings {
+                    fine: &mip_view(&push_tex, k),
+                    level_out: &mip_view(&push_tex, k + 1),
+                }
+                .bind_group(device, &push_layout);
                 (bg, level_size(size, k + 1))
             })
             .collect();
@@ -234,24 +252,20 @@ impl Reprojection {
                 } else {
                     mip_view(&pull_tex, k + 1)
                 };
-                let bg = util::bind_group(
-                    device,
-                    "pull",
-                    &pull_layout,
-                    &[
-                        (0, frame.as_entire_binding()),
-                        (16, R::TextureView(&mip_view(&push_tex, k))),
-                        (17, R::TextureView(&mip_view(&pull_tex, k))),
-                        (18, R::TextureView(&coarse)),
-                        (19, R::Sampler(&sampler)),
-                    ],
-                );
+                let bg = PullBindings {
+                    fine: &mip_view(&push_tex, k),
+                    level_out: &mip_view(&pull_tex, k),
+                    coarse: &coarse,
+                    coarse_sampler: &sampler,
+                }
+                .bind_group(device, &pull_layout);
                 (bg, level_size(size, k))
             })
             .collect();
-        let src = source();
-        let pipeline = |entry: &str, layout: &wgpu::BindGroupLayout| {
-            util::compute_pipeline(device, entry, &src, entry, layout)
+        let module = super::shader_module(device, "reproject", &source());
+        let push_pull = super::shader_module(device, "push/pull", &push_pull_source());
+        let step = |module, entry: &'static str, layout| {
+            ComputeStep::new(device, entry, module, entry, frame, layout, &[])
         };
         // A 1×1 image has nothing to fill: the raw level is the output.
         let (output_texture, output) = if levels > 1 {
@@ -262,66 +276,65 @@ impl Reprojection {
         Reprojection {
             mode,
             size,
-            scatter_depth: pipeline("scatter_depth", &main_layout),
-            scatter_color: pipeline("scatter_color", &main_layout),
-            scatter_resolve: pipeline("scatter_resolve", &main_layout),
-            gather: pipeline("gather", &main_layout),
-            push: pipeline("push", &push_layout),
-            pull: pipeline("pull", &pull_layout),
+            scatter_depth: step(&module, "scatter_depth", &main_layout),
+            scatter_color: step(&module, "scatter_color", &main_layout),
+            scatter_resolve: step(&module, "scatter_resolve", &main_layout),
+            gather: step(&module, "gather", &main_layout),
+            push: step(&push_pull, "push", &push_layout),
+            pull: step(&push_pull, "pull", &pull_layout),
             main,
             push_levels,
             pull_levels,
             raw: push_tex,
             output,
             output_texture,
-            _keep: (zbuffer, colors, params_buffer),
+            params: params_buffer,
+            _keep: (zbuffer, colors),
         }
     }
 
-    /// Records reprojection ("reproject") and hole filling ("push/pull") for a frame on `side`.
+    /// Records reprojection ("reproject") and hole filling ("push/pull") for frame
+    /// `frame_index`; allocates nothing.
     pub fn encode(
         &self,
         encoder: &mut wgpu::CommandEncoder,
         profiler: &mut GpuProfiler,
-        side: usize,
+        frame_index: u32,
     ) {
-        let (gx, gy) = util::groups_8x8(self.size);
+        let groups = {
+            let (gx, gy) = util::groups_8x8(self.size);
+            (gx, gy, 1)
+        };
         {
             let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
                 label: Some("reproject"),
                 timestamp_writes: profiler.compute("reproject"),
             });
-            pass.set_bind_group(0, &self.main[side], &[]);
-            let pipelines = match self.mode {
+            let main = self.main.current(frame_index);
+            match self.mode {
                 ReprojectMode::Scatter => {
-                    vec![
+                    for step in [
                         &self.scatter_depth,
                         &self.scatter_color,
                         &self.scatter_resolve,
-                    ]
+                    ] {
+                        step.dispatch(&mut pass, main, groups);
+                    }
                 }
-                ReprojectMode::Gather => vec![&self.gather],
-            };
-            for p in pipelines {
-                pass.set_pipeline(p);
-                pass.dispatch_workgroups(gx, gy, 1);
+                ReprojectMode::Gather => self.gather.dispatch(&mut pass, main, groups),
             }
         }
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
             label: Some("push/pull"),
             timestamp_writes: profiler.compute("push/pull"),
         });
-        pass.set_pipeline(&self.push);
         for (bg, size) in &self.push_levels {
-            pass.set_bind_group(0, bg, &[]);
             let (x, y) = util::groups_8x8(*size);
-            pass.dispatch_workgroups(x, y, 1);
+            self.push.dispatch(&mut pass, bg, (x, y, 1));
         }
-        pass.set_pipeline(&self.pull);
         for (bg, size) in &self.pull_levels {
-            pass.set_bind_group(0, bg, &[]);
             let (x, y) = util::groups_8x8(*size);
-            pass.dispatch_workgroups(x, y, 1);
+            self.pull.dispatch(&mut pass, bg, (x, y, 1));
         }
     }
 }

@@ -23,15 +23,15 @@ struct ReprojectParams {
     _pad1: f32,
 }
 
-@group(0) @binding(5) var<uniform> params: ReprojectParams;
-@group(0) @binding(8) var gb_normal: texture_2d<f32>;
-@group(0) @binding(9) var gb_view_depth: texture_2d<f32>;
-@group(0) @binding(10) var prev_geometry: texture_2d<f32>;
-@group(0) @binding(11) var prev_radiance: texture_2d<f32>;
-@group(0) @binding(12) var<storage, read_write> zbuffer: array<atomic<u32>>;
-@group(0) @binding(13) var<storage, read_write> colors: array<vec4<f32>>;
-@group(0) @binding(14) var out_reprojected: texture_storage_2d<rgba16float, write>;
-@group(0) @binding(15) var gb_motion: texture_2d<f32>;
+@group(1) @binding(0) var<uniform> params: ReprojectParams;
+@group(1) @binding(1) var gb_normal: texture_2d<f32>;
+@group(1) @binding(2) var gb_view_depth: texture_2d<f32>;
+@group(1) @binding(4) var prev_geometry: texture_2d<f32>;
+@group(1) @binding(5) var prev_radiance: texture_2d<f32>;
+@group(1) @binding(6) var<storage, read_write> zbuffer: array<atomic<u32>>;
+@group(1) @binding(7) var<storage, read_write> colors: array<vec4<f32>>;
+@group(1) @binding(8) var out_reprojected: texture_storage_2d<rgba16float, write>;
+@group(1) @binding(3) var gb_motion: texture_2d<f32>;
 
 const EMPTY: u32 = 0xffffffffu;
 
@@ -55,7 +55,7 @@ fn land(pixel: vec2<u32>) -> Landing {
         return l;
     }
     let s = floor(to_screen(frame.clip_from_world, world));
-    if any(s < vec2<f32>(0.0)) || any(s >= frame.size.xy) {
+    if any(s < vec2<f32>(0.0)) || any(s >= frame.size) {
         return l;
     }
     let q = vec2<u32>(s);
@@ -139,50 +139,4 @@ fn gather(@builtin(global_invocation_id) id: vec3<u32>) {
         out = vec4<f32>(sum / weight, 1.0);
     }
     textureStore(out_reprojected, pixel, out);
-}
-
-// ---------------------------------------------------------------------------------------------
-// Push/pull. Level sizes come from the textures.
-
-@group(0) @binding(16) var fine: texture_2d<f32>;
-@group(0) @binding(17) var level_out: texture_storage_2d<rgba16float, write>;
-@group(0) @binding(18) var coarse: texture_2d<f32>;
-@group(0) @binding(19) var coarse_sampler: sampler;
-
-@compute @workgroup_size(8, 8, 1)
-fn push(@builtin(global_invocation_id) id: vec3<u32>) {
-    let c = id.xy;
-    if any(c >= textureDimensions(level_out)) {
-        return;
-    }
-    let fine_size = textureDimensions(fine);
-    var sum = vec3<f32>(0.0);
-    var alpha = 0.0;
-    for (var k = 0u; k < 4u; k++) {
-        let q = 2u * c + vec2<u32>(k % 2u, k / 2u);
-        if any(q >= fine_size) {
-            continue;
-        }
-        let v = textureLoad(fine, q, 0);
-        sum += v.rgb * v.a;
-        alpha += v.a;
-    }
-    var out = vec4<f32>(0.0);
-    if alpha > 0.0 {
-        out = vec4<f32>(sum / alpha, min(alpha, 1.0));
-    }
-    textureStore(level_out, c, out);
-}
-
-@compute @workgroup_size(8, 8, 1)
-fn pull(@builtin(global_invocation_id) id: vec3<u32>) {
-    let p = id.xy;
-    let size = textureDimensions(level_out);
-    if any(p >= size) {
-        return;
-    }
-    let v = textureLoad(fine, p, 0);
-    let uv = (vec2<f32>(p) + 0.5) / vec2<f32>(size);
-    let c = textureSampleLevel(coarse, coarse_sampler, uv, 0.0);
-    textureStore(level_out, p, vec4<f32>(v.rgb * v.a + c.rgb * (1.0 - v.a), v.a + c.a * (1.0 - v.a)));
 }

@@ -11,12 +11,12 @@
 //! surface reflects ρ Φ_in (Lambertian). The depth test makes Φ_in the flux of the light's first
 //! hit, i.e. shadowed exactly.
 
+use crate::bindings::{PassLayout, kind};
 use crate::gpu_scene::GpuScene;
 use crate::passes::shadow::light_views;
 use crate::util;
 use glam::Vec3;
 use nearfield_scene::{Light, LightKind};
-use wgpu::BindingResource as R;
 use wgpu::util::DeviceExt;
 
 const FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
@@ -34,9 +34,9 @@ pub struct RsmTexel {
 /// `RsmView` in gbuffer.wgsl.
 #[repr(C)]
 #[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
-struct RsmView {
-    clip_from_world: [[f32; 4]; 4],
-    to_light: [f32; 4],
+pub struct RsmView {
+    pub clip_from_world: [[f32; 4]; 4],
+    pub to_light: [f32; 4],
 }
 
 /// Flux of one texel crossing the view of `light` (before the surface's albedo): see the module
@@ -55,6 +55,38 @@ pub fn incoming_flux(light: &Light, p: Vec3, texel: f32, size: u32, x: u32, y: u
     }
 }
 
+pub const SHADER: &str = include_str!("rsm.wgsl");
+
+pub fn source() -> String {
+    util::compose(&[util::COMMON_WGSL, util::MATERIALS_WGSL, SHADER])
+}
+
+crate::bind_group! {
+    /// Group 1 of the reflective-shadow-map pass (group 0 is not read).
+    pub struct RsmBindings: VERTEX | FRAGMENT {
+        /// The scene's materials (shaders/materials.wgsl).
+        materials: buffer = kind::STORAGE_READ,
+        srgb_textures: view = kind::TEXTURE_ARRAY,
+        linear_textures: view = kind::TEXTURE_ARRAY,
+        material_sampler: sampler = kind::SAMPLER,
+        /// `RsmView`: the light's clip_from_world and where the light is.
+        rsm_view: buffer = kind::UNIFORM,
+    }
+}
+
+/// The binding declarations the reflection test checks (vertex and fragment stage).
+pub fn pass_layouts() -> Vec<PassLayout> {
+    ["vs_rsm", "fs_rsm"]
+        .into_iter()
+        .map(|entry_point| PassLayout {
+            name: "rsm",
+            source: source(),
+            entry_point,
+            group1: RsmBindings::SLOTS,
+        })
+        .collect()
+}
+
 /// Renders the reflective shadow maps (`size`² per view) of `lights` and returns their lit
 /// texels (those with flux > 0).
 pub fn render(
@@ -64,25 +96,13 @@ pub fn render(
     lights: &[Light],
     size: u32,
 ) -> Vec<RsmTexel> {
-    use wgpu::ShaderStages as S;
-    let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-        label: Some("rsm"),
-        entries: &[
-            util::storage_buffer(1, S::FRAGMENT),
-            util::texture_array(2, S::FRAGMENT),
-            util::texture_array(3, S::FRAGMENT),
-            util::sampler(4, S::FRAGMENT),
-            util::uniform(7, S::VERTEX | S::FRAGMENT),
-        ],
-    });
-    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-        label: Some("rsm"),
-        source: wgpu::ShaderSource::Wgsl(crate::passes::gbuffer::source().into()),
-    });
+    let layout = RsmBindings::layout(device);
+    let module = super::shader_module(device, "rsm", &source());
     let pipeline = util::raster_pipeline(
         device,
         &util::RasterPipeline {
             label: "rsm",
+            frame: None,
             layout: &layout,
             module: &module,
             vertex: "vs_rsm",
@@ -144,18 +164,15 @@ pub fn render(
                 contents: bytemuck::bytes_of(&view),
                 usage: wgpu::BufferUsages::UNIFORM,
             });
-            let group = util::bind_group(
-                device,
-                "rsm",
-                &layout,
-                &[
-                    (1, scene.materials.as_entire_binding()),
-                    (2, R::TextureView(&scene.srgb_textures)),
-                    (3, R::TextureView(&scene.linear_textures)),
-                    (4, R::Sampler(&scene.material_sampler)),
-                    (7, uniform.as_entire_binding()),
-                ],
-            );
+            let m = scene.material_bindings();
+            let group = RsmBindings {
+                materials: m.materials,
+                srgb_textures: m.srgb_textures,
+                linear_textures: m.linear_textures,
+                material_sampler: m.material_sampler,
+                rsm_view: &uniform,
+            }
+            .bind_group(device, &layout);
             let mut encoder =
                 device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: None });
             {
@@ -190,7 +207,7 @@ pub fn render(
                     multiview_mask: None,
                 });
                 pass.set_pipeline(&pipeline);
-                pass.set_bind_group(0, &group, &[]);
+                pass.set_bind_group(1, &group, &[]);
                 pass.set_vertex_buffer(0, scene.vertices.slice(..));
                 pass.set_index_buffer(scene.indices.slice(..), wgpu::IndexFormat::Uint32);
                 pass.draw_indexed(0..scene.index_count, 0, 0..1);

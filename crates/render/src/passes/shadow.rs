@@ -14,6 +14,7 @@
 //!   point) before the lookup, against acne on curved and lit-at-grazing surfaces. Both shift
 //!   shadows by about a texel: contact shadows start that much late.
 
+use crate::bindings::{PassLayout, kind};
 use crate::gpu_scene::GpuScene;
 use crate::profiler::GpuProfiler;
 use crate::targets::DEPTH_FORMAT;
@@ -47,6 +48,45 @@ impl Default for ShadowSettings {
 
 /// Uniform stride of a layer's matrix (the dynamic-offset alignment every device accepts).
 const VIEW_STRIDE: u64 = 256;
+
+crate::bind_group! {
+    /// Group 1 of the shadow pass (group 0 is not read).
+    pub struct ShadowBindings: VERTEX | FRAGMENT {
+        /// `ShadowView`: one layer's light_clip_from_world, at a dynamic offset per layer.
+        view: buffer_range = kind::uniform_dynamic(64),
+        /// The scene's materials (alpha-masked ones cast leaf-shaped shadows).
+        materials: buffer = kind::STORAGE_READ,
+        /// Base-colour textures (rgba8unorm-srgb array).
+        srgb_textures: view = kind::TEXTURE_ARRAY,
+        material_sampler: sampler = kind::SAMPLER,
+    }
+}
+
+/// The binding declarations the reflection test checks (vertex and fragment stage).
+pub fn pass_layouts() -> Vec<PassLayout> {
+    ["vs_main", "fs_main"]
+        .into_iter()
+        .map(|entry_point| PassLayout {
+            name: "shadow",
+            source: SHADER.to_string(),
+            entry_point,
+            group1: ShadowBindings::SLOTS,
+        })
+        .collect()
+}
+
+/// What a pass that includes shaders/lights.wgsl binds, under these names, in its group 1.
+#[derive(Clone, Copy)]
+pub struct LightResources<'a> {
+    /// `array<GpuLight>`: the light table.
+    pub lights: &'a wgpu::Buffer,
+    /// `array<mat4x4<f32>>`: clip_from_world of every shadow-map layer.
+    pub shadow_clip_from_world: &'a wgpu::Buffer,
+    /// The shadow maps (depth32float array).
+    pub shadow_maps: &'a wgpu::TextureView,
+    /// The comparison sampler of the shadow maps.
+    pub shadow_sampler: &'a wgpu::Sampler,
+}
 
 pub struct ShadowPass {
     pipeline: wgpu::RenderPipeline,
@@ -207,52 +247,25 @@ impl ShadowPass {
             contents: &strided,
             usage: wgpu::BufferUsages::UNIFORM,
         });
-        use wgpu::ShaderStages as S;
-        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("shadow"),
-            entries: &[
-                wgpu::BindGroupLayoutEntry {
-                    binding: 0,
-                    visibility: S::VERTEX,
-                    ty: wgpu::BindingType::Buffer {
-                        ty: wgpu::BufferBindingType::Uniform,
-                        has_dynamic_offset: true,
-                        min_binding_size: wgpu::BufferSize::new(64),
-                    },
-                    count: None,
-                },
-                util::storage_buffer(1, S::FRAGMENT),
-                util::texture_array(2, S::FRAGMENT),
-                util::sampler(4, S::FRAGMENT),
-            ],
-        });
-        let bind_group = util::bind_group(
-            device,
-            "shadow",
-            &layout,
-            &[
-                (
-                    0,
-                    wgpu::BindingResource::Buffer(wgpu::BufferBinding {
-                        buffer: &view_buffer,
-                        offset: 0,
-                        size: wgpu::BufferSize::new(64),
-                    }),
-                ),
-                (1, scene.materials.as_entire_binding()),
-                (2, wgpu::BindingResource::TextureView(&scene.srgb_textures)),
-                (4, wgpu::BindingResource::Sampler(&scene.material_sampler)),
-            ],
-        );
-        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some("shadow"),
-            source: wgpu::ShaderSource::Wgsl(SHADER.into()),
-        });
+        let layout = ShadowBindings::layout(device);
+        let bind_group = ShadowBindings {
+            view: wgpu::BufferBinding {
+                buffer: &view_buffer,
+                offset: 0,
+                size: wgpu::BufferSize::new(64),
+            },
+            materials: &scene.materials,
+            srgb_textures: &scene.srgb_textures,
+            material_sampler: &scene.material_sampler,
+        }
+        .bind_group(device, &layout);
+        let module = super::shader_module(device, "shadow", SHADER);
         // No culling: single-sided walls (open boxes) must still cast shadows.
         let pipeline = util::raster_pipeline(
             device,
             &util::RasterPipeline {
                 label: "shadow",
+                frame: None,
                 layout: &layout,
                 module: &module,
                 vertex: "vs_main",
@@ -291,40 +304,15 @@ impl ShadowPass {
         }
     }
 
-    /// Layout entries 13..=16 of passes that include shaders/lights.wgsl (light table, shadow
-    /// matrices, shadow maps, comparison sampler).
-    pub fn layout_entries() -> [wgpu::BindGroupLayoutEntry; 4] {
-        let c = wgpu::ShaderStages::COMPUTE;
-        [
-            util::storage_buffer(13, c),
-            util::storage_buffer(14, c),
-            wgpu::BindGroupLayoutEntry {
-                binding: 15,
-                visibility: c,
-                ty: wgpu::BindingType::Texture {
-                    sample_type: wgpu::TextureSampleType::Depth,
-                    view_dimension: wgpu::TextureViewDimension::D2Array,
-                    multisampled: false,
-                },
-                count: None,
-            },
-            wgpu::BindGroupLayoutEntry {
-                binding: 16,
-                visibility: c,
-                ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Comparison),
-                count: None,
-            },
-        ]
-    }
-
-    /// Bindings matching [`Self::layout_entries`].
-    pub fn bindings<'a>(&'a self, scene: &'a GpuScene) -> [(u32, wgpu::BindingResource<'a>); 4] {
-        [
-            (13, scene.lights.as_entire_binding()),
-            (14, self.matrices.as_entire_binding()),
-            (15, wgpu::BindingResource::TextureView(&self.array_view)),
-            (16, wgpu::BindingResource::Sampler(&self.compare_sampler)),
-        ]
+    /// The light bindings of a pass that includes shaders/lights.wgsl, with `table` as its
+    /// light table (the scene's lights, or virtual point lights shadowed by this pass).
+    pub fn light_resources<'a>(&'a self, table: &'a wgpu::Buffer) -> LightResources<'a> {
+        LightResources {
+            lights: table,
+            shadow_clip_from_world: &self.matrices,
+            shadow_maps: &self.array_view,
+            shadow_sampler: &self.compare_sampler,
+        }
     }
 
     /// Renders every layer (timed together under the pass's label).
@@ -347,7 +335,7 @@ impl ShadowPass {
                 multiview_mask: None,
             });
             pass.set_pipeline(&self.pipeline);
-            pass.set_bind_group(0, &self.bind_group, &[(i as u64 * VIEW_STRIDE) as u32]);
+            pass.set_bind_group(1, &self.bind_group, &[(i as u64 * VIEW_STRIDE) as u32]);
             pass.set_vertex_buffer(0, self.vertices.slice(..));
             pass.set_index_buffer(self.indices.slice(..), wgpu::IndexFormat::Uint32);
             pass.draw_indexed(0..self.index_count, 0, 0..1);

@@ -17,10 +17,10 @@ struct GpuMaterial {
     textures: vec4<u32>,
 }
 
-@group(0) @binding(0) var<uniform> view: ShadowView;
-@group(0) @binding(1) var<storage, read> materials: array<GpuMaterial>;
-@group(0) @binding(2) var srgb_textures: texture_2d_array<f32>;
-@group(0) @binding(4) var material_sampler: sampler;
+@group(1) @binding(0) var<uniform> view: ShadowView;
+@group(1) @binding(1) var<storage, read> materials: array<GpuMaterial>;
+@group(1) @binding(2) var srgb_textures: texture_2d_array<f32>;
+@group(1) @binding(3) var material_sampler: sampler;
 
 struct VertexIn {
     @location(0) position: vec3<f32>,

@@ -1,10 +1,10 @@
 //! Tonemap (compute): `radiance` × 2^exposure through a named operator, sRGB-encoded into the
 //! `final` image. See tonemap.wgsl.
 
-use super::ScreenPass;
+use super::{ComputeStep, FrameGroup, ScreenPass};
+use crate::bindings::{PassLayout, kind};
 use crate::targets::{FINAL_FORMAT, FrameTargets};
 use crate::util;
-use wgpu::BindingResource as R;
 
 pub const SHADER: &str = include_str!("tonemap.wgsl");
 
@@ -12,24 +12,36 @@ pub fn source() -> String {
     util::compose(&[util::COMMON_WGSL, util::TONEMAP_OPS_WGSL, SHADER])
 }
 
-pub fn new(device: &wgpu::Device, frame: &wgpu::Buffer, targets: &FrameTargets) -> ScreenPass {
-    let c = wgpu::ShaderStages::COMPUTE;
-    let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-        label: Some("tonemap"),
-        entries: &[
-            util::uniform(0, c),
-            util::texture(8, c, true),
-            util::storage_texture(9, FINAL_FORMAT),
-        ],
-    });
-    let r = [
-        (0, frame.as_entire_binding()),
-        (8, R::TextureView(&targets.radiance.view)),
-        (9, R::TextureView(&targets.final_ldr.view)),
-    ];
-    ScreenPass {
-        label: "tonemap",
-        pipeline: util::compute_pipeline(device, "tonemap", &source(), "main", &layout),
-        bind_groups: vec![util::bind_group(device, "tonemap", &layout, &r)],
+crate::bind_group! {
+    /// Group 1 of the tonemap pass.
+    pub struct TonemapBindings: COMPUTE {
+        /// The linear HDR frame (rgba16float).
+        radiance: view = kind::TEXTURE,
+        /// The tonemapped, sRGB-encoded image (rgba8unorm): the `final` AOV.
+        out_final: view = kind::write(FINAL_FORMAT),
     }
+}
+
+/// The binding declaration the reflection test checks.
+pub fn pass_layout() -> PassLayout {
+    PassLayout {
+        name: "tonemap",
+        source: source(),
+        entry_point: "main",
+        group1: TonemapBindings::SLOTS,
+    }
+}
+
+pub fn new(device: &wgpu::Device, frame: &FrameGroup, targets: &FrameTargets) -> ScreenPass {
+    let layout = TonemapBindings::layout(device);
+    let module = super::shader_module(device, "tonemap", &source());
+    let own = TonemapBindings {
+        radiance: &targets.radiance.view,
+        out_final: &targets.final_ldr.view,
+    }
+    .bind_group(device, &layout);
+    ScreenPass::single(
+        ComputeStep::new(device, "tonemap", &module, "main", frame, &layout, &[]),
+        own,
+    )
 }

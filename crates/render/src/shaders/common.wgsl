@@ -15,22 +15,41 @@ struct Frame {
     prev_world_from_view: mat4x4<f32>,
     // xyz: camera position (world); w: unused.
     camera_position: vec4<f32>,
-    // width, height, 1/width, 1/height (pixels).
-    size: vec4<f32>,
-    // near, far (m), aspect (w/h), tan(yfov / 2).
-    projection: vec4<f32>,
-    // environment rotation about +Y (rad), intensity, specular mip count, radiance mip count.
-    env_params: vec4<f32>,
-    // exposure (EV), tonemap operator (0 aces, 1 neutral, 2 linear), shadow normal offset
-    // (in shadow-map texels), unused.
-    post: vec4<f32>,
+    // width, height (pixels) and their inverses.
+    size: vec2<f32>,
+    inv_size: vec2<f32>,
+    // Near and far plane (m), aspect (w/h), tan(yfov / 2).
+    near: f32,
+    far: f32,
+    aspect: f32,
+    tan_half_fov: f32,
+    // The environment's rotation about +Y (rad), intensity, specular and radiance mip counts.
+    env_rotation: f32,
+    env_intensity: f32,
+    env_specular_mips: f32,
+    env_radiance_mips: f32,
+    // Exposure (EV), tonemap operator (0 aces, 1 neutral, 2 linear), shadow normal offset (in
+    // shadow-map texels).
+    exposure: f32,
+    tonemap: u32,
+    shadow_normal_offset: f32,
+    _pad0: f32,
     // Last frame's near, far, aspect, tan(yfov / 2).
-    prev_projection: vec4<f32>,
-    // frame index, light count, seed, selected AOV (for the AOV pass).
-    counts: vec4<u32>,
-    // x: 1 when last frame's buffers may be reused (0 on the first frame and after a camera
-    // cut); y: frames since the last cut.
-    history: vec4<u32>,
+    prev_near: f32,
+    prev_far: f32,
+    prev_aspect: f32,
+    prev_tan_half_fov: f32,
+    // Frame index, light count, seed, selected AOV (for the AOV pass).
+    frame_index: u32,
+    light_count: u32,
+    seed: u32,
+    aov: u32,
+    // 1 when last frame's buffers may be reused (0 on the first frame and after a camera cut);
+    // frames since the last cut.
+    history_valid: u32,
+    frames_since_cut: u32,
+    _pad1: u32,
+    _pad2: u32,
 }
 
 @group(0) @binding(0) var<uniform> frame: Frame;
@@ -42,22 +61,29 @@ struct LayerView {
     clip_from_world: mat4x4<f32>,
     view_from_world: mat4x4<f32>,
     world_from_view: mat4x4<f32>,
-    // width, height, 1/width, 1/height.
-    size: vec4<f32>,
-    // near, far, aspect, tan(yfov / 2).
-    projection: vec4<f32>,
-    // x: 1 = peel against the layer before; y: 1 = exit layer (normal stored facing away from the
-    // camera); z, w: unused.
-    flags: vec4<u32>,
-    pad: vec4<f32>,
+    // Width, height (pixels) and their inverses.
+    size: vec2<f32>,
+    inv_size: vec2<f32>,
+    // Near and far plane (m), aspect, tan(yfov / 2).
+    near: f32,
+    far: f32,
+    aspect: f32,
+    tan_half_fov: f32,
+    // 1: peel against the layer before.
+    peel: u32,
+    // 1: an exit layer (normal stored facing away from the camera).
+    exit: u32,
+    _pad0: u32,
+    _pad1: u32,
+    _pad2: vec4<f32>,
 }
 
 // World position of `pixel` at view depth `depth` in layer view `v`.
 fn layer_position(v: LayerView, pixel: vec2<u32>, depth: f32) -> vec3<f32> {
-    let p = (vec2<f32>(pixel) + 0.5) * v.size.zw;
+    let p = (vec2<f32>(pixel) + 0.5) * v.inv_size;
     let ndc = vec2<f32>(2.0 * p.x - 1.0, 1.0 - 2.0 * p.y);
-    let t = v.projection.w;
-    let view = vec3<f32>(ndc.x * t * v.projection.z, ndc.y * t, -1.0) * depth;
+    let t = v.tan_half_fov;
+    let view = vec3<f32>(ndc.x * t * v.aspect, ndc.y * t, -1.0) * depth;
     return (v.world_from_view * vec4<f32>(view, 1.0)).xyz;
 }
 
@@ -65,25 +91,25 @@ const PI: f32 = 3.14159265358979;
 
 // View-space position of pixel `pixel` (integer coordinates) at view depth `view_depth` (> 0, m).
 fn view_position(pixel: vec2<u32>, view_depth: f32) -> vec3<f32> {
-    let p = (vec2<f32>(pixel) + 0.5) * frame.size.zw;
+    let p = (vec2<f32>(pixel) + 0.5) * frame.inv_size;
     let ndc = vec2<f32>(2.0 * p.x - 1.0, 1.0 - 2.0 * p.y);
-    let t = frame.projection.w;
-    return vec3<f32>(ndc.x * t * frame.projection.z, ndc.y * t, -1.0) * view_depth;
+    let t = frame.tan_half_fov;
+    return vec3<f32>(ndc.x * t * frame.aspect, ndc.y * t, -1.0) * view_depth;
 }
 
 // Last frame's view-space position of pixel `pixel` at view depth `view_depth`.
 fn prev_view_position(pixel: vec2<u32>, view_depth: f32) -> vec3<f32> {
-    let p = (vec2<f32>(pixel) + 0.5) * frame.size.zw;
+    let p = (vec2<f32>(pixel) + 0.5) * frame.inv_size;
     let ndc = vec2<f32>(2.0 * p.x - 1.0, 1.0 - 2.0 * p.y);
-    let t = frame.prev_projection.w;
-    return vec3<f32>(ndc.x * t * frame.prev_projection.z, ndc.y * t, -1.0) * view_depth;
+    let t = frame.prev_tan_half_fov;
+    return vec3<f32>(ndc.x * t * frame.prev_aspect, ndc.y * t, -1.0) * view_depth;
 }
 
 // Pixel coordinates (continuous, centres at +0.5) of world point `p` through `clip_from_world`.
 fn to_screen(clip_from_world: mat4x4<f32>, p: vec3<f32>) -> vec2<f32> {
     let c = clip_from_world * vec4<f32>(p, 1.0);
     let ndc = c.xy / c.w;
-    return vec2<f32>(0.5 * ndc.x + 0.5, 0.5 - 0.5 * ndc.y) * frame.size.xy;
+    return vec2<f32>(0.5 * ndc.x + 0.5, 0.5 - 0.5 * ndc.y) * frame.size;
 }
 
 fn world_position(pixel: vec2<u32>, view_depth: f32) -> vec3<f32> {
@@ -109,7 +135,7 @@ fn same_surface(x: vec3<f32>, n: vec3<f32>, depth: f32, p: vec3<f32>, pn: vec3<f
     if abs(dot(p - x, n)) > max_plane * depth || dot(pn, n) < min_cos {
         return false;
     }
-    let footprint = depth * 2.0 * frame.projection.w * frame.size.w;
+    let footprint = depth * 2.0 * frame.tan_half_fov * frame.inv_size.y;
     let facing = max(abs(dot(n, normalize(frame.camera_position.xyz - x))), 0.1);
     let d = p - x;
     let reach = 2.5 * footprint / facing;
@@ -140,7 +166,7 @@ fn history_taps(prev_geometry: texture_2d<f32>, prev: vec2<f32>, x: vec3<f32>, n
         let o = tap_offset(k);
         let q = t.base + o;
         t.weights[k] = 0.0;
-        if any(q < vec2<i32>(0)) || any(q >= vec2<i32>(frame.size.xy)) {
+        if any(q < vec2<i32>(0)) || any(q >= vec2<i32>(frame.size)) {
             continue;
         }
         let g = textureLoad(prev_geometry, q, 0);

@@ -1,5 +1,5 @@
 // env.wgsl — environment bindings and lookups, prepended (after common.wgsl) to passes that read
-// the environment. Bindings 1..=4 are reserved for it in every such pass.
+// the environment. Its bindings are group 0 (crate::bindings::FrameBindings), shared by every pass.
 //
 // Lat-long convention (DESIGN.md, bit-for-bit the same as nearfield_scene::environment):
 //   v = acos(d.y) / π (row 0 = zenith), u = atan2(d.x, −d.z) / (2π) wrapped to [0, 1),
@@ -12,9 +12,11 @@
 @group(0) @binding(3) var env_sampler: sampler;
 // Order-3 SH projection of the radiance (16 RGB coefficients in .xyz), intensity applied.
 @group(0) @binding(4) var<uniform> env_sh: array<vec4<f32>, 16>;
+// The pre-convolved diffuse map E(n)/π (lat-long; Environment::irradiance_map).
+@group(0) @binding(5) var env_irradiance_map: texture_2d<f32>;
 
 fn env_uv(d: vec3<f32>) -> vec2<f32> {
-    let a = -frame.env_params.x;
+    let a = -frame.env_rotation;
     let s = sin(a);
     let c = cos(a);
     let r = normalize(vec3<f32>(c * d.x + s * d.z, d.y, -s * d.x + c * d.z));
@@ -25,13 +27,13 @@ fn env_uv(d: vec3<f32>) -> vec2<f32> {
 
 // Radiance from direction d at mip `lod` of the box-filtered chain.
 fn env_radiance_at(d: vec3<f32>, lod: f32) -> vec3<f32> {
-    return textureSampleLevel(env_radiance, env_sampler, env_uv(d), lod).rgb * frame.env_params.y;
+    return textureSampleLevel(env_radiance, env_sampler, env_uv(d), lod).rgb * frame.env_intensity;
 }
 
 // Prefiltered GGX radiance for perceptual roughness r.
 fn env_specular_at(d: vec3<f32>, roughness: f32) -> vec3<f32> {
-    let lod = roughness * (frame.env_params.z - 1.0);
-    return textureSampleLevel(env_specular, env_sampler, env_uv(d), lod).rgb * frame.env_params.y;
+    let lod = roughness * (frame.env_specular_mips - 1.0);
+    return textureSampleLevel(env_specular, env_sampler, env_uv(d), lod).rgb * frame.env_intensity;
 }
 
 // The 16 real SH basis functions (nearfield_scene::sh::basis16, same order and constants).

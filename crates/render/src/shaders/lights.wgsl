@@ -1,5 +1,8 @@
 // lights.wgsl — punctual lights and their shadow maps, shared by direct_lighting.wgsl and the
-// near-field techniques that occlude lights in screen space. Bindings 13..=16 are reserved for it.
+// near-field techniques that occlude lights in screen space. It declares no bindings: a pass that
+// includes it declares, in its group 1 (Rust: `LightBindings` fields of its binding struct),
+//   lights: array<GpuLight> (storage, read), shadow_clip_from_world: array<mat4x4<f32>>
+//   (storage, read), shadow_maps: texture_depth_2d_array, shadow_sampler: sampler_comparison.
 // `GpuLight` mirrors crate::gpu_scene::GpuLight; the irradiance formulas mirror
 // nearfield_scene::Light (falloff, spot cone, range window).
 
@@ -15,10 +18,6 @@ struct GpuLight {
     cone: vec4<f32>,
 }
 
-@group(0) @binding(13) var<storage, read> lights: array<GpuLight>;
-@group(0) @binding(14) var<storage, read> shadow_clip_from_world: array<mat4x4<f32>>;
-@group(0) @binding(15) var shadow_maps: texture_depth_2d_array;
-@group(0) @binding(16) var shadow_sampler: sampler_comparison;
 
 // Unshadowed irradiance on a surface facing the light (Light::normal_irradiance) and the unit
 // direction towards the light.
@@ -80,7 +79,7 @@ fn shadow_visibility(l: GpuLight, p: vec3<f32>, n: vec3<f32>) -> f32 {
             layer += cube_face(from_light);
         }
     }
-    let offset_p = p + n * (frame.post.z * texel_world);
+    let offset_p = p + n * (frame.shadow_normal_offset * texel_world);
     let c = shadow_clip_from_world[layer] * vec4<f32>(offset_p, 1.0);
     let ndc = c.xyz / c.w;
     let uv = vec2<f32>(ndc.x * 0.5 + 0.5, 0.5 - ndc.y * 0.5);
@@ -102,7 +101,7 @@ fn shadow_visibility(l: GpuLight, p: vec3<f32>, n: vec3<f32>) -> f32 {
 // occluder (SSDO paper Sec. 5, Fig. 8): the paper's b = (t/2)·tan α for a texel of world size t
 // at p and the angle α between n and the light, plus the two biases this shadow map adds — the
 // rasterizer's slope-scaled depth bias (2 texels of depth slope: 2t·tan α, shadow.rs) and the
-// receiver offset along n (frame.post.z texels: its component along the light, t·k·cos α).
+// receiver offset along n (frame.shadow_normal_offset texels: its component along the light, t·k·cos α).
 // tan α is capped at 10 (α ≈ 84°). 0 for an unshadowed light.
 fn shadow_bias_length(l: GpuLight, p: vec3<f32>, n: vec3<f32>) -> f32 {
     if l.cone.z < 0.0 {
@@ -117,5 +116,5 @@ fn shadow_bias_length(l: GpuLight, p: vec3<f32>, n: vec3<f32>) -> f32 {
     }
     let cos_a = clamp(dot(n, to_light), 1e-4, 1.0);
     let tan_a = min(sqrt(max(0.0, 1.0 - cos_a * cos_a)) / cos_a, 10.0);
-    return texel_world * (2.5 * tan_a + frame.post.z * cos_a);
+    return texel_world * (2.5 * tan_a + frame.shadow_normal_offset * cos_a);
 }

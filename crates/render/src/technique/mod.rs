@@ -8,32 +8,26 @@
 pub mod horizon;
 pub mod none;
 pub mod s3ho;
+pub mod samples;
 pub mod ssdo;
 
 use crate::RenderError;
 use crate::gpu_env::GpuEnvironment;
 use crate::gpu_scene::GpuScene;
+use crate::passes::FrameGroup;
 use crate::passes::shadow::ShadowPass;
 use crate::profiler::GpuProfiler;
+pub use crate::settings::{
+    Preset, Setting, SettingKind, TechniqueParams, keys, parse_integer, parse_number, parse_on_off,
+};
 use crate::targets::FrameTargets;
-
-/// Generic settings from the command line, interpreted by each technique: `--samples`,
-/// `--radius` and `--set key=value`.
-#[derive(Clone, Debug, Default)]
-pub struct TechniqueParams {
-    /// Samples per pixel (`--samples`); `None` = the technique's default.
-    pub samples: Option<u32>,
-    /// Near-field radius in metres (`--radius`, `inf` allowed); `None` = default.
-    pub radius: Option<f32>,
-    /// `--set key=value` pairs, in order.
-    pub set: Vec<(String, String)>,
-}
 
 /// What a technique may bind when it is created.
 pub struct TechniqueContext<'a> {
     pub device: &'a wgpu::Device,
     pub queue: &'a wgpu::Queue,
-    pub frame: &'a wgpu::Buffer,
+    /// Group 0 of every pass: the frame's uniforms and the environment.
+    pub frame_group: &'a FrameGroup,
     pub targets: &'a FrameTargets,
     pub env: &'a GpuEnvironment,
     pub scene: &'a GpuScene,
@@ -96,146 +90,6 @@ pub struct TechniqueDesc {
     pub presets: &'static [Preset],
 }
 
-/// The values a setting takes.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum SettingKind {
-    /// A number in `lo..=hi`; `integer`: whole numbers only; `log`: best shown on a log scale.
-    Number {
-        lo: f32,
-        hi: f32,
-        integer: bool,
-        log: bool,
-    },
-    /// on | off.
-    Toggle,
-    /// One of the listed words.
-    Choice(&'static [&'static str]),
-}
-
-/// One `--set key=value` setting of a technique.
-#[derive(Clone, Copy, Debug)]
-pub struct Setting {
-    pub key: &'static str,
-    pub kind: SettingKind,
-    /// The default, as typed after `key=`.
-    pub default: &'static str,
-    /// One line: what it does (units where it has them).
-    pub doc: &'static str,
-}
-
-impl Setting {
-    /// A number setting.
-    pub const fn number(
-        key: &'static str,
-        lo: f32,
-        hi: f32,
-        default: &'static str,
-        doc: &'static str,
-    ) -> Self {
-        Self::numeric(key, (lo, hi), (false, false), default, doc)
-    }
-
-    /// A whole-number setting.
-    pub const fn integer(
-        key: &'static str,
-        lo: f32,
-        hi: f32,
-        default: &'static str,
-        doc: &'static str,
-    ) -> Self {
-        Self::numeric(key, (lo, hi), (true, false), default, doc)
-    }
-
-    /// A number setting best shown on a log scale (radii, distances).
-    pub const fn log(
-        key: &'static str,
-        lo: f32,
-        hi: f32,
-        default: &'static str,
-        doc: &'static str,
-    ) -> Self {
-        Self::numeric(key, (lo, hi), (false, true), default, doc)
-    }
-
-    const fn numeric(
-        key: &'static str,
-        (lo, hi): (f32, f32),
-        (integer, log): (bool, bool),
-        default: &'static str,
-        doc: &'static str,
-    ) -> Self {
-        Setting {
-            key,
-            kind: SettingKind::Number {
-                lo,
-                hi,
-                integer,
-                log,
-            },
-            default,
-            doc,
-        }
-    }
-
-    pub const fn toggle(key: &'static str, default: &'static str, doc: &'static str) -> Self {
-        Setting {
-            key,
-            kind: SettingKind::Toggle,
-            default,
-            doc,
-        }
-    }
-
-    pub const fn choice(
-        key: &'static str,
-        options: &'static [&'static str],
-        default: &'static str,
-        doc: &'static str,
-    ) -> Self {
-        Setting {
-            key,
-            kind: SettingKind::Choice(options),
-            default,
-            doc,
-        }
-    }
-
-    /// Checks a typed value against the documented range; the technique's parser has the
-    /// last word (some settings constrain each other).
-    pub fn check(&self, value: &str) -> Result<(), String> {
-        match self.kind {
-            SettingKind::Number {
-                lo, hi, integer, ..
-            } => {
-                let x = parse_number(self.key, value, lo, hi)?;
-                if integer && x.fract() != 0.0 {
-                    return Err(format!("{}={value}: expected a whole number", self.key));
-                }
-                Ok(())
-            }
-            SettingKind::Toggle => parse_on_off(self.key, value).map(|_| ()),
-            SettingKind::Choice(options) => {
-                if options.contains(&value) {
-                    Ok(())
-                } else {
-                    Err(format!(
-                        "{}={value}: expected {}",
-                        self.key,
-                        options.join(", ")
-                    ))
-                }
-            }
-        }
-    }
-}
-
-/// A named set of settings (`quality=NAME`).
-#[derive(Clone, Copy, Debug)]
-pub struct Preset {
-    pub name: &'static str,
-    pub set: &'static [(&'static str, &'static str)],
-}
-
 /// Replaces `quality=NAME` in `params.set` by the preset's settings, placed first so that
 /// explicit settings (and `--samples`, `--radius`) refine it. A technique without presets keeps
 /// the key (and rejects it as unknown).
@@ -284,15 +138,6 @@ pub fn expand_presets(
         radius: params.radius,
         set: preset_set,
     })
-}
-
-/// The keys of a settings table, for error messages.
-pub fn keys(settings: &[Setting]) -> String {
-    settings
-        .iter()
-        .map(|s| s.key)
-        .collect::<Vec<_>>()
-        .join(", ")
 }
 
 /// Every technique, in the order shown to users.
@@ -361,54 +206,6 @@ pub fn reject_unknown_keys(
         }
     }
     Ok(())
-}
-
-/// `key=on|off` (also true/false, 1/0).
-pub fn parse_on_off(key: &str, v: &str) -> Result<bool, String> {
-    match v {
-        "on" | "true" | "1" => Ok(true),
-        "off" | "false" | "0" => Ok(false),
-        _ => Err(format!("{key}={v}: expected on or off")),
-    }
-}
-
-/// `key=number` within `lo..=hi`.
-pub fn parse_number(key: &str, v: &str, lo: f32, hi: f32) -> Result<f32, String> {
-    let x: f32 = v
-        .parse()
-        .map_err(|_| format!("{key}={v}: expected a number"))?;
-    if !(x.is_finite() && x >= lo && x <= hi) {
-        return Err(format!("{key}={v}: must be in {lo}..={hi}"));
-    }
-    Ok(x)
-}
-
-/// `key=whole number` within `lo..=hi`.
-pub fn parse_integer(key: &str, v: &str, lo: u32, hi: u32) -> Result<u32, String> {
-    let x = parse_number(key, v, lo as f32, hi as f32)?;
-    if x.fract() != 0.0 {
-        return Err(format!("{key}={v}: expected a whole number"));
-    }
-    Ok(x as u32)
-}
-
-/// Records one full-screen compute dispatch (8×8 groups over `size`) as its own timed pass.
-pub fn dispatch_screen(
-    encoder: &mut wgpu::CommandEncoder,
-    profiler: &mut GpuProfiler,
-    label: &'static str,
-    pipeline: &wgpu::ComputePipeline,
-    bind_group: &wgpu::BindGroup,
-    size: (u32, u32),
-) {
-    let (gx, gy) = crate::util::groups_8x8(size);
-    let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-        label: Some(label),
-        timestamp_writes: profiler.compute(label),
-    });
-    pass.set_pipeline(pipeline);
-    pass.set_bind_group(0, bind_group, &[]);
-    pass.dispatch_workgroups(gx, gy, 1);
 }
 
 /// A screen-sized texture a technique owns (storage + sampled + copy source).

@@ -1,23 +1,17 @@
-// screen_samples.wgsl — hemisphere samples and the screen-space visibility test shared by the
+// samples.wgsl — hemisphere samples and the screen-space visibility test shared by the
 // sampling techniques (ssao, ssdo, s3ho, ssbn), so that they differ only in what they do with the
-// samples. Prepended after common.wgsl (and env/lights where needed). Sources and deviations: see
-// technique/ssdo.wgsl, whose header documents the test.
-
-// Interleaved pattern: 16 sets × N samples (xyz: unit direction in the tangent frame, z up;
-// w: λ/R in (0, 1]).
-@group(0) @binding(6) var<storage, read> sample_sets: array<vec4<f32>>;
-@group(0) @binding(8) var gb_normal: texture_2d<f32>;
-@group(0) @binding(9) var gb_view_depth: texture_2d<f32>;
-// Extra layers (passes/layers.rs): views 0..2 = peeled layers 2..4 of the main camera, views
-// 3..6 = additional cameras; their normals (oriented: see layers.rs) and view depths.
-@group(0) @binding(40) var<storage, read> layer_views: array<LayerView>;
-@group(0) @binding(41) var peel_normal: texture_2d_array<f32>;
-@group(0) @binding(42) var peel_depth: texture_2d_array<f32>;
-@group(0) @binding(43) var cam_normal: texture_2d_array<f32>;
-@group(0) @binding(44) var cam_depth: texture_2d_array<f32>;
-// Their direct radiance (layers.rs `shade`), for the passes that gather senders.
-@group(0) @binding(45) var peel_radiance: texture_2d_array<f32>;
-@group(0) @binding(46) var cam_radiance: texture_2d_array<f32>;
+// samples. Prepended after common.wgsl and shaders/surface.wgsl (and env/lights where needed). Sources and deviations: see
+// technique/ssdo/mod.rs, whose header documents the test. The interleaved sample sets come from
+// samples.rs beside this file.
+//
+// It declares no bindings. A pass that includes it declares, in its group 1, under these names:
+//   sample_sets: array<vec4<f32>> (storage, read) — the interleaved pattern: 16 sets × N samples
+//     (xyz unit direction in the tangent frame, z up; w: λ/R in (0, 1]);
+//   gb_normal, gb_view_depth (as shaders/surface.wgsl);
+//   layer_views: array<LayerView> (storage, read) — extra layers (passes/layers.rs): views 0..2 =
+//     peeled layers 2..4 of the main camera, views 3..6 = additional cameras;
+//   peel_normal, peel_depth, cam_normal, cam_depth: texture_2d_array<f32> — their normals
+//     (oriented: see layers.rs) and view depths (unfilterable).
 
 const CAMERA_VIEW_BASE: u32 = 3u;
 // `Occlusion.source` of a blocker seen by additional camera c: CAMERA_SOURCE + c (peeled layer
@@ -36,21 +30,6 @@ struct SampleConfig {
     // Depth layers of the main view (1..=4) and additional cameras (0..=4) in the blocker test.
     layers: u32,
     cameras: u32,
-}
-
-struct Surface {
-    p: vec3<f32>,
-    n: vec3<f32>,
-    valid: bool,
-}
-
-fn surface_at(pixel: vec2<u32>) -> Surface {
-    var s: Surface;
-    let nw = textureLoad(gb_normal, pixel, 0);
-    s.valid = nw.w != 0.0;
-    s.n = normalize(nw.xyz);
-    s.p = world_position(pixel, textureLoad(gb_view_depth, pixel, 0).r);
-    return s;
 }
 
 // Interleaved gradient noise (Jimenez 2014), as the chapter uses it: a rotation in [0, π).
@@ -77,11 +56,11 @@ fn sample_local(i: u32, pixel: vec2<u32>, cfg: SampleConfig) -> vec4<f32> {
     let cos_e = 1.0 - alpha;
     let sin_e = sqrt(max(0.0, 1.0 - cos_e * cos_e));
     // Seed 0 gives the chapter's rotation exactly; other seeds turn it further.
-    let phi = PI * fract(interleaved_gradient_noise(pixel) + f32(hash(frame.counts.z) >> 8u) / 16777216.0 * f32(min(frame.counts.z, 1u)));
+    let phi = PI * fract(interleaved_gradient_noise(pixel) + f32(hash(frame.seed) >> 8u) / 16777216.0 * f32(min(frame.seed, 1u)));
     let theta = 2.0 * PI * alpha * (7.0 * f32(n) / 9.0) + phi;
     // Random length λ ∈ (0, 1] per pixel and sample (with the frame seed), λ = u^(1/3): the
     // sampling points are uniform in the hemisphere's volume.
-    let h = hash(pixel.x * 1973u + pixel.y * 9277u + i * 26699u + frame.counts.z * 103u);
+    let h = hash(pixel.x * 1973u + pixel.y * 9277u + i * 26699u + frame.seed * 103u);
     let lambda = pow((f32(h >> 8u) + 1.0) / 16777216.0, 1.0 / 3.0);
     return vec4<f32>(sin_e * cos(theta), sin_e * sin(theta), cos_e, lambda);
 }
@@ -152,7 +131,7 @@ struct ViewVerdict {
 }
 
 // The main view: the paper's test against the first layer (against its tangent plane, see
-// technique/ssdo.wgsl), and with depth peeling (paper Sec. 4) s is inside a solid only between
+// technique/ssdo/mod.rs), and with depth peeling (paper Sec. 4) s is inside a solid only between
 // an entry layer (1, 3) and the exit layer after it (2, 4): behind an exit face it lies in a gap
 // and is free (Fig. 5, sample A). Peeled normals face outwards (entry layers towards the camera,
 // exit layers away from it), so "inside" is "behind both faces' planes". A missing exit keeps
@@ -173,7 +152,7 @@ fn main_view_verdict(p: vec3<f32>, s: vec3<f32>, lambda: f32, cfg: SampleConfig)
         return v;
     }
     v.informed = true;
-    let q = vec2<u32>(uv * frame.size.xy);
+    let q = vec2<u32>(uv * frame.size);
     let surf = surface_at(q);
     // Chapter condition 2: background — open.
     if !surf.valid {
@@ -245,7 +224,7 @@ fn camera_verdict(p: vec3<f32>, s: vec3<f32>, lambda: f32, c: u32, cfg: SampleCo
         return v;
     }
     v.informed = true;
-    let q = vec2<u32>(uv * view.size.xy);
+    let q = vec2<u32>(uv * view.size);
     let surf = camera_surface(q, c);
     if !surf.valid || dot(s - surf.p, surf.n) >= -1e-4 * h.w {
         return v;
@@ -299,53 +278,4 @@ fn march_occlusion(p: vec3<f32>, omega: vec3<f32>, lambda: f32, steps: u32, cfg:
         }
     }
     return o;
-}
-
-// Distance d from a receiver to a sender patch and the product of their cosines cos θ_s cos θ_r
-// (0 when either surface faces away).
-fn patch_cosines(receiver: Surface, sender: Surface) -> vec2<f32> {
-    let to_sender = sender.p - receiver.p;
-    let d = length(to_sender);
-    if d <= 0.0 {
-        return vec2<f32>(0.0);
-    }
-    let dir = to_sender / d;
-    let cos_s = max(0.0, dot(sender.n, -dir));
-    let cos_r = max(0.0, dot(receiver.n, dir));
-    return vec2<f32>(d, cos_s * cos_r);
-}
-
-// Transfer from a sender patch (a pixel that occludes a sample, SSDO Sec. 3) to the receiver,
-// per unit sender radiance, in irradiance/π units: area · cos θ_s · cos θ_r · falloff /
-// (π · max(d, distance_clamp)²) with falloff 1 − d/R; 0 when either surface faces away.
-fn sender_transfer(receiver: Surface, sender: Surface, area: f32, radius: f32, distance_clamp: f32) -> f32 {
-    let g = patch_cosines(receiver, sender);
-    if g.y <= 0.0 {
-        return 0.0;
-    }
-    let falloff = max(0.0, 1.0 - g.x / radius);
-    let dc = max(distance_clamp, g.x);
-    return area * g.y * falloff / (PI * dc * dc);
-}
-
-// The part of a sender patch's transfer that a virtual point light at the patch, clamped at
-// `vpl_clamp`, leaves out: area · cos θ_s cos θ_r (1/max(d, distance_clamp)² −
-// 1/max(d, vpl_clamp)²) / π (0 beyond vpl_clamp; no falloff, since vpl_clamp ≤ R).
-fn clamp_remainder_transfer(receiver: Surface, sender: Surface, area: f32, distance_clamp: f32, vpl_clamp: f32) -> f32 {
-    let g = patch_cosines(receiver, sender);
-    if g.y <= 0.0 {
-        return 0.0;
-    }
-    let near = max(distance_clamp, g.x);
-    let far = max(vpl_clamp, g.x);
-    return area * g.y * max(0.0, 1.0 / (near * near) - 1.0 / (far * far)) / PI;
-}
-
-// Direct radiance of a sender that a peeled layer (e.g. the back face of a solid) or an
-// additional camera (e.g. a surface hidden in the main view) supplies: `occ.source` > 0.
-fn layer_sender_radiance(occ: Occlusion) -> vec3<f32> {
-    if occ.source < CAMERA_SOURCE {
-        return textureLoad(peel_radiance, occ.pixel, occ.source - 1u, 0).rgb;
-    }
-    return textureLoad(cam_radiance, occ.pixel, occ.source - CAMERA_SOURCE, 0).rgb;
 }

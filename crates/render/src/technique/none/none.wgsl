@@ -5,10 +5,10 @@
 // Every other technique writes the same three outputs with its own estimate; `none` is the
 // baseline that shows what the near field changes.
 
-@group(0) @binding(8) var gb_normal: texture_2d<f32>;
-@group(0) @binding(9) var out_ao: texture_storage_2d<r32float, write>;
-@group(0) @binding(10) var out_env_irradiance: texture_storage_2d<rgba16float, write>;
-@group(0) @binding(11) var out_indirect_irradiance: texture_storage_2d<rgba16float, write>;
+@group(1) @binding(0) var gb_normal: texture_2d<f32>;
+@group(1) @binding(1) var out_ao: texture_storage_2d<r32float, write>;
+@group(1) @binding(2) var out_env_irradiance: texture_storage_2d<rgba16float, write>;
+@group(1) @binding(3) var out_indirect_irradiance: texture_storage_2d<rgba16float, write>;
 
 @compute @workgroup_size(8, 8, 1)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {

@@ -1,0 +1,526 @@
+//! Technique settings, each declared once.
+//!
+//! A settings struct is written with [`declare_settings!`]: one line per setting gives its key
+//! (the field's name), type, default (as typed after `key=`), kind and range, unit and doc line.
+//! From that one declaration come the struct and its rustdoc, `Default`, the `--set` parser
+//! ([`Declared::set`]), the table that the viewer shows as sliders, checkboxes and lists
+//! ([`Declared::TABLE`]) and the README's settings tables ([`markdown_table`], checked by a
+//! test). Word-valued settings are enums written with [`choice!`].
+//!
+//! This module knows nothing of techniques or GPU resources; `technique/` builds on it.
+
+pub mod horizon;
+pub mod layers;
+pub mod s3ho;
+pub mod ssdo;
+
+/// Generic settings from the command line, interpreted by each technique: `--samples`,
+/// `--radius` and `--set key=value`.
+#[derive(Clone, Debug, Default)]
+pub struct TechniqueParams {
+    /// Samples per pixel (`--samples`); `None` = the technique's default.
+    pub samples: Option<u32>,
+    /// Near-field radius in metres (`--radius`, `inf` allowed); `None` = default.
+    pub radius: Option<f32>,
+    /// `--set key=value` pairs, in order.
+    pub set: Vec<(String, String)>,
+}
+
+/// The values a setting takes.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum SettingKind {
+    /// A number in `lo..=hi`; `integer`: whole numbers only; `log`: best shown on a log scale.
+    Number {
+        lo: f32,
+        hi: f32,
+        integer: bool,
+        log: bool,
+    },
+    /// on | off.
+    Toggle,
+    /// One of the listed words.
+    Choice(&'static [&'static str]),
+}
+
+/// One `--set key=value` setting of a technique.
+#[derive(Clone, Copy, Debug)]
+pub struct Setting {
+    pub key: &'static str,
+    pub kind: SettingKind,
+    /// The default, as typed after `key=`.
+    pub default: &'static str,
+    /// The unit of a number (`m`, `pixels`), empty where it has none.
+    pub unit: &'static str,
+    /// One line: what it does.
+    pub doc: &'static str,
+}
+
+impl Setting {
+    /// Checks a typed value against the documented range; the technique's parser has the
+    /// last word (some settings constrain each other).
+    pub fn check(&self, value: &str) -> Result<(), String> {
+        match self.kind {
+            SettingKind::Number {
+                lo, hi, integer, ..
+            } => {
+                let x = parse_number(self.key, value, lo, hi)?;
+                if integer && x.fract() != 0.0 {
+                    return Err(format!("{}={value}: expected a whole number", self.key));
+                }
+                Ok(())
+            }
+            SettingKind::Toggle => parse_on_off(self.key, value).map(|_| ()),
+            SettingKind::Choice(options) => {
+                if options.contains(&value) {
+                    Ok(())
+                } else {
+                    Err(format!(
+                        "{}={value}: expected {}",
+                        self.key,
+                        or_list(options)
+                    ))
+                }
+            }
+        }
+    }
+
+    /// The README's "unit / range" cell.
+    pub fn range_text(&self) -> String {
+        let unit = if self.unit.is_empty() {
+            String::new()
+        } else {
+            format!("{}, ", self.unit)
+        };
+        match self.kind {
+            SettingKind::Number { lo, hi, .. } => {
+                format!("{unit}{}..={}", number_text(lo), number_text(hi))
+            }
+            SettingKind::Toggle => "on \\| off".into(),
+            SettingKind::Choice(options) => options.join(" \\| "),
+        }
+    }
+}
+
+/// A bound as a reader writes it: 0.5, 16, 1e-4, 1e6.
+fn number_text(x: f32) -> String {
+    if x != 0.0 && !(1e-3..1e4).contains(&x.abs()) {
+        format!("{x:e}")
+    } else {
+        format!("{x}")
+    }
+}
+
+/// A named set of settings (`quality=NAME`).
+#[derive(Clone, Copy, Debug)]
+pub struct Preset {
+    pub name: &'static str,
+    pub set: &'static [(&'static str, &'static str)],
+}
+
+/// A value a setting holds: parsed from what follows `key=` under its kind.
+pub trait SettingValue: Sized + Copy {
+    fn parse(key: &str, value: &str, kind: &SettingKind) -> Result<Self, String>;
+}
+
+impl SettingValue for f32 {
+    fn parse(key: &str, value: &str, kind: &SettingKind) -> Result<Self, String> {
+        match *kind {
+            SettingKind::Number { lo, hi, .. } => parse_number(key, value, lo, hi),
+            _ => Err(format!("{key}: not a number setting")),
+        }
+    }
+}
+
+impl SettingValue for u32 {
+    fn parse(key: &str, value: &str, kind: &SettingKind) -> Result<Self, String> {
+        match *kind {
+            SettingKind::Number { lo, hi, .. } => parse_integer(key, value, lo as u32, hi as u32),
+            // Whole numbers from a list (`layers=1|2|4`).
+            SettingKind::Choice(options) if options.contains(&value) => value
+                .parse()
+                .map_err(|_| format!("{key}={value}: expected a whole number")),
+            SettingKind::Choice(options) => {
+                Err(format!("{key}={value}: expected {}", or_list(options)))
+            }
+            SettingKind::Toggle => Err(format!("{key}: not a number setting")),
+        }
+    }
+}
+
+impl SettingValue for bool {
+    fn parse(key: &str, value: &str, _kind: &SettingKind) -> Result<Self, String> {
+        parse_on_off(key, value)
+    }
+}
+
+/// A word-valued setting: an enum declared with [`choice!`].
+pub trait Choice: Sized + Copy + 'static {
+    /// Every word, in declaration order.
+    const WORDS: &'static [&'static str];
+    fn from_word(word: &str) -> Option<Self>;
+    fn word(self) -> &'static str;
+}
+
+/// `a`, `a or b`, `a, b or c`.
+pub fn or_list(words: &[&str]) -> String {
+    match words {
+        [] => String::new(),
+        [one] => one.to_string(),
+        [rest @ .., last] => format!("{} or {last}", rest.join(", ")),
+    }
+}
+
+/// Declares an enum whose variants are the words of a setting, with [`Choice`] and
+/// [`SettingValue`].
+#[macro_export]
+macro_rules! choice {
+    ($(#[$meta:meta])* pub enum $name:ident { $($(#[$vmeta:meta])* $variant:ident = $word:literal),+ $(,)? }) => {
+        $(#[$meta])*
+        #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+        pub enum $name { $($(#[$vmeta])* $variant),+ }
+
+        impl $crate::settings::Choice for $name {
+            const WORDS: &'static [&'static str] = &[$($word),+];
+            fn from_word(word: &str) -> Option<Self> {
+                match word { $($word => Some($name::$variant),)+ _ => None }
+            }
+            fn word(self) -> &'static str {
+                match self { $($name::$variant => $word),+ }
+            }
+        }
+
+        impl $crate::settings::SettingValue for $name {
+            fn parse(key: &str, value: &str, _kind: &$crate::settings::SettingKind) -> Result<Self, String> {
+                <$name as $crate::settings::Choice>::from_word(value).ok_or_else(|| {
+                    format!(
+                        "{key}={value}: expected {}",
+                        $crate::settings::or_list(<$name as $crate::settings::Choice>::WORDS)
+                    )
+                })
+            }
+        }
+    };
+}
+
+/// A settings struct whose fields are declared once (see the module's documentation).
+pub trait Declared: Default {
+    /// Every `--set` key with its kind, default, unit and doc line, in declaration order
+    /// (flattened groups included).
+    const TABLE: &'static [Setting];
+    /// Parses `key=value` into the field of that name; `Ok(false)` for a key it does not have.
+    fn set(&mut self, key: &str, value: &str) -> Result<bool, String>;
+}
+
+/// The [`SettingKind`] of a declaration line.
+#[macro_export]
+macro_rules! setting_kind {
+    (integer($lo:expr, $hi:expr), $ty:ty) => {
+        $crate::settings::SettingKind::Number { lo: $lo as f32, hi: $hi as f32, integer: true, log: false }
+    };
+    (number($lo:expr, $hi:expr), $ty:ty) => {
+        $crate::settings::SettingKind::Number { lo: $lo as f32, hi: $hi as f32, integer: false, log: false }
+    };
+    (log($lo:expr, $hi:expr), $ty:ty) => {
+        $crate::settings::SettingKind::Number { lo: $lo as f32, hi: $hi as f32, integer: false, log: true }
+    };
+    (toggle, $ty:ty) => {
+        $crate::settings::SettingKind::Toggle
+    };
+    (choice, $ty:ty) => {
+        $crate::settings::SettingKind::Choice(<$ty as $crate::settings::Choice>::WORDS)
+    };
+    (values($($v:literal),+), $ty:ty) => {
+        $crate::settings::SettingKind::Choice(&[$($v),+])
+    };
+}
+
+/// Declares a settings struct: one line per setting,
+/// `key: Type = "default", kind(range), "unit", "doc line";` where kind is `integer(lo, hi)`,
+/// `number(lo, hi)`, `log(lo, hi)` (a number best shown on a log scale), `toggle` (on | off),
+/// `choice` (an enum of [`choice!`]) or `values("1", "2")` (whole numbers from a list).
+/// `flatten { field: Type, ... }` embeds other declared structs, whose keys join this one's.
+#[macro_export]
+macro_rules! declare_settings {
+    (
+        $(#[$meta:meta])*
+        pub struct $name:ident {
+            $($field:ident : $ty:ty = $default:literal, $kind:ident $(($($arg:tt)*))?, $unit:literal, $doc:literal;)*
+        }
+        $(flatten { $($ffield:ident : $fty:ty),* $(,)? })?
+    ) => {
+        $(#[$meta])*
+        #[derive(Clone, Copy, Debug, PartialEq)]
+        pub struct $name {
+            $(
+                #[doc = concat!("`", stringify!($field), "`: ", $doc, ". Default ", $default, ".")]
+                pub $field: $ty,
+            )*
+            $($(
+                #[doc = concat!("The settings of [`", stringify!($fty), "`], under their own keys.")]
+                pub $ffield: $fty,
+            )*)?
+        }
+
+        impl $name {
+            /// This struct's own lines of the table (without flattened groups).
+            const OWN: &'static [$crate::settings::Setting] = &[$(
+                $crate::settings::Setting {
+                    key: stringify!($field),
+                    kind: $crate::setting_kind!($kind $(($($arg)*))?, $ty),
+                    default: $default,
+                    unit: $unit,
+                    doc: $doc,
+                },
+            )*];
+            const TABLE_LEN: usize = Self::OWN.len() $($(+ <$fty as $crate::settings::Declared>::TABLE.len())*)?;
+            const TABLE_ARRAY: [$crate::settings::Setting; Self::TABLE_LEN] = $crate::settings::concat(&[
+                Self::OWN,
+                $($(<$fty as $crate::settings::Declared>::TABLE,)*)?
+            ]);
+        }
+
+        impl Default for $name {
+            fn default() -> Self {
+                $name {
+                    $(
+                        $field: <$ty as $crate::settings::SettingValue>::parse(
+                            stringify!($field),
+                            $default,
+                            &$crate::setting_kind!($kind $(($($arg)*))?, $ty),
+                        )
+                        .expect("a declared default parses under its own kind"),
+                    )*
+                    $($($ffield: <$fty>::default(),)*)?
+                }
+            }
+        }
+
+        impl $crate::settings::Declared for $name {
+            const TABLE: &'static [$crate::settings::Setting] = &Self::TABLE_ARRAY;
+
+            fn set(&mut self, key: &str, value: &str) -> Result<bool, String> {
+                match key {
+                    $(
+                        stringify!($field) => {
+                            self.$field = <$ty as $crate::settings::SettingValue>::parse(
+                                key,
+                                value,
+                                &$crate::setting_kind!($kind $(($($arg)*))?, $ty),
+                            )?;
+                            Ok(true)
+                        }
+                    )*
+                    _ => {
+                        $($(
+                            if $crate::settings::Declared::set(&mut self.$ffield, key, value)? {
+                                return Ok(true);
+                            }
+                        )*)?
+                        Ok(false)
+                    }
+                }
+            }
+        }
+    };
+}
+
+/// Concatenates tables at compile time (`N` = the sum of their lengths).
+pub const fn concat<const N: usize>(tables: &[&[Setting]]) -> [Setting; N] {
+    const BLANK: Setting = Setting {
+        key: "",
+        kind: SettingKind::Toggle,
+        default: "",
+        unit: "",
+        doc: "",
+    };
+    let mut out = [BLANK; N];
+    let (mut t, mut n) = (0, 0);
+    while t < tables.len() {
+        let mut i = 0;
+        while i < tables[t].len() {
+            out[n] = tables[t][i];
+            n += 1;
+            i += 1;
+        }
+        t += 1;
+    }
+    assert!(n == N, "table length");
+    out
+}
+
+/// Applies `--samples` (to the field `samples` sets), `--radius` and `--set` on top of the
+/// defaults. `aliases` maps other spellings to keys (`samples` → `steps`). An unknown key is an
+/// error naming the known ones.
+pub fn apply<S: Declared>(
+    s: &mut S,
+    params: &TechniqueParams,
+    aliases: &[(&str, &str)],
+) -> Result<(), String> {
+    for (k, v) in &params.set {
+        let key = aliases
+            .iter()
+            .find(|(from, _)| from == k)
+            .map_or(k.as_str(), |(_, to)| to);
+        if !s.set(key, v)? {
+            let mut known = vec!["quality"];
+            known.extend(aliases.iter().map(|(from, _)| *from));
+            known.extend(S::TABLE.iter().map(|s| s.key));
+            return Err(format!(
+                "unknown setting '{k}' (known: {})",
+                known.join(", ")
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// The README table of a settings struct: key, meaning, unit / range, default.
+pub fn markdown_table(table: &[Setting], presets: &[Preset]) -> String {
+    let mut out = String::from("| key | meaning | unit / range | default |\n|---|---|---|---|\n");
+    if !presets.is_empty() {
+        let names: Vec<String> = presets
+            .iter()
+            .map(|p| {
+                let set: Vec<String> = p.set.iter().map(|(k, v)| format!("{k}={v}")).collect();
+                format!("`{}` {}", p.name, set.join(" "))
+            })
+            .collect();
+        out += &format!(
+            "| `quality` | preset: {}; explicit settings refine it | | |\n",
+            names.join(", ")
+        );
+    }
+    for s in table {
+        out += &format!(
+            "| `{}` | {} | {} | {} |\n",
+            s.key,
+            s.doc,
+            s.range_text(),
+            s.default
+        );
+    }
+    out
+}
+
+/// Every family of techniques that shares one settings struct: (README marker, the techniques,
+/// table, presets). The README's settings tables sit between `<!-- settings:ID -->` and
+/// `<!-- /settings:ID -->` and are [`markdown_table`] of these (a test checks; `cargo run -p
+/// nearfield-render --example settings_tables -- --write README.md` rewrites them).
+pub const FAMILIES: &[(&str, &str, &[Setting], &[Preset])] = &[
+    (
+        "ssdo",
+        "ssao, ssdo, ssdo-vpl, instant-radiosity",
+        ssdo::Settings::TABLE,
+        ssdo::PRESETS,
+    ),
+    ("s3ho", "s3ho, ssbn", s3ho::Settings::TABLE, s3ho::PRESETS),
+    (
+        "horizon",
+        "gtao, hbil",
+        horizon::Settings::TABLE,
+        horizon::PRESETS,
+    ),
+];
+
+/// Replaces every family's table in `readme` (between its markers) by the generated one; an
+/// error names a family whose markers are missing.
+pub fn rewrite_readme(readme: &str) -> Result<String, String> {
+    let mut out = readme.to_string();
+    for (id, _, table, presets) in FAMILIES {
+        let (open, close) = (
+            format!("<!-- settings:{id} -->\n"),
+            format!("<!-- /settings:{id} -->"),
+        );
+        let start = out
+            .find(&open)
+            .ok_or_else(|| format!("README: no {open:?} marker"))?
+            + open.len();
+        let end = out[start..]
+            .find(&close)
+            .ok_or_else(|| format!("README: no {close:?} marker"))?
+            + start;
+        out.replace_range(start..end, &markdown_table(table, presets));
+    }
+    Ok(out)
+}
+
+/// The keys of a settings table, for error messages.
+pub fn keys(settings: &[Setting]) -> String {
+    settings
+        .iter()
+        .map(|s| s.key)
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// `key=on|off` (also true/false, 1/0).
+pub fn parse_on_off(key: &str, v: &str) -> Result<bool, String> {
+    match v {
+        "on" | "true" | "1" => Ok(true),
+        "off" | "false" | "0" => Ok(false),
+        _ => Err(format!("{key}={v}: expected on or off")),
+    }
+}
+
+/// `key=number` within `lo..=hi`.
+pub fn parse_number(key: &str, v: &str, lo: f32, hi: f32) -> Result<f32, String> {
+    let x: f32 = v
+        .parse()
+        .map_err(|_| format!("{key}={v}: expected a number"))?;
+    if !(x.is_finite() && x >= lo && x <= hi) {
+        return Err(format!("{key}={v}: must be in {lo}..={hi}"));
+    }
+    Ok(x)
+}
+
+/// `key=whole number` within `lo..=hi`.
+pub fn parse_integer(key: &str, v: &str, lo: u32, hi: u32) -> Result<u32, String> {
+    let x = parse_number(key, v, lo as f32, hi as f32)?;
+    if x.fract() != 0.0 {
+        return Err(format!("{key}={v}: expected a whole number"));
+    }
+    Ok(x as u32)
+}
+
+/// Checks the sampling settings every screen-space sampling technique shares.
+pub fn check_sampling(samples: u32, radius: f32) -> Result<(), String> {
+    if !(1..=256).contains(&samples) {
+        return Err(format!("samples {samples}: must be in 1..=256"));
+    }
+    if !(radius.is_finite() && radius > 0.0) {
+        return Err(format!(
+            "radius {radius}: screen-space sampling needs a finite radius > 0"
+        ));
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn or_list_reads_like_a_sentence() {
+        assert_eq!(or_list(&["a"]), "a");
+        assert_eq!(or_list(&["a", "b"]), "a or b");
+        assert_eq!(or_list(&["a", "b", "c"]), "a, b or c");
+    }
+
+    #[test]
+    fn every_declared_default_parses() {
+        // Default::default() panics when a declared default does not parse under its kind.
+        let _ = ssdo::Settings::default();
+        let _ = s3ho::Settings::default();
+        let _ = horizon::Settings::default();
+        let _ = layers::LayerSettings::default();
+        for table in [
+            ssdo::Settings::TABLE,
+            s3ho::Settings::TABLE,
+            horizon::Settings::TABLE,
+        ] {
+            for s in table {
+                s.check(s.default).unwrap();
+            }
+        }
+    }
+}

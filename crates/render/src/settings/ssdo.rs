@@ -1,0 +1,103 @@
+//! Settings of `ssao`, `ssdo`, `ssdo-vpl` and `instant-radiosity` (technique/ssdo).
+
+use super::layers::LayerSettings;
+use super::{Preset, TechniqueParams};
+use crate::{choice, declare_settings};
+
+/// Virtual point lights at most (ssdo-vpl, instant-radiosity).
+pub const MAX_VPLS: u32 = 256;
+
+choice! {
+    /// How the environment term is formed.
+    pub enum Mode {
+        /// Luminance-weighted visible fraction × SH irradiance (the chapter's visibility mode).
+        Visibility = "visibility",
+        /// Σ (1/π) L_in V cos θ Δω from the environment at `lod` (radiance mode).
+        Radiance = "radiance",
+    }
+}
+
+choice! {
+    /// Sample pattern.
+    pub enum Pattern {
+        /// The chapter's stratified elevation, golden-ratio azimuth, IGN rotation, random λ.
+        Chapter = "chapter",
+        /// The paper's M×N texture: 4×4 sets of N low-discrepancy samples, one set per pixel.
+        Interleaved = "interleaved",
+    }
+}
+
+choice! {
+    /// What part of the ray towards a light is tested in screen space.
+    pub enum LightSegment {
+        /// Length R, on top of the shadow map (paper Sec. 4, Fig. 6).
+        Radius = "radius",
+        /// The length the shadow map's bias hides (paper Sec. 5, Fig. 8–9).
+        Bias = "bias",
+    }
+}
+
+declare_settings! {
+    /// Settings of `ssao` and `ssdo` (`--samples`, `--radius`, `--set key=value`).
+    pub struct Settings {
+        samples: u32 = "16", integer(1, 256), "", "directions per pixel N";
+        steps: u32 = "1", integer(1, 16), "", "points tested per direction at λ·k/steps, the first occluded one decides (ray marching); 1 = the paper's single point at λ";
+        radius: f32 = "0.5", log(1e-6, 1e6), "m", "hemisphere radius R (`--radius`; finite)";
+        mode: Mode = "visibility", choice, "", "`visibility`: luminance-weighted visible fraction × SH irradiance; `radiance`: Σ (1/π) L_in V cos θ Δω with Δω = 2π/N, L_in from the environment at `lod` (ssdo)";
+        bounce: bool = "on", toggle, "", "one indirect bounce (ssdo)";
+        pattern: Pattern = "interleaved", choice, "", "`chapter`: stratified elevation cos θ = 1 − α, golden-ratio azimuth 2π·α·(7N/9) + φ, φ from interleaved gradient noise, random λ; `interleaved`: the paper's M×N texture, 4×4 sets of N low-discrepancy samples, one set per pixel";
+        lod: f32 = "5", number(0, 16), "", "mip of the box-filtered environment read per sample (5: 32×16 for a 1k map)";
+        contrast: f32 = "1", number(0.1, 8), "", "exponent on the visibility (ssdo) or on 1 − scale·S (ssao)";
+        scale: f32 = "1", number(0, 4), "", "SSAO's scale on the occluded fraction S";
+        strength: f32 = "1", number(0, 16), "", "bounce strength (the patch-area correction the paper leaves to the user)";
+        distance_clamp: f32 = "0.1", log(0, 1e6), "m", "smallest sender distance used in 1/d²";
+        fade: f32 = "0.75", number(0, 1), "", "the smooth-step fade of blockers starts at `fade`·R and ends at R";
+        light_samples: u32 = "8", integer(0, 64), "", "points on each light's segment (ssdo; ssdo-vpl, instant-radiosity: also per virtual point light); 0 turns screen-space light occlusion off";
+        light_segment: LightSegment = "radius", choice, "", "`radius`: the segment P → P + R·l (paper Sec. 4); `bias`: P → P + b·l with b the length the light's shadow map cannot resolve (screen-space shadow correction, Sec. 5)";
+        vpls: u32 = "64", integer(1, MAX_VPLS), "", "virtual point lights (ssdo-vpl, instant-radiosity; draws of one texel merge)";
+        vpl_map: u32 = "512", integer(128, 2048), "", "shadow-map side per virtual point light (ssdo-vpl, instant-radiosity)";
+        rsm: u32 = "256", integer(16, 1024), "", "reflective-shadow-map side per light view (instant-radiosity)";
+        vpl_clamp: f32 = "0.5", log(0, 1e6), "m", "smallest distance in a virtual point light's 1/d² (instant-radiosity); with `bounce=on` it must be ≤ R, since the screen-space bounce adds back what it removes";
+        blur: bool = "on", toggle, "", "geometry-aware bilateral blur of visibility, direct and indirect radiance";
+        blur_radius: u32 = "4", integer(0, 16), "pixels", "blur half width (≥ 4 hides the 4×4 interleaving)";
+        blur_depth: f32 = "0.01", log(1e-4, 10), "", "tangent-plane distance, relative to view depth, at which a tap's weight falls by e";
+        blur_normal: f32 = "8", number(0, 128), "", "exponent on the normals' cosine in the blur";
+    }
+    flatten { layers: LayerSettings }
+}
+
+/// `quality` presets: directions per pixel.
+pub const PRESETS: &[Preset] = &[
+    Preset {
+        name: "low",
+        set: &[("samples", "8")],
+    },
+    Preset {
+        name: "medium",
+        set: &[("samples", "16")],
+    },
+    Preset {
+        name: "high",
+        set: &[("samples", "32")],
+    },
+    Preset {
+        name: "ultra",
+        set: &[("samples", "64")],
+    },
+];
+
+impl Settings {
+    /// Applies `--samples`, `--radius` and `--set` on top of the defaults.
+    pub fn from_params(params: &TechniqueParams) -> Result<Self, String> {
+        let mut s = Settings::default();
+        if let Some(n) = params.samples {
+            s.samples = n;
+        }
+        if let Some(r) = params.radius {
+            s.radius = r;
+        }
+        super::apply(&mut s, params, &[])?;
+        super::check_sampling(s.samples, s.radius)?;
+        Ok(s)
+    }
+}

@@ -1,0 +1,78 @@
+// materials.wgsl — the scene's vertices and materials as the raster passes read them (G-buffer,
+// depth peeling and additional cameras, reflective shadow maps). `GpuMaterial` mirrors
+// crate::gpu_scene::GpuMaterial. Textures live in two 2D arrays (sRGB and linear) whose layers are
+// resized to a common size; u32::MAX marks "no texture".
+//
+// It declares no bindings. A pass that includes it declares, in its group 1: materials:
+// array<GpuMaterial> (storage, read), srgb_textures and linear_textures: texture_2d_array<f32>,
+// material_sampler: sampler.
+
+struct GpuMaterial {
+    base_color: vec4<f32>,
+    // rgb: emissive factor (strength applied); w: alpha cutoff (< 0: opaque).
+    emissive: vec4<f32>,
+    // metallic, roughness, unused, unused.
+    params: vec4<f32>,
+    // Layers: base colour (sRGB array), metallic-roughness (linear array), emissive (sRGB array).
+    textures: vec4<u32>,
+}
+
+const NO_TEXTURE: u32 = 0xffffffffu;
+
+struct VertexIn {
+    @location(0) position: vec3<f32>,
+    @location(1) normal: vec3<f32>,
+    @location(2) uv: vec2<f32>,
+    @location(3) material: u32,
+}
+
+struct VertexOut {
+    @builtin(position) clip: vec4<f32>,
+    @location(0) world: vec3<f32>,
+    @location(1) normal: vec3<f32>,
+    @location(2) uv: vec2<f32>,
+    @location(3) @interpolate(flat) material: u32,
+}
+
+// A vertex seen through `clip_from_world` (the camera, a layer's view or a light's).
+fn transform_vertex(v: VertexIn, clip_from_world: mat4x4<f32>) -> VertexOut {
+    var o: VertexOut;
+    o.clip = clip_from_world * vec4<f32>(v.position, 1.0);
+    o.world = v.position;
+    o.normal = v.normal;
+    o.uv = v.uv;
+    o.material = v.material;
+    return o;
+}
+
+// What the material gives at a fragment: base colour, metallic, roughness, emission. Discards
+// fragments below the alpha cutoff.
+struct SurfaceMaterial {
+    base: vec3<f32>,
+    metallic: f32,
+    roughness: f32,
+    emissive: vec3<f32>,
+}
+
+fn surface_material(in: VertexOut, duv_dx: vec2<f32>, duv_dy: vec2<f32>) -> SurfaceMaterial {
+    let m = materials[in.material];
+    var base = m.base_color;
+    if m.textures.x != NO_TEXTURE {
+        base *= textureSampleGrad(srgb_textures, material_sampler, in.uv, m.textures.x, duv_dx, duv_dy);
+    }
+    if base.a < m.emissive.w {
+        discard;
+    }
+    var metallic = m.params.x;
+    var roughness = m.params.y;
+    if m.textures.y != NO_TEXTURE {
+        let mr = textureSampleGrad(linear_textures, material_sampler, in.uv, m.textures.y, duv_dx, duv_dy);
+        roughness *= mr.g;
+        metallic *= mr.b;
+    }
+    var emissive = m.emissive.rgb;
+    if m.textures.z != NO_TEXTURE {
+        emissive *= textureSampleGrad(srgb_textures, material_sampler, in.uv, m.textures.z, duv_dx, duv_dy).rgb;
+    }
+    return SurfaceMaterial(base.rgb, metallic, roughness, emissive);
+}

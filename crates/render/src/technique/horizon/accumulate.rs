@@ -1,0 +1,59 @@
+//! The `accumulate` kernel of gtao/hbil (accumulate.wgsl): the temporal running mean.
+
+use super::GEOMETRY_FORMAT;
+use crate::bindings::{PassLayout, kind};
+use crate::targets::HDR_FORMAT;
+use crate::util;
+
+pub fn source() -> String {
+    util::compose(&[
+        util::COMMON_WGSL,
+        util::ENV_WGSL,
+        include_str!("params.wgsl"),
+        include_str!("accumulate.wgsl"),
+    ])
+}
+
+crate::bind_group! {
+    /// Group 1 of `accumulate`.
+    pub struct AccumulateBindings: COMPUTE {
+        /// `HorizonParams`.
+        params: buffer = kind::UNIFORM,
+        /// World normal (rgba16float).
+        gb_normal: view = kind::TEXTURE,
+        /// View depth (r32float, m).
+        gb_view_depth: view = kind::TEXTURE_UNFILTERABLE,
+        /// This frame's (blurred) bent cone.
+        raw_cone: view = kind::TEXTURE,
+        /// This frame's near-field irradiance.
+        raw_near: view = kind::TEXTURE,
+        /// This frame's far field.
+        raw_far: view = kind::TEXTURE,
+        /// Last frame's accumulated bent cone.
+        prev_cone: view = kind::TEXTURE,
+        /// Last frame's accumulated near field.
+        prev_near: view = kind::TEXTURE,
+        /// Last frame's accumulated far field.
+        prev_far: view = kind::TEXTURE,
+        /// Last frame's geometry (rgba32float: normal, view depth).
+        prev_geometry: view = kind::TEXTURE_UNFILTERABLE,
+        /// This frame's accumulated bent cone.
+        acc_cone: view = kind::write(HDR_FORMAT),
+        /// … near field.
+        acc_near: view = kind::write(HDR_FORMAT),
+        /// … far field.
+        acc_far: view = kind::write(HDR_FORMAT),
+        /// This frame's geometry, for the next frame.
+        acc_geometry: view = kind::write(GEOMETRY_FORMAT),
+    }
+}
+
+/// The binding declaration the reflection test checks.
+pub fn pass_layout() -> PassLayout {
+    PassLayout {
+        name: "horizon/accumulate",
+        source: source(),
+        entry_point: "accumulate",
+        group1: AccumulateBindings::SLOTS,
+    }
+}

@@ -1,0 +1,538 @@
+//! `gtao` and `hbil`: horizon-based ambient occlusion (Jimenez et al. 2016) and horizon-based
+//! indirect lighting (Mayaux 2018). The formulas, sources and deviations follow below;
+//! each pass is one `.rs` + one `.wgsl` here: [`split`], [`search`], [`merge`], [`accumulate`],
+//! [`outputs`] (`params.wgsl` is shared).
+//!
+//! Frame (hbil; gtao skips the radiance steps):
+//!   reproject (scatter or gather last frame's diffuse radiance) → push/pull (fill holes) →
+//!   split (4×4 deinterleave, with interleaving) → horizon search → merge → bilateral blur →
+//!   accumulate (temporal, disocclusion-rejected) → outputs (ao, env-irradiance through the bent
+//!   cone, indirect-irradiance, and the diffuse radiance the next frame gathers).
+//! On the first frame and after a camera cut the source radiance is this frame's direct
+//! radiance (DESIGN.md's L_o: one bounce); afterwards it is last frame's diffuse radiance, so
+//! bounces add up over frames (HBIL Eq. 17).
+
+//!
+//! The derivations. Horizon-based techniques: `gtao` (Jimenez et al. 2016) and `hbil` (Mayaux
+//! 2018, "Horizon-Based Indirect Lighting"). Entry points, in frame order:
+//!   split     deinterleave depth, normal and source radiance into 4×4 quarter-resolution layers
+//!             (HBIL Sec. 3.3; only with interleaving)
+//!   horizon   the horizon search: AO, bent normal and near-field irradiance per pixel
+//!   merge     re-interleave the layers' results to full resolution (only with interleaving)
+//!   accumulate  temporal accumulation with disocclusion rejection (history ping-pong)
+//!   outputs   ao, env-irradiance (far field through the bent cone), indirect-irradiance and the
+//!             diffuse radiance kept for the next frame (HBIL Eq. 17)
+//!
+//! Horizon search (HBIL Sec. 1.1–1.3, 2.1). At the surface point x (normal n) the local camera
+//! frame is ω_o = normalize(eye − x), ω_x = normalize(Y × ω_o) with Y the camera's up vector,
+//! ω_y = ω_o × ω_x. Slice φ has the tangent direction D(φ) = cos φ ω_x + sin φ ω_y; the plane
+//! spanned by ω_o and D contains the eye, so it projects to a straight screen line through x,
+//! which is marched both ways. A sample s on it lies in the slice (up to the snap to a texel
+//! centre, removed by projecting s − x onto the slice plane), and its angle from ω_o is
+//! exactly cos θ = (s − x)·ω_o / |s − x| — the local-camera horizon angle that Sec. 1.3 obtains
+//! from the camera-space angle β by cos θ = (cos α z + sin α r)/√(r² + z²); computing it from the
+//! vector in the local frame is the same correction without the intermediate angles.
+//! Horizons are initialised from the normal (Sec. 2.1): with the projected normal
+//! n′ = (n·D, n·ω_o) at slice angle γ = atan2(n′x, n′y), θ_front = γ + π/2 and θ_back = γ − π/2,
+//! so they never fall below the tangent plane. Only samples within the near-field radius R count
+//! (DESIGN.md's V_R); over the last `falloff`·R their rise fades out (GTAO's falloff).
+//! Steps: t_j = r_px ((j + ξ)/steps)^power along the screen line, r_px the screen length of R at
+//! the point (capped by `max_pixels`), ξ a per-pixel, per-frame jitter; with 4×4 interleaving the
+//! march reads the pixel's own quarter-resolution layer, so offsets are multiples of 4 pixels.
+//!
+//! Slice integrals. For one slice with horizons θ0 ≤ 0 ≤ θ1 and n′ = (nx, ny) (unnormalised, so
+//! that slices weigh by the projected normal's length as in GTAO), every quantity is an integral
+//! ∫ f(θ) |sin θ| dθ over [θ0, θ1], and with
+//!     G(θ) = ½ nx (θ − sin θ cos θ) + ½ ny sin² θ
+//! (one antiderivative serves both sides because θ − sin θ cos θ is odd and sin² θ even):
+//!   AO_i   = G(θ1) + G(θ0)                                            (HBIL Eq. 10–11)
+//!   ñ′     = (Gx(θ1) + Gx(θ0), Gy(θ1) + Gy(θ0)),  Gx: n′ = (1, 0), Gy: n′ = (0, 1)   (Eq. 4–6)
+//!   ΔE     = L_d(x′) (G(θ_old) − G(θ_new)) when a sample raises a horizon from θ_old to θ_new
+//!                                                                       (Eq. 18, both sides)
+//! Deviation: the paper prints Eq. 6 and Eq. 11 as ½ nx [θ1 − θ0 + sin θ0 cos θ0 − sin θ1 cos θ1];
+//! with θ0 ≤ 0 that is not the integral of sin θ |sin θ| (it gives ñx = π/2 for the symmetric
+//! horizons ±π/2, where the true value is 0); the G form above is the exact integral and agrees
+//! with Jimenez et al.'s per-side â(h). AO = Σ_i AO_i / Σ_i U_i and E_near = Σ_i Σ ΔE / Σ_i U_i
+//! (both carry the 1/π of DESIGN.md's AOVs), bent normal = normalize(Σ_i D ñx + ω_o ñy), where
+//! U_i = G(θ_front,init) + G(θ_back,init) is slice i's value for an open hemisphere. The paper's
+//! mean (1/S) Σ AO_i is unbiased only over uniformly spread φ — a single tilted slice of an open
+//! plane gives |n′| (cos γ + γ sin γ) ≠ 1 — so with 2 slices per pixel a plane would read as
+//! noise around 1; the ratio (same expectation, since E[U_i] = 1) is exactly 1 there.
+//! Near field (Sec. 2.3, 3.4): L_d(x′) is read from the source radiance (this frame's direct
+//! radiance on the first frame, else last frame's diffuse radiance reprojected); a sample whose
+//! normal faces away from x is replaced by the last accepted one:
+//! L ← mix(L, L(x′), smoothstep(a, b, −n′·ω)), ω = normalize(x′ − x). Eq. 19's (1 − F0) is the
+//! receiver's, so it is applied once per pixel in `outputs`.
+//! Slice angles: pixel cell c (its position in a 4×4 block, Bayer order) and slice k of S take
+//! φ = π (k + (c + ξ_frame)/16) / S: the 16 cells × S slices of a block cover [0, π) evenly
+//! (32 directions for S = 2, the paper's setting), and ξ_frame (golden-ratio sequence) turns
+//! them from frame to frame for the temporal accumulation.
+
+pub mod accumulate;
+pub mod merge;
+pub mod outputs;
+pub mod params;
+pub mod search;
+pub mod split;
+
+use super::{FrameInfo, Technique, TechniqueContext, TechniqueDesc, TechniqueParams};
+use crate::RenderError;
+use crate::passes::bilateral_blur::{BilateralBlur, BlurChain, BlurSettings};
+use crate::passes::reproject::{History, ReprojectParams, Reprojection};
+use crate::passes::{ComputeStep, PingPong};
+use crate::profiler::GpuProfiler;
+use crate::settings::Declared;
+use crate::targets::HDR_FORMAT;
+use crate::util;
+use wgpu::util::DeviceExt;
+
+pub use crate::settings::horizon::{Aperture, Far, PRESETS, ReprojectMode, Settings, Source};
+pub use params::HorizonParams;
+
+/// The history geometry and split geometry: world normal xyz, view depth w.
+pub const GEOMETRY_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
+
+pub const GTAO: TechniqueDesc = TechniqueDesc {
+    name: "gtao",
+    summary: "ground-truth AO: horizon search in slices, cosine-weighted AO, bent normal; ao × SH irradiance",
+    create: create_gtao,
+    settings: <Settings as Declared>::TABLE,
+    presets: PRESETS,
+};
+
+pub const HBIL: TechniqueDesc = TechniqueDesc {
+    name: "hbil",
+    summary: "horizon-based indirect lighting: bent cones, far field through the cone, near-field bounces from reprojected radiance",
+    create: create_hbil,
+    settings: <Settings as Declared>::TABLE,
+    presets: PRESETS,
+};
+
+/// The 4×4 deinterleaved layers (with interleaving): split by radiance source (direct side 0,
+/// side 1, reprojected), search and merge.
+struct Split {
+    split_bg: [wgpu::BindGroup; 3],
+    search_bg: wgpu::BindGroup,
+    merge_bg: wgpu::BindGroup,
+    layer_size: (u32, u32),
+}
+
+struct Horizon {
+    name: &'static str,
+    hbil: bool,
+    size: (u32, u32),
+    source: Source,
+    split_step: ComputeStep,
+    search_step: ComputeStep,
+    merge_step: ComputeStep,
+    accumulate_step: ComputeStep,
+    outputs_step: ComputeStep,
+    /// With interleaving.
+    split: Option<Split>,
+    /// Without interleaving, the search's bind group by radiance source (direct side 0, side 1,
+    /// reprojected).
+    full_bg: Vec<wgpu::BindGroup>,
+    reprojection: Option<Reprojection>,
+    blur: Option<(BilateralBlur, Vec<BlurChain>)>,
+    accumulate_bg: PingPong<wgpu::BindGroup>,
+    outputs_bg: PingPong<wgpu::BindGroup>,
+    extras: PingPong<Vec<(&'static str, wgpu::Texture)>>,
+    _textures: Vec<wgpu::Texture>,
+    _params: wgpu::Buffer,
+}
+
+fn create_gtao(
+    ctx: &TechniqueContext,
+    params: &TechniqueParams,
+) -> Result<Box<dyn Technique>, RenderError> {
+    create(ctx, params, false)
+}
+
+fn create_hbil(
+    ctx: &TechniqueContext,
+    params: &TechniqueParams,
+) -> Result<Box<dyn Technique>, RenderError> {
+    create(ctx, params, true)
+}
+
+fn array_view(t: &wgpu::Texture) -> wgpu::TextureView {
+    t.create_view(&wgpu::TextureViewDescriptor {
+        dimension: Some(wgpu::TextureViewDimension::D2Array),
+        ..Default::default()
+    })
+}
+
+fn create(
+    ctx: &TechniqueContext,
+    tp: &TechniqueParams,
+    hbil: bool,
+) -> Result<Box<dyn Technique>, RenderError> {
+    let name = if hbil { "hbil" } else { "gtao" };
+    let settings = Settings::from_params(tp).map_err(|msg| RenderError::Setting {
+        technique: name.into(),
+        msg,
+    })?;
+    let device = ctx.device;
+    let frame = ctx.frame_group;
+    let t = ctx.targets;
+    let size = t.size;
+    let p = settings.params(hbil, size);
+    let params = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some("horizon params"),
+        contents: bytemuck::bytes_of(&p),
+        usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+    });
+    let full = |label: &str, format| super::screen_texture(device, size, label, format);
+    let raw_cone = full("horizon cone", HDR_FORMAT);
+    let raw_near = full("horizon near", HDR_FORMAT);
+    let raw_far = full("horizon far", HDR_FORMAT);
+    let pair = |label: &str, format| {
+        [
+            full(&format!("{label} 0"), format),
+            full(&format!("{label} 1"), format),
+        ]
+    };
+    let hist_far = pair("far history", HDR_FORMAT);
+    let hist_cone = pair("cone history", HDR_FORMAT);
+    let hist_near = pair("near history", HDR_FORMAT);
+    let hist_geo = pair("geometry history", GEOMETRY_FORMAT);
+    let feedback = pair("diffuse radiance", HDR_FORMAT);
+    let view = |t: &wgpu::Texture| t.create_view(&Default::default());
+    let hist_geo_views = [view(&hist_geo[0]), view(&hist_geo[1])];
+    let feedback_views = [view(&feedback[0]), view(&feedback[1])];
+
+    let reprojection = (hbil && settings.source == Source::Previous).then(|| {
+        Reprojection::new(
+            device,
+            frame,
+            t,
+            [
+                History {
+                    geometry: &hist_geo_views[0],
+                    radiance: &feedback_views[0],
+                },
+                History {
+                    geometry: &hist_geo_views[1],
+                    radiance: &feedback_views[1],
+                },
+            ],
+            settings.reprojection,
+            ReprojectParams {
+                reject_depth: settings.reject_depth,
+                reject_normal: settings.reject_normal,
+                _pad0: 0.0,
+                _pad1: 0.0,
+            },
+        )
+    });
+    // Radiance sources by index: this frame's direct radiance (side 0, side 1), reprojected.
+    let direct_views = [&t.direct_radiance[0].view, &t.direct_radiance[1].view];
+    let reprojected_view = reprojection
+        .as_ref()
+        .map(|r| &r.output)
+        .unwrap_or(direct_views[0]);
+    let source_views = [direct_views[0], direct_views[1], reprojected_view];
+
+    let search_layout = search::SearchBindings::layout(device);
+    let search_bg = |depth: &wgpu::TextureView,
+                     normal: &wgpu::TextureView,
+                     radiance: &wgpu::TextureView,
+                     out: [&wgpu::TextureView; 3]| {
+        search::SearchBindings {
+            params: &params,
+            in_depth: depth,
+            in_normal: normal,
+            in_radiance: radiance,
+            out_cone: out[0],
+            out_near: out[1],
+            out_far: out[2],
+        }
+        .bind_group(device, &search_layout)
+    };
+    let mut textures = Vec::new();
+    let split_layout = split::SplitBindings::layout(device);
+    let merge_layout = merge::MergeBindings::layout(device);
+    let mut full_bg = Vec::new();
+    let split = if settings.interleaved {
+        let layer_size = (p.layer_width, p.layer_height);
+        let layered =
+            |label: &str, format| super::layered_texture(device, layer_size, 16, label, format);
+        let s_geometry = layered("split geometry", GEOMETRY_FORMAT);
+        let s_radiance = layered("split radiance", HDR_FORMAT);
+        let l_cone = layered("split cone", HDR_FORMAT);
+        let l_near = layered("split near", HDR_FORMAT);
+        let l_far = layered("split far", HDR_FORMAT);
+        let (vg, vr, vc, vnear, vfar) = (
+            array_view(&s_geometry),
+            array_view(&s_radiance),
+            array_view(&l_cone),
+            array_view(&l_near),
+            array_view(&l_far),
+        );
+        let split_bg = |radiance: &wgpu::TextureView| {
+            split::SplitBindings {
+                params: &params,
+                full_depth: &t.view_depth.view,
+                full_normal: &t.normal.view,
+                full_radiance: radiance,
+                split_geometry: &vg,
+                split_radiance: &vr,
+            }
+            .bind_group(device, &split_layout)
+        };
+        let s = Split {
+            split_bg: [
+                split_bg(source_views[0]),
+                split_bg(source_views[1]),
+                split_bg(source_views[2]),
+            ],
+            merge_bg: merge::MergeBindings {
+                layered_cone: &vc,
+                layered_near: &vnear,
+                layered_far: &vfar,
+                merged_cone: &view(&raw_cone),
+                merged_near: &view(&raw_near),
+                merged_far: &view(&raw_far),
+            }
+            .bind_group(device, &merge_layout),
+            // Depth is read from the geometry's w; `in_depth` only has to be bound.
+            search_bg: search_bg(&vg, &vg, &vr, [&vc, &vnear, &vfar]),
+            layer_size,
+        };
+        textures.extend([s_geometry, s_radiance, l_cone, l_near, l_far]);
+        Some(s)
+    } else {
+        let as_array = |t: &wgpu::Texture| array_view(t);
+        let (depth, normal) = (as_array(&t.view_depth.texture), as_array(&t.normal.texture));
+        let (cone, near, far) = (as_array(&raw_cone), as_array(&raw_near), as_array(&raw_far));
+        let source_textures = [
+            &t.direct_radiance[0].texture,
+            &t.direct_radiance[1].texture,
+            reprojection
+                .as_ref()
+                .map(|r| &r.output_texture)
+                .unwrap_or(&t.direct_radiance[0].texture),
+        ];
+        for s in source_textures {
+            let radiance = s.create_view(&wgpu::TextureViewDescriptor {
+                dimension: Some(wgpu::TextureViewDimension::D2Array),
+                base_mip_level: 0,
+                mip_level_count: Some(1),
+                ..Default::default()
+            });
+            full_bg.push(search_bg(&depth, &normal, &radiance, [&cone, &near, &far]));
+        }
+        None
+    };
+
+    let blur = settings.blur.then(|| {
+        let b = BilateralBlur::new(
+            device,
+            frame,
+            BlurSettings {
+                enabled: true,
+                radius: settings.blur_radius,
+                depth_sigma: 0.01,
+                normal_power: 8.0,
+            },
+        );
+        let scratch = full("horizon blur scratch", HDR_FORMAT);
+        let cone_out = full("horizon cone blurred", HDR_FORMAT);
+        let near_out = full("horizon near blurred", HDR_FORMAT);
+        let far_out = full("horizon far blurred", HDR_FORMAT);
+        let chain = |from: &wgpu::Texture, to: &wgpu::Texture| {
+            b.chain(device, t, &view(from), &view(&scratch), &view(to))
+        };
+        let mut chains = vec![chain(&raw_cone, &cone_out)];
+        if hbil {
+            chains.push(chain(&raw_near, &near_out));
+        }
+        if p.far == 3 {
+            chains.push(chain(&raw_far, &far_out));
+        }
+        (b, chains, [scratch, cone_out, near_out, far_out])
+    });
+    let (cone_in, near_in, far_in) = match &blur {
+        Some((_, _, tex)) => (
+            view(&tex[1]),
+            if hbil { view(&tex[2]) } else { view(&raw_near) },
+            if p.far == 3 {
+                view(&tex[3])
+            } else {
+                view(&raw_far)
+            },
+        ),
+        None => (view(&raw_cone), view(&raw_near), view(&raw_far)),
+    };
+
+    let accumulate_layout = accumulate::AccumulateBindings::layout(device);
+    let accumulate_bg = PingPong::from_fn(|side| {
+        let prev = 1 - side;
+        accumulate::AccumulateBindings {
+            params: &params,
+            gb_normal: &t.normal.view,
+            gb_view_depth: &t.view_depth.view,
+            raw_cone: &cone_in,
+            raw_near: &near_in,
+            raw_far: &far_in,
+            prev_cone: &view(&hist_cone[prev]),
+            prev_near: &view(&hist_near[prev]),
+            prev_far: &view(&hist_far[prev]),
+            prev_geometry: &hist_geo_views[prev],
+            acc_cone: &view(&hist_cone[side]),
+            acc_near: &view(&hist_near[side]),
+            acc_far: &view(&hist_far[side]),
+            acc_geometry: &hist_geo_views[side],
+        }
+        .bind_group(device, &accumulate_layout)
+    });
+    let outputs_layout = outputs::OutputsBindings::layout(device);
+    let outputs_bg = PingPong::from_fn(|side| {
+        outputs::OutputsBindings {
+            params: &params,
+            gb_normal: &t.normal.view,
+            gb_albedo: &t.albedo.view,
+            gb_material: &t.material.view,
+            gb_emissive: &t.emissive.view,
+            light_irradiance: &t.light_irradiance.view,
+            final_cone: &view(&hist_cone[side]),
+            final_near: &view(&hist_near[side]),
+            final_far: &view(&hist_far[side]),
+            out_ao: &t.ao.view,
+            out_env: &t.env_irradiance.view,
+            out_indirect: &t.indirect_irradiance.view,
+            out_feedback: &feedback_views[side],
+        }
+        .bind_group(device, &outputs_layout)
+    });
+    let extras = PingPong::from_fn(|side| {
+        let mut e = vec![
+            ("bent-cone", hist_cone[side].clone()),
+            ("near-history", hist_near[side].clone()),
+            ("far-history", hist_far[side].clone()),
+            ("feedback", feedback[side].clone()),
+        ];
+        if let Some(r) = &reprojection {
+            e.push(("reprojected", r.raw.clone()));
+            e.push(("radiance-source", r.output_texture.clone()));
+        }
+        e
+    });
+    let step = |label: &'static str, source: String, entry: &str, layout| {
+        let module = crate::passes::shader_module(device, label, &source);
+        ComputeStep::new(device, label, &module, entry, frame, layout, &[])
+    };
+    let technique = Horizon {
+        name,
+        hbil,
+        size,
+        source: settings.source,
+        split_step: step("split", split::source(), "split", &split_layout),
+        search_step: step(name, search::source(), "horizon", &search_layout),
+        merge_step: step("merge", merge::source(), "merge", &merge_layout),
+        accumulate_step: step(
+            "accumulate",
+            accumulate::source(),
+            "accumulate",
+            &accumulate_layout,
+        ),
+        outputs_step: step("outputs", outputs::source(), "outputs", &outputs_layout),
+        split,
+        full_bg,
+        accumulate_bg,
+        outputs_bg,
+        extras,
+        reprojection,
+        blur: blur.map(|(b, chains, tex)| {
+            textures.extend(tex);
+            (b, chains)
+        }),
+        _textures: {
+            textures.extend([raw_cone, raw_near, raw_far]);
+            textures.extend(hist_far);
+            textures.extend(hist_cone);
+            textures.extend(hist_near);
+            textures.extend(hist_geo);
+            textures.extend(feedback);
+            textures
+        },
+        _params: params,
+    };
+    Ok(Box::new(technique))
+}
+
+impl Technique for Horizon {
+    fn name(&self) -> &'static str {
+        self.name
+    }
+
+    fn encode(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        profiler: &mut GpuProfiler,
+        frame: FrameInfo,
+    ) {
+        let side = frame.side();
+        let reproject = self.hbil && self.source == Source::Previous && frame.history;
+        let source = if reproject { 2 } else { side };
+        if reproject && let Some(r) = &self.reprojection {
+            r.encode(encoder, profiler, frame.index);
+        }
+        match &self.split {
+            Some(s) => {
+                let (gx, gy) = util::groups_8x8(s.layer_size);
+                {
+                    let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                        label: Some("split"),
+                        timestamp_writes: profiler.compute("split"),
+                    });
+                    self.split_step
+                        .dispatch(&mut pass, &s.split_bg[source], (gx, gy, 1));
+                }
+                {
+                    let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                        label: Some(self.name),
+                        timestamp_writes: profiler.compute(self.name),
+                    });
+                    // The 16 layers stacked vertically (see search.wgsl).
+                    self.search_step
+                        .dispatch(&mut pass, &s.search_bg, (gx, gy * 16, 1));
+                }
+                self.merge_step
+                    .encode(encoder, profiler, &s.merge_bg, self.size);
+            }
+            None => self
+                .search_step
+                .encode(encoder, profiler, &self.full_bg[source], self.size),
+        }
+        if let Some((blur, chains)) = &self.blur {
+            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                label: Some("blur"),
+                timestamp_writes: profiler.compute("blur"),
+            });
+            for chain in chains {
+                blur.dispatch(&mut pass, chain, self.size);
+            }
+        }
+        let (gx, gy) = util::groups_8x8(self.size);
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some("temporal"),
+            timestamp_writes: profiler.compute("temporal"),
+        });
+        self.accumulate_step.dispatch(
+            &mut pass,
+            self.accumulate_bg.current(frame.index),
+            (gx, gy, 1),
+        );
+        self.outputs_step
+            .dispatch(&mut pass, self.outputs_bg.current(frame.index), (gx, gy, 1));
+    }
+
+    fn extras(&self, frame: FrameInfo) -> Vec<(&'static str, &wgpu::Texture)> {
+        self.extras
+            .current(frame.index)
+            .iter()
+            .map(|(n, t)| (*n, t))
+            .collect()
+    }
+}

@@ -1,0 +1,51 @@
+// params.wgsl — `HorizonParams` and the per-pixel noise shared by the horizon passes
+// (technique/horizon/mod.rs holds the derivations).
+
+struct HorizonParams {
+    radius: f32,
+    slices: u32,
+    steps: u32,
+    falloff: f32,
+    max_pixels: f32,
+    // 4 with interleaving (layers of 1/4 × 1/4 resolution), else 1.
+    scale: u32,
+    // 1: gather near-field radiance (hbil).
+    indirect: u32,
+    step_power: f32,
+    reject_a: f32,
+    reject_b: f32,
+    // Layer size in texels (the image size without interleaving).
+    layer_width: u32,
+    layer_height: u32,
+    // 1: temporal accumulation.
+    temporal: u32,
+    max_history: f32,
+    // Far field: 0 ao × SH irradiance (gtao), 1 SH through the bent cone, 2 pre-convolved map
+    // × F0(ao).
+    far: u32,
+    // 1: (1 − F0) on the near-field irradiance (HBIL Eq. 19).
+    fresnel: u32,
+    // History rejection: tangent-plane distance relative to view depth, normal cosine.
+    reject_depth: f32,
+    reject_normal: f32,
+    // Cone aperture from ao: 0 cos α = 1 − ao (Eq. 12), 1 cos α = √(1 − ao) (matched).
+    aperture: u32,
+    // Sub-arcs per side of the environment integration (far = 3).
+    far_steps: u32,
+}
+
+
+const BAYER4: array<u32, 16> = array<u32, 16>(0u, 8u, 2u, 10u, 12u, 4u, 14u, 6u, 3u, 11u, 1u, 9u, 15u, 7u, 13u, 5u);
+
+fn cell_index(pixel: vec2<u32>) -> u32 {
+    return BAYER4[(pixel.x % 4u) + 4u * (pixel.y % 4u)];
+}
+
+fn golden(i: u32) -> f32 {
+    return fract(f32(i % 4096u) * 0.618034);
+}
+
+fn noise(pixel: vec2<u32>) -> f32 {
+    let c = vec2<f32>(pixel) + 0.5;
+    return fract(52.9829189 * fract(0.06711056 * c.x + 0.00583715 * c.y));
+}

@@ -1,0 +1,101 @@
+//! `none`: no occlusion (ao = 1), unoccluded SH environment irradiance, no indirect light.
+//! The baseline every other technique is compared with. See none.wgsl.
+
+use super::{Technique, TechniqueContext, TechniqueDesc, TechniqueParams};
+use crate::RenderError;
+use crate::bindings::{PassLayout, kind};
+use crate::passes::{ComputeStep, ScreenPass};
+use crate::profiler::GpuProfiler;
+use crate::targets::{AO_FORMAT, HDR_FORMAT};
+use crate::util;
+
+pub const SHADER: &str = include_str!("none.wgsl");
+
+pub fn source() -> String {
+    util::compose(&[util::COMMON_WGSL, util::ENV_WGSL, SHADER])
+}
+
+crate::bind_group! {
+    /// Group 1 of `none`: the normal in, the three outputs every technique writes.
+    pub struct NoneBindings: COMPUTE {
+        /// World normal (rgba16float, xyz unit).
+        gb_normal: view = kind::TEXTURE,
+        /// `ao` (r32float): 1.
+        out_ao: view = kind::write(AO_FORMAT),
+        /// `env-irradiance` (rgba16float): SH irradiance at the normal.
+        out_env_irradiance: view = kind::write(HDR_FORMAT),
+        /// `indirect-irradiance` (rgba16float): 0.
+        out_indirect_irradiance: view = kind::write(HDR_FORMAT),
+    }
+}
+
+/// The binding declaration the reflection test checks.
+pub fn pass_layout() -> PassLayout {
+    PassLayout {
+        name: "technique/none",
+        source: source(),
+        entry_point: "main",
+        group1: NoneBindings::SLOTS,
+    }
+}
+
+pub const DESC: TechniqueDesc = TechniqueDesc {
+    name: "none",
+    summary: "no occlusion: ao = 1, unoccluded SH environment irradiance, no indirect light",
+    create,
+    settings: &[],
+    presets: &[],
+};
+
+struct NoneTechnique {
+    pass: ScreenPass,
+    size: (u32, u32),
+}
+
+fn create(
+    ctx: &TechniqueContext,
+    params: &TechniqueParams,
+) -> Result<Box<dyn Technique>, RenderError> {
+    super::reject_unknown_keys("none", params, &[])?;
+    let device = ctx.device;
+    let t = ctx.targets;
+    let layout = NoneBindings::layout(device);
+    let module = crate::passes::shader_module(device, "none", &source());
+    let own = NoneBindings {
+        gb_normal: &t.normal.view,
+        out_ao: &t.ao.view,
+        out_env_irradiance: &t.env_irradiance.view,
+        out_indirect_irradiance: &t.indirect_irradiance.view,
+    }
+    .bind_group(device, &layout);
+    Ok(Box::new(NoneTechnique {
+        pass: ScreenPass::single(
+            ComputeStep::new(
+                device,
+                "none",
+                &module,
+                "main",
+                ctx.frame_group,
+                &layout,
+                &[],
+            ),
+            own,
+        ),
+        size: t.size,
+    }))
+}
+
+impl Technique for NoneTechnique {
+    fn name(&self) -> &'static str {
+        "none"
+    }
+
+    fn encode(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        profiler: &mut GpuProfiler,
+        _frame: super::FrameInfo,
+    ) {
+        self.pass.encode(encoder, profiler, self.size, 0);
+    }
+}

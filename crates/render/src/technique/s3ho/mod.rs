@@ -1,0 +1,311 @@
+//! `s3ho` (screen-space spherical-harmonic occlusion, Herholz et al. 2012, with its indirect
+//! extension) and `ssbn` (screen-space bent normals and cones, Klehm et al. 2011, the paper's
+//! comparison). The equations, the storage and the deviations follow below.
+//!
+//! Frame: `sample_pass` (16 packed SH coefficients, bent normal/cone, raw ao, raw indirect) →
+//! s3ho: 8×8 bilateral filter of the coefficients; ssbn: bilateral blur of bent cone and ao →
+//! `shade_pass` (env-irradiance, light-irradiance, ao) → s3ho indirect: bilateral blur →
+//! `indirect-irradiance`.
+//!
+//! The derivations. Screen-space spherical-harmonic occlusion (`s3ho`, Herholz, Schairer,
+//! Schilling & Straßer, "Screen Space Spherical Harmonic Occlusion", seed 002/000: Eq. 2–5) and
+//! screen-space bent normals and cones (`ssbn`, Klehm et al. 2011) as its baseline. Both use the samples and
+//! visibility test of technique/samples.wgsl.
+//!
+//! SH: real basis of nearfield_scene::sh (Sloan's "Stupid SH Tricks" polynomials without the
+//! Condon–Shortley phase, polar axis world z, index l(l+1)+m, orthonormality tested there), 4
+//! bands = 16 coefficients.
+//!
+//! `sample_pass` (s3ho): c[S3HO]_i(p) = (4π/2N) Σ_j V_SS(p, p_j, d_max) y_i(s_j)(n·s_j)   (Eq. 2),
+//!   written as c[cos n] − (2π/N) Σ_j (1 − V_j) y_i(s_j)(n·s_j): the unoccluded part, the SH of the
+//!   clamped cosine about n, is exact (Funk–Hecke: A_l y_i(n), A = π, 2π/3, π/4, 0), and only the
+//!   occluded part is sampled. Same expectation as Eq. 2 with less noise, and exact (no false
+//!   occlusion) on a plane. V_j: `steps` ray-marching points along each direction at λ_j·k/steps;
+//!   an occluded direction keeps 1 − 1/(1 + lambda·d) of its weight (d: blocker distance) when
+//!   `lambda` > 0. Storage: 16 half floats, pack2x16float into two rgba32uint targets (the WGSL
+//!   form of the paper's pack_half into two 32-bit-per-channel targets).
+//! `filter_pass`: the paper's geometry-aware 8×8 bilateral filter (offsets −3..4) on the coefficients,
+//!   weights from the distance to the centre's tangent plane and the normals' agreement.
+//! `shade_pass`: c[Lin] = c[env] + Σ_l c[l] (Eq. 4), E_diff = c[Lin]·c[S3HO] (Eq. 3):
+//!   env-irradiance = c[env]·c[S3HO]/π; light-irradiance = Σ_l E_l/π · (n·l − h·c_occ(l)) · shadow
+//!   where c_occ = c[cos n] − c[S3HO] and h(l) is the light's Hanning-windowed SH lobe (Sloan 2008,
+//!   window (1 + cos(π l/4))/2): the unoccluded part exact, the occluded part through the SH lobe;
+//!   ao = c[S3HO]_0 / (π y_0) (the DC term is y_0 ∫V cos dω).
+//! Indirect (Eq. 5): every occluded sample's pixel is a patch with form factor f (SSDO's: πR²/N ·
+//!   cos θ_s cos θ_r / max(d, distance_clamp)², falloff 1 − d/R) and radiance (ρ_o/π)·(c[cos n_o]·
+//!   c[Lin]); the sum is computed per colour channel directly (the dot with c[Lin] is linear, so
+//!   this equals storing 3×16 coefficients and dotting after the filter) and blurred.
+//! `ssbn`: bent normal b = normalised mean of unoccluded directions, cone cos α = 1 − (visible
+//!   fraction); env-irradiance = Σ c[env]_lm λ_l(α) y_lm(b)/π with the cone-limited cosine kernel
+//!   λ_l(α) = 2π ∫_{cos α}^1 t P_l(t) dt; lights weighted by a soft cone test around b. Known
+//!   failure: the two faces of a 90° corner get the same bent normal and cone, hence one colour.
+//!
+//! One pass = one `.rs` + one `.wgsl` here: [`sample`], [`filter`], [`shade`] (`sh.wgsl` is
+//! shared by them).
+
+pub mod filter;
+pub mod params;
+pub mod sample;
+pub mod shade;
+
+use super::samples::interleaved_sets;
+use super::{Technique, TechniqueContext, TechniqueDesc, TechniqueParams};
+use crate::RenderError;
+use crate::passes::ComputeStep;
+use crate::passes::bilateral_blur::{BilateralBlur, BlurChain, BlurSettings};
+use crate::passes::layers::LayerStack;
+use crate::profiler::GpuProfiler;
+use crate::settings::Declared;
+use crate::targets::HDR_FORMAT;
+use wgpu::util::DeviceExt;
+
+pub use crate::settings::s3ho::Settings;
+pub use params::S3hoParams;
+
+/// 16 SH coefficients as half floats, 8 per texel (pack2x16float).
+pub const COEFFS_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Uint;
+
+pub const S3HO: TechniqueDesc = TechniqueDesc {
+    name: "s3ho",
+    summary: "screen-space SH occlusion (16 coefficients), SH lighting of environment and lights, indirect extension",
+    create: create_s3ho,
+    settings: <Settings as Declared>::TABLE,
+    presets: super::ssdo::PRESETS,
+};
+
+pub const SSBN: TechniqueDesc = TechniqueDesc {
+    name: "ssbn",
+    summary: "screen-space bent normals and cones: environment through the cone around the bent normal",
+    create: create_ssbn,
+    settings: <Settings as Declared>::TABLE,
+    presets: super::ssdo::PRESETS,
+};
+
+struct S3ho {
+    name: &'static str,
+    size: (u32, u32),
+    ssbn: bool,
+    indirect: bool,
+    blur_on: bool,
+    sample: (ComputeStep, wgpu::BindGroup),
+    filter: (ComputeStep, wgpu::BindGroup),
+    shade: (ComputeStep, wgpu::BindGroup),
+    blur: BilateralBlur,
+    blur_bent: BlurChain,
+    blur_ao: BlurChain,
+    blur_indirect: BlurChain,
+    layers: LayerStack,
+    _textures: Vec<wgpu::Texture>,
+}
+
+fn create_s3ho(
+    ctx: &TechniqueContext,
+    p: &TechniqueParams,
+) -> Result<Box<dyn Technique>, RenderError> {
+    create(ctx, p, false)
+}
+
+fn create_ssbn(
+    ctx: &TechniqueContext,
+    p: &TechniqueParams,
+) -> Result<Box<dyn Technique>, RenderError> {
+    create(ctx, p, true)
+}
+
+fn create(
+    ctx: &TechniqueContext,
+    tp: &TechniqueParams,
+    ssbn: bool,
+) -> Result<Box<dyn Technique>, RenderError> {
+    let name = if ssbn { "ssbn" } else { "s3ho" };
+    let settings = Settings::from_params(tp).map_err(|msg| RenderError::Setting {
+        technique: name.into(),
+        msg,
+    })?;
+    if !ctx.pack_half {
+        return Err(RenderError::Setting {
+            technique: name.into(),
+            msg: "this adapter cannot run pack2x16float (DownlevelFlags::SHADER_F16_IN_F32), which stores the SH coefficients".into(),
+        });
+    }
+    let device = ctx.device;
+    let frame = ctx.frame_group;
+    let t = ctx.targets;
+    let texture = |label: &str, format| super::screen_texture(device, t.size, label, format);
+    let textures = vec![
+        texture("s3ho coefficients 0", COEFFS_FORMAT),
+        texture("s3ho coefficients 1", COEFFS_FORMAT),
+        texture("s3ho filtered 0", COEFFS_FORMAT),
+        texture("s3ho filtered 1", COEFFS_FORMAT),
+        texture("s3ho bent cone", HDR_FORMAT),
+        texture("s3ho bent cone blurred", HDR_FORMAT),
+        texture("s3ho ao", HDR_FORMAT),
+        texture("s3ho ao blurred", HDR_FORMAT),
+        texture("s3ho indirect", HDR_FORMAT),
+        texture("s3ho scratch", HDR_FORMAT),
+    ];
+    let v: Vec<wgpu::TextureView> = textures
+        .iter()
+        .map(|t| t.create_view(&Default::default()))
+        .collect();
+    let params = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some("s3ho params"),
+        contents: bytemuck::bytes_of(&settings.params(ssbn)),
+        usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+    });
+    let sets = interleaved_sets(settings.samples);
+    let sample_sets = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some("s3ho sample sets"),
+        contents: bytemuck::cast_slice(&sets),
+        usage: wgpu::BufferUsages::STORAGE,
+    });
+    let shadows = ctx.shadows;
+    let stack = LayerStack::new(device, t, ctx.scene, frame, shadows, settings.layers);
+    let layer = stack.resources();
+    let l = shadows.light_resources(&ctx.scene.lights);
+
+    let sample_layout = sample::SampleBindings::layout(device);
+    let sample_bg = sample::SampleBindings {
+        params: &params,
+        sample_sets: &sample_sets,
+        gb_normal: &t.normal.view,
+        gb_view_depth: &t.view_depth.view,
+        gb_albedo: &t.albedo.view,
+        layer_views: layer.layer_views,
+        peel_normal: layer.peel_normal,
+        peel_depth: layer.peel_depth,
+        cam_normal: layer.cam_normal,
+        cam_depth: layer.cam_depth,
+        peel_radiance: layer.peel_radiance,
+        cam_radiance: layer.cam_radiance,
+        lights: l.lights,
+        shadow_clip_from_world: l.shadow_clip_from_world,
+        shadow_maps: l.shadow_maps,
+        shadow_sampler: l.shadow_sampler,
+        out_coeffs0: &v[0],
+        out_coeffs1: &v[1],
+        out_bent: &v[4],
+        out_ao_raw: &v[6],
+        out_indirect: &v[8],
+    }
+    .bind_group(device, &sample_layout);
+    let filter_layout = filter::FilterBindings::layout(device);
+    let filter_bg = filter::FilterBindings {
+        gb_normal: &t.normal.view,
+        gb_view_depth: &t.view_depth.view,
+        in_coeffs0: &v[0],
+        in_coeffs1: &v[1],
+        out_coeffs0: &v[2],
+        out_coeffs1: &v[3],
+    }
+    .bind_group(device, &filter_layout);
+    // With the filter off, shade reads the raw coefficients (and the raw bent cone and ao).
+    let (c0, c1) = if settings.blur {
+        (&v[2], &v[3])
+    } else {
+        (&v[0], &v[1])
+    };
+    let shade_layout = shade::ShadeBindings::layout(device);
+    let shade_bg = shade::ShadeBindings {
+        params: &params,
+        gb_normal: &t.normal.view,
+        gb_view_depth: &t.view_depth.view,
+        lights: l.lights,
+        shadow_clip_from_world: l.shadow_clip_from_world,
+        shadow_maps: l.shadow_maps,
+        shadow_sampler: l.shadow_sampler,
+        in_coeffs0: c0,
+        in_coeffs1: c1,
+        in_bent: &v[5],
+        in_ao_raw: &v[7],
+        out_env_irradiance: &t.env_irradiance.view,
+        out_light_irradiance: &t.light_irradiance.view,
+        out_ao: &t.ao.view,
+    }
+    .bind_group(device, &shade_layout);
+    let blur = BilateralBlur::new(
+        device,
+        frame,
+        BlurSettings {
+            enabled: settings.blur,
+            radius: 4,
+            depth_sigma: 0.01,
+            normal_power: 8.0,
+        },
+    );
+    let step = |label: &'static str, source: String, entry: &str, layout| {
+        let module = crate::passes::shader_module(device, label, &source);
+        ComputeStep::new(device, label, &module, entry, frame, layout, &[])
+    };
+    Ok(Box::new(S3ho {
+        name,
+        size: t.size,
+        ssbn,
+        indirect: !ssbn && settings.indirect,
+        blur_on: settings.blur,
+        sample: (
+            step(name, sample::source(), "sample_pass", &sample_layout),
+            sample_bg,
+        ),
+        filter: (
+            step("sh filter", filter::source(), "filter_pass", &filter_layout),
+            filter_bg,
+        ),
+        shade: (
+            step("shade", shade::source(), "shade_pass", &shade_layout),
+            shade_bg,
+        ),
+        blur_bent: blur.chain(device, t, &v[4], &v[9], &v[5]),
+        blur_ao: blur.chain(device, t, &v[6], &v[9], &v[7]),
+        blur_indirect: blur.chain(device, t, &v[8], &v[9], &t.indirect_irradiance.view),
+        blur,
+        layers: stack,
+        _textures: textures,
+    }))
+}
+
+impl Technique for S3ho {
+    fn name(&self) -> &'static str {
+        self.name
+    }
+
+    fn prepare(&self, queue: &wgpu::Queue, camera: &nearfield_scene::Camera) {
+        self.layers.prepare(queue, camera);
+    }
+
+    fn encode(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        profiler: &mut GpuProfiler,
+        _frame: super::FrameInfo,
+    ) {
+        self.layers.encode(encoder, profiler);
+        self.sample
+            .0
+            .encode(encoder, profiler, &self.sample.1, self.size);
+        if !self.ssbn && self.blur_on {
+            self.filter
+                .0
+                .encode(encoder, profiler, &self.filter.1, self.size);
+        }
+        if self.ssbn {
+            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                label: Some("blur"),
+                timestamp_writes: profiler.compute("blur"),
+            });
+            self.blur.dispatch(&mut pass, &self.blur_bent, self.size);
+            self.blur.dispatch(&mut pass, &self.blur_ao, self.size);
+        }
+        self.shade
+            .0
+            .encode(encoder, profiler, &self.shade.1, self.size);
+        if self.indirect {
+            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                label: Some("blur indirect"),
+                timestamp_writes: profiler.compute("blur indirect"),
+            });
+            self.blur
+                .dispatch(&mut pass, &self.blur_indirect, self.size);
+        }
+    }
+}

@@ -1,0 +1,43 @@
+//! `S3hoParams`: the GPU constants of every s3ho pass, a pure function of the settings.
+
+use super::Settings;
+use crate::settings::ssdo::Pattern;
+use bytemuck::{Pod, Zeroable};
+
+impl Settings {
+    /// The GPU constants (pure).
+    pub fn params(&self, ssbn: bool) -> S3hoParams {
+        S3hoParams {
+            radius: self.radius,
+            samples: self.samples,
+            pattern: (self.pattern == Pattern::Interleaved) as u32,
+            fade: self.fade,
+            steps: self.steps,
+            lambda: self.lambda,
+            technique: ssbn as u32,
+            indirect: (!ssbn && self.indirect) as u32,
+            strength: self.strength,
+            distance_clamp: self.distance_clamp,
+            layers: self.layers.layers,
+            cameras: self.layers.cameras,
+        }
+    }
+}
+
+/// `S3hoParams` in sh.wgsl.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable)]
+pub struct S3hoParams {
+    pub radius: f32,
+    pub samples: u32,
+    pub pattern: u32,
+    pub fade: f32,
+    pub steps: u32,
+    pub lambda: f32,
+    pub technique: u32,
+    pub indirect: u32,
+    pub strength: f32,
+    pub distance_clamp: f32,
+    pub layers: u32,
+    pub cameras: u32,
+}

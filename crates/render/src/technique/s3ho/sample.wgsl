@@ -1,0 +1,121 @@
+// sample.wgsl — s3ho/ssbn `sample_pass`: N hemisphere samples per pixel against the screen-space
+// visibility test → 16 SH coefficients of visibility × cosine (Eq. 2; ssbn: bent normal and cone)
+// and the raw indirect light of the occluding pixels (Eq. 5). See technique/s3ho/mod.rs.
+
+@group(1) @binding(0) var<uniform> params: S3hoParams;
+@group(1) @binding(1) var<storage, read> sample_sets: array<vec4<f32>>;
+@group(1) @binding(2) var gb_normal: texture_2d<f32>;
+@group(1) @binding(3) var gb_view_depth: texture_2d<f32>;
+@group(1) @binding(4) var gb_albedo: texture_2d<f32>;
+@group(1) @binding(5) var<storage, read> layer_views: array<LayerView>;
+@group(1) @binding(6) var peel_normal: texture_2d_array<f32>;
+@group(1) @binding(7) var peel_depth: texture_2d_array<f32>;
+@group(1) @binding(8) var cam_normal: texture_2d_array<f32>;
+@group(1) @binding(9) var cam_depth: texture_2d_array<f32>;
+@group(1) @binding(10) var peel_radiance: texture_2d_array<f32>;
+@group(1) @binding(11) var cam_radiance: texture_2d_array<f32>;
+@group(1) @binding(12) var<storage, read> lights: array<GpuLight>;
+@group(1) @binding(13) var<storage, read> shadow_clip_from_world: array<mat4x4<f32>>;
+@group(1) @binding(14) var shadow_maps: texture_depth_2d_array;
+@group(1) @binding(15) var shadow_sampler: sampler_comparison;
+@group(1) @binding(16) var out_coeffs0: texture_storage_2d<rgba32uint, write>;
+@group(1) @binding(17) var out_coeffs1: texture_storage_2d<rgba32uint, write>;
+// ssbn: bent normal xyz, cos α; ao in a second target's r.
+@group(1) @binding(18) var out_bent: texture_storage_2d<rgba16float, write>;
+@group(1) @binding(19) var out_ao_raw: texture_storage_2d<rgba16float, write>;
+@group(1) @binding(20) var out_indirect: texture_storage_2d<rgba16float, write>;
+
+fn cfg() -> SampleConfig {
+    return SampleConfig(params.samples, params.pattern, params.radius, params.fade, params.layers, params.cameras);
+}
+
+// Irradiance (E, not /π) at a surface of normal n from the lights, unshadowed, plus the
+// environment through c[cos n] — the occluder's incident light for the indirect extension.
+fn incident_at(n: vec3<f32>, p: vec3<f32>) -> vec3<f32> {
+    let cn = sh_cosine(n);
+    var e = vec3<f32>(0.0);
+    for (var i = 0u; i < 9u; i++) {
+        e += env_sh[i].rgb * cn[i];
+    }
+    for (var li = 0u; li < frame.light_count; li++) {
+        let inc = incident(lights[li], p);
+        e += inc.irradiance * max(0.0, dot(n, inc.to_light));
+    }
+    return max(e, vec3<f32>(0.0));
+}
+
+@compute @workgroup_size(8, 8, 1)
+fn sample_pass(@builtin(global_invocation_id) id: vec3<u32>) {
+    let pixel = id.xy;
+    if !in_bounds(pixel) {
+        return;
+    }
+    let here = surface_at(pixel);
+    if !here.valid {
+        textureStore(out_coeffs0, pixel, vec4<u32>(0u));
+        textureStore(out_coeffs1, pixel, vec4<u32>(0u));
+        textureStore(out_bent, pixel, vec4<f32>(0.0));
+        textureStore(out_ao_raw, pixel, vec4<f32>(0.0));
+        textureStore(out_indirect, pixel, vec4<f32>(0.0));
+        return;
+    }
+    let c = cfg();
+    let tb = tangent_frame(here.n);
+    let n = params.samples;
+    let d_omega = 2.0 * PI / f32(n);
+    var occluded = array<f32, 16>();
+    var bent = vec3<f32>(0.0);
+    var visible = 0.0;
+    var ao_num = 0.0;
+    var ao_den = 0.0;
+    var indirect = vec3<f32>(0.0);
+    let area = PI * params.radius * params.radius / f32(n);
+    for (var j = 0u; j < n; j++) {
+        let s = sample_local(j, pixel, c);
+        let omega = normalize(tb.t * s.x + tb.b * s.y + here.n * s.z);
+        let length_j = s.w * params.radius;
+        // Ray marching: the first occluded point decides.
+        let occ = march_occlusion(here.p, omega, length_j, params.steps, c);
+        var v = 1.0 - occ.amount;
+        if occ.amount > 0.0 && params.lambda > 0.0 {
+            v = max(v, 1.0 - 1.0 / (1.0 + params.lambda * occ.distance));
+        }
+        let cos_theta = max(s.z, 0.0);
+        ao_num += v * cos_theta;
+        ao_den += cos_theta;
+        visible += v;
+        bent += omega * v;
+        if v < 1.0 {
+            let y = sh_basis(omega);
+            for (var i = 0u; i < 16u; i++) {
+                occluded[i] += (1.0 - v) * y[i] * cos_theta * d_omega;
+            }
+            if params.indirect == 1u {
+                let sender = occ.sender;
+                let transfer = sender_transfer(here, sender, area, params.radius, params.distance_clamp);
+                if transfer > 0.0 {
+                    var radiance: vec3<f32>;
+                    if occ.source == 0u {
+                        let rho = textureLoad(gb_albedo, occ.pixel, 0).rgb;
+                        radiance = rho / PI * incident_at(sender.n, sender.p);
+                    } else {
+                        radiance = layer_sender_radiance(occ);
+                    }
+                    indirect += radiance * (transfer * params.strength * (1.0 - v));
+                }
+            }
+        }
+    }
+    var coeffs = sh_cosine(here.n);
+    for (var i = 0u; i < 16u; i++) {
+        coeffs[i] -= occluded[i];
+    }
+    let packed = pack16(coeffs);
+    textureStore(out_coeffs0, pixel, packed[0]);
+    textureStore(out_coeffs1, pixel, packed[1]);
+    let fraction = visible / f32(n);
+    let b = select(here.n, normalize(bent), length(bent) > 1e-6);
+    textureStore(out_bent, pixel, vec4<f32>(b, 1.0 - fraction));
+    textureStore(out_ao_raw, pixel, vec4<f32>(select(1.0, ao_num / ao_den, ao_den > 0.0), 0.0, 0.0, 1.0));
+    textureStore(out_indirect, pixel, vec4<f32>(indirect, 1.0));
+}

@@ -1,0 +1,60 @@
+//! `SsdoParams`: the GPU constants of every ssdo pass, a pure function of the settings.
+
+use super::{LightSegment, Mode, Pattern, Settings};
+use bytemuck::{Pod, Zeroable};
+
+impl Settings {
+    /// The GPU constants (pure).
+    pub fn params(&self, ssdo: bool) -> SsdoParams {
+        SsdoParams {
+            radius: self.radius,
+            samples: self.samples,
+            mode: (self.mode == Mode::Radiance) as u32,
+            technique: ssdo as u32,
+            lod: self.lod,
+            contrast: self.contrast,
+            scale: self.scale,
+            fade: self.fade,
+            strength: self.strength,
+            distance_clamp: self.distance_clamp,
+            pattern: (self.pattern == Pattern::Interleaved) as u32,
+            light_samples: if ssdo { self.light_samples } else { 0 },
+            layers: self.layers.layers,
+            cameras: self.layers.cameras,
+            light_segment: (self.light_segment == LightSegment::Bias) as u32,
+            vpl_mode: 0,
+            vpl_count: 0,
+            vpl_clamp: self.vpl_clamp,
+            near: (ssdo && self.bounce) as u32,
+            steps: self.steps,
+        }
+    }
+}
+
+/// `SsdoParams` in params.wgsl.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable)]
+pub struct SsdoParams {
+    pub radius: f32,
+    pub samples: u32,
+    pub mode: u32,
+    pub technique: u32,
+    pub lod: f32,
+    pub contrast: f32,
+    pub scale: f32,
+    pub fade: f32,
+    pub strength: f32,
+    pub distance_clamp: f32,
+    pub pattern: u32,
+    pub light_samples: u32,
+    pub layers: u32,
+    pub cameras: u32,
+    pub light_segment: u32,
+    /// 0 none, 1 the environment as VPLs (direct pass), 2 Instant Radiosity (bounce pass).
+    pub vpl_mode: u32,
+    pub vpl_count: u32,
+    pub vpl_clamp: f32,
+    /// 1: the bounce pass gathers sender pixels.
+    pub near: u32,
+    pub steps: u32,
+}

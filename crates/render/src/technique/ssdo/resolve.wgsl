@@ -1,0 +1,30 @@
+// resolve.wgsl — ssdo/ssao `resolve`: the blurred `direct` results → env-irradiance
+// (visibility × SH irradiance in visibility mode; L_dir in radiance mode and for ssdo-vpl) and ao.
+
+@group(1) @binding(0) var<uniform> params: SsdoParams;
+@group(1) @binding(1) var gb_normal: texture_2d<f32>;
+@group(1) @binding(2) var in_a: texture_2d<f32>;
+@group(1) @binding(3) var in_b: texture_2d<f32>;
+@group(1) @binding(4) var out_env_irradiance: texture_storage_2d<rgba16float, write>;
+@group(1) @binding(5) var out_ao: texture_storage_2d<r32float, write>;
+
+@compute @workgroup_size(8, 8, 1)
+fn resolve(@builtin(global_invocation_id) id: vec3<u32>) {
+    let pixel = id.xy;
+    if !in_bounds(pixel) {
+        return;
+    }
+    let nw = textureLoad(gb_normal, pixel, 0);
+    if nw.w == 0.0 {
+        textureStore(out_env_irradiance, pixel, vec4<f32>(0.0));
+        textureStore(out_ao, pixel, vec4<f32>(0.0));
+        return;
+    }
+    let a = textureLoad(in_a, pixel, 0);
+    var env = a.w * env_irradiance_sh(normalize(nw.xyz));
+    if params.technique == 1u && (params.mode == 1u || params.vpl_mode == 1u) {
+        env = a.rgb;
+    }
+    textureStore(out_env_irradiance, pixel, vec4<f32>(env, 1.0));
+    textureStore(out_ao, pixel, vec4<f32>(textureLoad(in_b, pixel, 0).r));
+}

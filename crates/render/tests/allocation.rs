@@ -1,0 +1,89 @@
+//! `encode` allocates nothing: 200 frames of every registered technique leave wgpu's live object
+//! counts (buffers, textures, views, samplers, bind groups and their layouts, pipelines, shader
+//! modules, query sets) where the first frame left them.
+
+mod common;
+
+use nearfield_render::{GpuContext, RenderSettings, Renderer, TechniqueParams, technique};
+
+/// Live objects per kind, from wgpu-core's registries.
+fn live_objects(ctx: &GpuContext) -> Vec<(&'static str, usize)> {
+    let _ = ctx.device.poll(wgpu::PollType::wait_indefinitely());
+    let report = ctx
+        .instance
+        .generate_report()
+        .expect("wgpu-core backend reports its registries");
+    let hub = report.hub_report();
+    vec![
+        ("buffers", hub.buffers.num_kept_from_user),
+        ("textures", hub.textures.num_kept_from_user),
+        ("texture views", hub.texture_views.num_kept_from_user),
+        ("samplers", hub.samplers.num_kept_from_user),
+        ("bind groups", hub.bind_groups.num_kept_from_user),
+        (
+            "bind group layouts",
+            hub.bind_group_layouts.num_kept_from_user,
+        ),
+        ("pipeline layouts", hub.pipeline_layouts.num_kept_from_user),
+        ("shader modules", hub.shader_modules.num_kept_from_user),
+        (
+            "compute pipelines",
+            hub.compute_pipelines.num_kept_from_user,
+        ),
+        ("render pipelines", hub.render_pipelines.num_kept_from_user),
+        ("query sets", hub.query_sets.num_kept_from_user),
+    ]
+}
+
+#[test]
+fn two_hundred_frames_of_every_technique_keep_the_live_object_counts() {
+    let Some(ctx) = common::context() else { return };
+    // Boxes has a light (shadow maps, light occlusion, instant-radiosity's VPLs) and an
+    // environment; hbil reprojects from its second frame on.
+    let scene = nearfield_scene::builtin::scene("boxes").unwrap();
+    let env = scene.default_env.load().unwrap();
+    for name in technique::names() {
+        let t = std::time::Instant::now();
+        // Small shadow maps keep 200 frames short on a CPU adapter; what is made per frame does
+        // not depend on their size.
+        let set = match name {
+            "ssdo-vpl" | "instant-radiosity" => vec![
+                ("vpls".to_string(), "4".to_string()),
+                ("vpl_map".to_string(), "128".to_string()),
+                ("rsm".to_string(), "16".to_string()),
+            ],
+            _ => Vec::new(),
+        };
+        let mut settings = RenderSettings {
+            size: (32, 18),
+            ..Default::default()
+        };
+        settings.shadows.size = 256;
+        let mut r = Renderer::new(
+            &ctx,
+            &scene,
+            &env,
+            scene.default_camera(),
+            name,
+            &TechniqueParams {
+                set,
+                ..Default::default()
+            },
+            settings,
+        )
+        .unwrap();
+        r.render_frame();
+        let after_first = live_objects(&ctx);
+        for i in 1..200 {
+            // A slowly turning camera: temporal techniques reproject every frame.
+            r.set_camera(scene.default_camera().orbit(0.05 * i as f32));
+            r.render_frame();
+        }
+        let after_200 = live_objects(&ctx);
+        eprintln!("{name}: 200 frames in {:.1} s", t.elapsed().as_secs_f32());
+        assert_eq!(
+            after_first, after_200,
+            "{name}: live objects after frame 1 vs after frame 200"
+        );
+    }
+}

@@ -1,0 +1,107 @@
+#!/usr/bin/env bash
+# One prepared benchmark for a lent GPU machine (an NVIDIA H200 through the workplace's device
+# tool; ../shared/MACHINE.md). It times every registered technique, and gtao/hbil with
+# interleaved=on and off, at 1280×720 and 1920×1080 with `nearfield bench` (timestamp queries,
+# per-pass medians after warm-up), and writes into $OUT (default out/device-bench):
+#   bench-1280x720.json, bench-1920x1080.json   `nearfield bench --json` reports
+#   device-bench.md                              one markdown table: per-pass and frame medians
+#   device-bench.log                             everything it printed
+# It finishes within 8 minutes on that machine (frames and warm-up are sized for it).
+#
+# The device machine has no Rust toolchain and no network, so the release binary is built here
+# and carried:
+#   bash scripts/device-bench.sh --prepare     # here: release build → .device/nearfield,
+#                                              # Vulkan/EGL loader packages → .gl/
+# then on the device (device tool `run`, carry [".device", ".gl"], timeout_s 600):
+#   bash scripts/device-bench.sh
+# Where cargo exists on the machine it runs on and no carried binary is there, it builds release
+# itself.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+# SIZES, FRAMES, WARMUP, SCENE and BIN (a nearfield binary) may be set to try the script elsewhere.
+read -ra SIZES <<<"${SIZES:-1280x720 1920x1080}"
+FRAMES=${FRAMES:-40}
+WARMUP=${WARMUP:-8}
+SCENE=${SCENE:-builtin:cornell}
+
+if [ "${1:-}" = "--prepare" ]; then
+    cargo build --release -p nearfield-cli
+    mkdir -p .device
+    cp target/release/nearfield .device/nearfield
+    strip .device/nearfield 2>/dev/null || true
+    grep -qx '/.device/' .git/info/exclude 2>/dev/null || echo /.device/ >>.git/info/exclude
+    grep -qx '/.gl/' .git/info/exclude 2>/dev/null || echo /.gl/ >>.git/info/exclude
+    if [ ! -d .gl ] || [ -z "$(ls .gl/*.deb 2>/dev/null)" ]; then
+        mkdir -p .gl /tmp/amd64/partial
+        o='-oAPT::Architecture=amd64 -oAPT::Architectures=amd64 -oDir::State::Lists=/tmp/amd64'
+        # shellcheck disable=SC2086
+        apt-get $o update -qq
+        # shellcheck disable=SC2086
+        (cd .gl && apt-get $o download libvulkan1 libegl1 libglvnd0 libopengl0 libgl1 libglx0 libgles2)
+    fi
+    ls -la .device .gl
+    exit 0
+fi
+
+OUT=${OUT:-out/device-bench}
+mkdir -p "$OUT"
+exec > >(tee "$OUT/device-bench.log") 2>&1
+
+# The Vulkan loader, when the machine lacks it (carried as .deb packages, unpacked into /).
+if ! ldconfig -p 2>/dev/null | grep -q 'libvulkan\.so\.1'; then
+    for f in .gl/*.deb; do [ -e "$f" ] && dpkg -x "$f" /; done
+    ldconfig
+fi
+if [ -e /usr/local/nvidia/share/vulkan/icd.d/nvidia_icd.json ]; then
+    export VK_DRIVER_FILES=/usr/local/nvidia/share/vulkan/icd.d/nvidia_icd.json
+    export __EGL_VENDOR_LIBRARY_FILENAMES=/usr/local/nvidia/share/glvnd/egl_vendor.d/10_nvidia.json
+fi
+export XDG_RUNTIME_DIR=${XDG_RUNTIME_DIR:-$(mktemp -d)}
+export WGPU_DEBUG=0
+
+if [ -n "${BIN:-}" ]; then
+    :
+elif [ -x .device/nearfield ]; then
+    BIN=.device/nearfield
+elif command -v cargo >/dev/null 2>&1; then
+    cargo build --release -p nearfield-cli
+    BIN=target/release/nearfield
+else
+    echo "device-bench: no .device/nearfield and no cargo; run 'bash scripts/device-bench.sh --prepare' first" >&2
+    exit 2
+fi
+nvidia-smi --query-gpu=name,driver_version,memory.total --format=csv 2>/dev/null || true
+
+# Every registered technique, and the horizon techniques at full resolution too.
+METHODS=none,ssao,ssdo,ssdo-vpl,instant-radiosity,s3ho,ssbn,gtao,gtao:interleaved=off,hbil,hbil:interleaved=off
+start=$(date +%s)
+for size in "${SIZES[@]}"; do
+    echo "== $size"
+    timeout 210 "$BIN" bench "$SCENE" --size "$size" --frames "$FRAMES" --warmup "$WARMUP" \
+        --methods "$METHODS" --json "$OUT/bench-$size.json"
+done
+echo "device-bench: $(($(date +%s) - start)) s of benchmarks"
+
+python3 - "$OUT" "${SIZES[@]}" <<'PY'
+import json, sys
+out, sizes = sys.argv[1], sys.argv[2:]
+lines = []
+for size in sizes:
+    r = json.load(open(f"{out}/bench-{size}.json"))
+    a = r["adapter"]
+    lines.append(f"### {size}, {r['settings']['scene']} — {a['name']} ({a['backend']}), "
+                 f"{r['settings']['frames']} frames after {r['settings']['warmup']} warm-up\n")
+    lines.append("| method | frame (GPU, ms) | technique passes (ms) | per pass (median ms) |")
+    lines.append("|---|---|---|---|")
+    frame_passes = {"gbuffer", "shadows", "direct", "composite", "tonemap"}
+    for m in r["method_order"]:
+        res = r["methods"][m]
+        total = res["gpu_total"]["median_ms"] if res.get("gpu_total") else float("nan")
+        own = sum(res["passes"][p]["median_ms"] for p in res["pass_order"] if p not in frame_passes)
+        per = ", ".join(f"{p} {res['passes'][p]['median_ms']:.3f}" for p in res["pass_order"])
+        lines.append(f"| `{m}` | {total:.3f} | {own:.3f} | {per} |")
+    lines.append("")
+open(f"{out}/device-bench.md", "w").write("\n".join(lines) + "\n")
+print("\n".join(lines))
+PY
