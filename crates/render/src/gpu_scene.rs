@@ -35,27 +35,43 @@ impl Vertex {
 #[derive(Clone, Copy, Debug, Pod, Zeroable)]
 pub struct GpuMaterial {
     pub base_color: [f32; 4],
-    /// rgb emissive (strength applied), w alpha cutoff (< 0: opaque).
-    pub emissive: [f32; 4],
-    /// metallic, roughness, unused, unused.
-    pub params: [f32; 4],
-    /// base colour layer (sRGB array), metallic-roughness layer (linear array), emissive layer
-    /// (sRGB array), unused; u32::MAX = none.
-    pub textures: [u32; 4],
+    /// Emissive factor (strength applied).
+    pub emissive: [f32; 3],
+    /// Alpha cutoff (< 0: opaque).
+    pub alpha_cutoff: f32,
+    pub metallic: f32,
+    pub roughness: f32,
+    pub _pad0: f32,
+    pub _pad1: f32,
+    /// Layers of the base colour (sRGB array), metallic-roughness (linear array) and emissive
+    /// (sRGB array) textures; [`NO_TEXTURE`] = none.
+    pub base_color_texture: u32,
+    pub metallic_roughness_texture: u32,
+    pub emissive_texture: u32,
+    pub _pad2: u32,
 }
 
 /// `GpuLight` in direct_lighting.wgsl.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable)]
 pub struct GpuLight {
-    /// xyz position or direction of travel; w kind (0 directional, 1 point, 2 spot).
-    pub position: [f32; 4],
-    /// xyz spot axis; w range (0 = unlimited).
-    pub direction: [f32; 4],
-    /// rgb colour × intensity.
-    pub color: [f32; 4],
-    /// cos inner, cos outer, first shadow layer (−1 none), shadow texel size factor.
-    pub cone: [f32; 4],
+    /// Position, or direction of travel (directional).
+    pub position: [f32; 3],
+    /// 0 directional, 1 point, 2 spot.
+    pub kind: f32,
+    /// Spot axis.
+    pub direction: [f32; 3],
+    /// Range (m), 0 = unlimited.
+    pub range: f32,
+    /// Colour × intensity.
+    pub color: [f32; 3],
+    pub _pad0: f32,
+    /// cos of a spot's inner and outer cone angle.
+    pub cos_inner: f32,
+    pub cos_outer: f32,
+    /// First shadow layer (−1: none) and the shadow texel size factor.
+    pub shadow_layer: f32,
+    pub shadow_texel: f32,
 }
 
 pub const NO_TEXTURE: u32 = u32::MAX;
@@ -143,22 +159,19 @@ impl GpuScene {
             .iter()
             .map(|m| GpuMaterial {
                 base_color: m.base_color.into(),
-                emissive: [
-                    m.emissive.x,
-                    m.emissive.y,
-                    m.emissive.z,
-                    match m.alpha_mode {
-                        AlphaMode::Mask { cutoff } => cutoff,
-                        _ => -1.0,
-                    },
-                ],
-                params: [m.metallic, m.roughness, 0.0, 0.0],
-                textures: [
-                    layer(m.base_color_texture),
-                    layer(m.metallic_roughness_texture),
-                    layer(m.emissive_texture),
-                    NO_TEXTURE,
-                ],
+                emissive: m.emissive.into(),
+                alpha_cutoff: match m.alpha_mode {
+                    AlphaMode::Mask { cutoff } => cutoff,
+                    _ => -1.0,
+                },
+                metallic: m.metallic,
+                roughness: m.roughness,
+                _pad0: 0.0,
+                _pad1: 0.0,
+                base_color_texture: layer(m.base_color_texture),
+                metallic_roughness_texture: layer(m.metallic_roughness_texture),
+                emissive_texture: layer(m.emissive_texture),
+                _pad2: NO_TEXTURE,
             })
             .collect();
         let material_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
@@ -219,7 +232,7 @@ impl GpuScene {
             .map(|(i, (l, &(layer, texel)))| {
                 let mut g = gpu_light(l, layer, texel);
                 if off.get(i).copied().unwrap_or(false) {
-                    g.color = [0.0; 4];
+                    g.color = [0.0; 3];
                 }
                 g
             })
@@ -248,15 +261,16 @@ pub(crate) fn gpu_light(l: &nearfield_scene::Light, layer: Option<u32>, texel: f
         ),
     };
     GpuLight {
-        position: [pos.x, pos.y, pos.z, kind],
-        direction: [dir.x, dir.y, dir.z, l.range.unwrap_or(0.0)],
-        color: [c.x, c.y, c.z, 0.0],
-        cone: [
-            cones.0,
-            cones.1,
-            layer.map(|l| l as f32).unwrap_or(-1.0),
-            texel,
-        ],
+        position: pos.into(),
+        kind,
+        direction: dir.into(),
+        range: l.range.unwrap_or(0.0),
+        color: c.into(),
+        _pad0: 0.0,
+        cos_inner: cones.0,
+        cos_outer: cones.1,
+        shadow_layer: layer.map(|l| l as f32).unwrap_or(-1.0),
+        shadow_texel: texel,
     }
 }
 

@@ -13,6 +13,7 @@ pub mod error;
 pub mod frame;
 pub mod gpu_env;
 pub mod gpu_scene;
+pub mod inputs;
 pub mod passes;
 pub mod profiler;
 pub mod renderer;

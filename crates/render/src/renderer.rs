@@ -8,6 +8,7 @@ use crate::context::GpuContext;
 use crate::frame::{CameraMatrices, FrameInputs, FrameUniforms, PostUniforms, Tonemap};
 use crate::gpu_env::GpuEnvironment;
 use crate::gpu_scene::GpuScene;
+use crate::inputs::SceneInputs;
 use crate::passes::{
     self, FrameGroup, ScreenPass,
     gbuffer::GBufferPass,
@@ -73,6 +74,8 @@ pub struct Renderer {
     frames_since_cut: u32,
     frame_index: u32,
     settings: RenderSettings,
+    /// Rebuilds by [`Self::set_technique`].
+    rebuilds: u32,
 }
 
 impl Renderer {
@@ -145,6 +148,7 @@ impl Renderer {
             frames_since_cut: 0,
             frame_index: 0,
             settings,
+            rebuilds: 0,
         })
     }
 
@@ -176,11 +180,24 @@ impl Renderer {
         spec: &str,
         params: &TechniqueParams,
     ) -> Result<(), RenderError> {
-        technique::find(spec)?;
-        self.rebuild_passes(spec, params)?;
+        let (desc, resolved) = technique::resolve_params(spec, params)?;
+        let in_place = desc.name == self.passes.technique.name()
+            && self.passes.technique.update(&self.queue, &resolved)?;
+        if in_place {
+            self.cut = true;
+        } else {
+            self.rebuild_passes(spec, params)?;
+            self.rebuilds += 1;
+        }
         self.technique_spec = spec.to_string();
         self.technique_params = params.clone();
         Ok(())
+    }
+
+    /// How often [`Self::set_technique`] rebuilt the technique (a change it could not apply in
+    /// place: another technique, a count, a resource).
+    pub fn rebuilds(&self) -> u32 {
+        self.rebuilds
     }
 
     /// Changes the image size: new targets, passes rebuilt, history discarded. On error (a size
@@ -519,20 +536,17 @@ impl Passes {
         spec: &str,
         params: &TechniqueParams,
     ) -> Result<Self, RenderError> {
-        let desc = technique::find(spec)?;
+        let (desc, params) = technique::resolve_params(spec, params)?;
         let direct = passes::direct_lighting::new(device, frame_group, targets, scene, shadows);
-        let mut params = params.clone();
-        params.set.extend(technique::split_spec(spec).1);
-        let params = technique::expand_presets(desc, &params)?;
         let technique = (desc.create)(
             &TechniqueContext {
                 device,
                 queue,
                 frame_group,
-                targets,
+                inputs: &targets.near_field_inputs(),
+                outputs: &targets.near_field_outputs(),
                 env,
-                scene,
-                shadows,
+                scene: Some(SceneInputs { scene, shadows }),
                 pack_half,
             },
             &params,

@@ -2,6 +2,7 @@
 //! formats here are the contract with the shaders.
 
 use crate::RenderError;
+use crate::inputs::{NearFieldInputs, NearFieldOutputs};
 
 /// G-buffer formats (see gbuffer.wgsl for the meaning of every channel).
 pub const NORMAL_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
@@ -105,6 +106,31 @@ pub fn check_size(size: (u32, u32), device_max: u32) -> Result<(), RenderError> 
 }
 
 impl FrameTargets {
+    /// The near-field techniques' inputs, from these targets.
+    pub fn near_field_inputs(&self) -> NearFieldInputs<'_> {
+        NearFieldInputs {
+            size: self.size,
+            view_depth: &self.view_depth.view,
+            normal: &self.normal.view,
+            albedo: &self.albedo.view,
+            material: &self.material.view,
+            emission: &self.emissive.view,
+            direct_radiance: [&self.direct_radiance[0].view, &self.direct_radiance[1].view],
+            motion: &self.motion.view,
+            depth: Some(&self.depth.view),
+        }
+    }
+
+    /// The near-field techniques' outputs, into these targets.
+    pub fn near_field_outputs(&self) -> NearFieldOutputs<'_> {
+        NearFieldOutputs {
+            ao: &self.ao.view,
+            env_irradiance: &self.env_irradiance.view,
+            indirect_irradiance: &self.indirect_irradiance.view,
+            light_irradiance: &self.light_irradiance.view,
+        }
+    }
+
     pub fn new(device: &wgpu::Device, size: (u32, u32)) -> Self {
         use wgpu::TextureUsages as U;
         let raster = U::RENDER_ATTACHMENT | U::TEXTURE_BINDING;

@@ -80,7 +80,7 @@ fn host_and_shader_structs_agree() {
         &nearfield_render::technique::horizon::search::source(),
         "HorizonParams",
         size_of::<HorizonParams>(),
-        &offsets!(HorizonParams: radius, slices, steps, falloff, max_pixels, scale, indirect,
+        &offsets!(HorizonParams: radius, _pad0, _pad1, falloff, max_pixels, scale, indirect,
             step_power, reject_a, reject_b, layer_width, layer_height, temporal, max_history, far,
             fresnel, reject_depth, reject_normal, aperture, far_steps),
     );
@@ -103,12 +103,8 @@ fn host_and_shader_structs_agree() {
         &offsets!(DisplayParams: width, height, split, divider, mode_a, mode_b, tonemap,
             coverage, exposure, lo, hi, _pad0),
     );
-    let material = [
-        ("base_color", offset_of!(GpuMaterial, base_color)),
-        ("emissive", offset_of!(GpuMaterial, emissive)),
-        ("params", offset_of!(GpuMaterial, params)),
-        ("textures", offset_of!(GpuMaterial, textures)),
-    ];
+    let material = offsets!(GpuMaterial: base_color, emissive, alpha_cutoff, metallic, roughness,
+        _pad0, _pad1, base_color_texture, metallic_roughness_texture, emissive_texture, _pad2);
     check(
         &nearfield_render::passes::gbuffer::source(),
         "GpuMaterial",
@@ -125,12 +121,8 @@ fn host_and_shader_structs_agree() {
         &nearfield_render::passes::direct_lighting::source(),
         "GpuLight",
         size_of::<GpuLight>(),
-        &[
-            ("position", offset_of!(GpuLight, position)),
-            ("direction", offset_of!(GpuLight, direction)),
-            ("color", offset_of!(GpuLight, color)),
-            ("cone", offset_of!(GpuLight, cone)),
-        ],
+        &offsets!(GpuLight: position, kind, direction, range, color, _pad0, cos_inner, cos_outer,
+            shadow_layer, shadow_texel),
     );
     check(
         include_str!("../src/passes/env_prefilter.wgsl"),
@@ -157,16 +149,16 @@ fn host_and_shader_structs_agree() {
             &source,
             "SsdoParams",
             size_of::<SsdoParams>(),
-            &offsets!(SsdoParams: radius, samples, mode, technique, lod, contrast, scale, fade,
+            &offsets!(SsdoParams: radius, _pad0, mode, technique, lod, contrast, scale, fade,
                 strength, distance_clamp, pattern, light_samples, layers, cameras, light_segment,
-                vpl_mode, vpl_count, vpl_clamp, near, steps),
+                vpl_mode, vpl_count, vpl_clamp, near, _pad1),
         );
     }
     check(
         &nearfield_render::technique::s3ho::sample::source(),
         "S3hoParams",
         size_of::<S3hoParams>(),
-        &offsets!(S3hoParams: radius, samples, pattern, fade, steps, lambda, technique, indirect,
+        &offsets!(S3hoParams: radius, _pad0, pattern, fade, _pad1, lambda, technique, indirect,
             strength, distance_clamp, layers, cameras),
     );
     check(

@@ -5,7 +5,8 @@
 
 use super::{ComputeStep, FrameGroup};
 use crate::bindings::{PassLayout, kind};
-use crate::targets::{FrameTargets, HDR_FORMAT};
+use crate::inputs::NearFieldInputs;
+use crate::targets::HDR_FORMAT;
 use crate::util;
 use bytemuck::{Pod, Zeroable};
 use wgpu::util::DeviceExt;
@@ -67,6 +68,19 @@ pub struct BlurSettings {
     pub normal_power: f32,
 }
 
+/// The GPU constants of one direction (pure).
+pub fn blur_params(settings: BlurSettings, direction: [i32; 2]) -> BlurParams {
+    BlurParams {
+        direction,
+        radius: settings.radius as i32,
+        enabled: settings.enabled as u32,
+        depth_sigma: settings.depth_sigma,
+        normal_power: settings.normal_power,
+        _pad0: 0.0,
+        _pad1: 0.0,
+    }
+}
+
 pub struct BilateralBlur {
     step: ComputeStep,
     layout: wgpu::BindGroupLayout,
@@ -84,20 +98,12 @@ impl BilateralBlur {
     pub fn new(device: &wgpu::Device, frame: &FrameGroup, settings: BlurSettings) -> Self {
         let layout = BlurBindings::layout(device);
         let module = super::shader_module(device, "bilateral blur", &source());
-        let params = |direction: [i32; 2]| BlurParams {
-            direction,
-            radius: settings.radius as i32,
-            enabled: settings.enabled as u32,
-            depth_sigma: settings.depth_sigma,
-            normal_power: settings.normal_power,
-            _pad0: 0.0,
-            _pad1: 0.0,
-        };
+        let params = |direction: [i32; 2]| blur_params(settings, direction);
         let buffer = |p: BlurParams| {
             device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                 label: Some("blur params"),
                 contents: bytemuck::bytes_of(&p),
-                usage: wgpu::BufferUsages::UNIFORM,
+                usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
             })
         };
         BilateralBlur {
@@ -108,11 +114,22 @@ impl BilateralBlur {
         }
     }
 
+    /// Writes new settings into both directions' parameters (no rebuild).
+    pub fn write(&self, queue: &wgpu::Queue, settings: BlurSettings) {
+        for (buffer, direction) in [(&self.horizontal, [1, 0]), (&self.vertical, [0, 1])] {
+            queue.write_buffer(
+                buffer,
+                0,
+                bytemuck::bytes_of(&blur_params(settings, direction)),
+            );
+        }
+    }
+
     /// Binds `source` → `scratch` (horizontal) → `destination` (vertical).
     pub fn chain(
         &self,
         device: &wgpu::Device,
-        targets: &FrameTargets,
+        inputs: &NearFieldInputs,
         source: &wgpu::TextureView,
         scratch: &wgpu::TextureView,
         destination: &wgpu::TextureView,
@@ -120,8 +137,8 @@ impl BilateralBlur {
         let bg = |params: &wgpu::Buffer, from: &wgpu::TextureView, to: &wgpu::TextureView| {
             BlurBindings {
                 blur: params,
-                gb_normal: &targets.normal.view,
-                gb_view_depth: &targets.view_depth.view,
+                gb_normal: inputs.normal,
+                gb_view_depth: inputs.view_depth,
                 source: from,
                 destination: to,
             }

@@ -5,8 +5,9 @@
 
 use super::{ComputeStep, FrameGroup, PingPong};
 use crate::bindings::{PassLayout, kind};
+use crate::inputs::NearFieldInputs;
 use crate::profiler::GpuProfiler;
-use crate::targets::{FrameTargets, HDR_FORMAT};
+use crate::targets::HDR_FORMAT;
 use crate::util;
 use bytemuck::{Pod, Zeroable};
 use wgpu::util::DeviceExt;
@@ -164,12 +165,12 @@ impl Reprojection {
     pub fn new(
         device: &wgpu::Device,
         frame: &FrameGroup,
-        targets: &FrameTargets,
+        inputs: &NearFieldInputs,
         history: [History; 2],
         mode: ReprojectMode,
         params: ReprojectParams,
     ) -> Self {
-        let size = targets.size;
+        let size = inputs.size;
         let levels = 32 - size.0.max(size.1).leading_zeros();
         let chain = |label: &str, count: u32| {
             device.create_texture(&wgpu::TextureDescriptor {
@@ -222,9 +223,9 @@ impl Reprojection {
         let main_bg = |h: &History| {
             ReprojectBindings {
                 params: &params_buffer,
-                gb_normal: &targets.normal.view,
-                gb_view_depth: &targets.view_depth.view,
-                gb_motion: &targets.motion.view,
+                gb_normal: inputs.normal,
+                gb_view_depth: inputs.view_depth,
+                gb_motion: inputs.motion,
                 prev_geometry: h.geometry,
                 prev_radiance: h.radiance,
                 zbuffer: &zbuffer,

@@ -12,9 +12,19 @@ struct ShadowView {
 
 struct GpuMaterial {
     base_color: vec4<f32>,
-    emissive: vec4<f32>,
-    params: vec4<f32>,
-    textures: vec4<u32>,
+    // Emissive factor (strength applied); alpha cutoff (< 0: opaque).
+    emissive: vec3<f32>,
+    alpha_cutoff: f32,
+    metallic: f32,
+    roughness: f32,
+    _pad0: f32,
+    _pad1: f32,
+    // Layers: base colour (sRGB array), metallic-roughness (linear array), emissive (sRGB array);
+    // NO_TEXTURE: none.
+    base_color_texture: u32,
+    metallic_roughness_texture: u32,
+    emissive_texture: u32,
+    _pad2: u32,
 }
 
 @group(1) @binding(0) var<uniform> view: ShadowView;
@@ -46,9 +56,9 @@ fn vs_main(v: VertexIn) -> VertexOut {
 @fragment
 fn fs_main(in: VertexOut) {
     let m = materials[in.material];
-    if m.emissive.w >= 0.0 && m.textures.x != 0xffffffffu {
-        let a = m.base_color.a * textureSampleLevel(srgb_textures, material_sampler, in.uv, m.textures.x, 0.0).a;
-        if a < m.emissive.w {
+    if m.alpha_cutoff >= 0.0 && m.base_color_texture != 0xffffffffu {
+        let a = m.base_color.a * textureSampleLevel(srgb_textures, material_sampler, in.uv, m.base_color_texture, 0.0).a;
+        if a < m.alpha_cutoff {
             discard;
         }
     }

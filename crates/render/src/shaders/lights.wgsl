@@ -7,15 +7,23 @@
 // nearfield_scene::Light (falloff, spot cone, range window).
 
 struct GpuLight {
-    // xyz: position (point, spot) or direction of travel (directional); w: kind 0 dir, 1 point, 2 spot.
-    position: vec4<f32>,
-    // xyz: spot axis; w: range (m), 0 = unlimited.
-    direction: vec4<f32>,
-    // rgb: colour × intensity (lux or candela); w: unused.
-    color: vec4<f32>,
-    // cos(inner), cos(outer), first shadow layer (−1: none), shadow texel size: world metres for a
-    // directional light, metres per metre of distance for spot and point lights.
-    cone: vec4<f32>,
+    // Position (point, spot) or direction of travel (directional); kind 0 directional, 1 point,
+    // 2 spot.
+    position: vec3<f32>,
+    kind: f32,
+    // Spot axis; range (m), 0 = unlimited.
+    direction: vec3<f32>,
+    range: f32,
+    // Colour × intensity (lux or candela).
+    color: vec3<f32>,
+    _pad0: f32,
+    // cos(inner), cos(outer) of a spot's cone; first shadow layer (−1: none); shadow texel size:
+    // world metres for a directional light, metres per metre of distance for spot and point
+    // lights.
+    cos_inner: f32,
+    cos_outer: f32,
+    shadow_layer: f32,
+    shadow_texel: f32,
 }
 
 
@@ -28,23 +36,23 @@ struct Incident {
 
 fn incident(l: GpuLight, p: vec3<f32>) -> Incident {
     var r: Incident;
-    let kind = u32(l.position.w);
+    let kind = u32(l.kind);
     if kind == 0u {
-        r.to_light = -l.position.xyz;
-        r.irradiance = l.color.rgb;
+        r.to_light = -l.position;
+        r.irradiance = l.color;
         return r;
     }
-    let d = l.position.xyz - p;
+    let d = l.position - p;
     let dist2 = max(dot(d, d), 1e-8);
     let dist = sqrt(dist2);
     r.to_light = d / max(dist, 1e-6);
-    var e = l.color.rgb / dist2;
+    var e = l.color / dist2;
     if kind == 2u {
-        let t = clamp((dot(l.direction.xyz, -r.to_light) - l.cone.y) / max(l.cone.x - l.cone.y, 1e-4), 0.0, 1.0);
+        let t = clamp((dot(l.direction, -r.to_light) - l.cos_outer) / max(l.cos_inner - l.cos_outer, 1e-4), 0.0, 1.0);
         e *= t * t;
     }
-    if l.direction.w > 0.0 {
-        let q = dist / l.direction.w;
+    if l.range > 0.0 {
+        let q = dist / l.range;
         let w = clamp(1.0 - q * q * q * q, 0.0, 1.0);
         e *= w * w;
     }
@@ -65,15 +73,15 @@ fn cube_face(v: vec3<f32>) -> u32 {
 }
 
 fn shadow_visibility(l: GpuLight, p: vec3<f32>, n: vec3<f32>) -> f32 {
-    let first = l.cone.z;
+    let first = l.shadow_layer;
     if first < 0.0 {
         return 1.0;
     }
-    let kind = u32(l.position.w);
+    let kind = u32(l.kind);
     var layer = u32(first);
-    var texel_world = l.cone.w;
+    var texel_world = l.shadow_texel;
     if kind != 0u {
-        let from_light = p - l.position.xyz;
+        let from_light = p - l.position;
         texel_world *= length(from_light);
         if kind == 1u {
             layer += cube_face(from_light);
@@ -104,15 +112,15 @@ fn shadow_visibility(l: GpuLight, p: vec3<f32>, n: vec3<f32>) -> f32 {
 // receiver offset along n (frame.shadow_normal_offset texels: its component along the light, t·k·cos α).
 // tan α is capped at 10 (α ≈ 84°). 0 for an unshadowed light.
 fn shadow_bias_length(l: GpuLight, p: vec3<f32>, n: vec3<f32>) -> f32 {
-    if l.cone.z < 0.0 {
+    if l.shadow_layer < 0.0 {
         return 0.0;
     }
-    var texel_world = l.cone.w;
-    let kind = u32(l.position.w);
-    var to_light = -l.position.xyz;
+    var texel_world = l.shadow_texel;
+    let kind = u32(l.kind);
+    var to_light = -l.position;
     if kind != 0u {
-        texel_world *= length(p - l.position.xyz);
-        to_light = normalize(l.position.xyz - p);
+        texel_world *= length(p - l.position);
+        to_light = normalize(l.position - p);
     }
     let cos_a = clamp(dot(n, to_light), 1e-4, 1.0);
     let tan_a = min(sqrt(max(0.0, 1.0 - cos_a * cos_a)) / cos_a, 10.0);

@@ -9,12 +9,19 @@
 
 struct GpuMaterial {
     base_color: vec4<f32>,
-    // rgb: emissive factor (strength applied); w: alpha cutoff (< 0: opaque).
-    emissive: vec4<f32>,
-    // metallic, roughness, unused, unused.
-    params: vec4<f32>,
-    // Layers: base colour (sRGB array), metallic-roughness (linear array), emissive (sRGB array).
-    textures: vec4<u32>,
+    // Emissive factor (strength applied); alpha cutoff (< 0: opaque).
+    emissive: vec3<f32>,
+    alpha_cutoff: f32,
+    metallic: f32,
+    roughness: f32,
+    _pad0: f32,
+    _pad1: f32,
+    // Layers: base colour (sRGB array), metallic-roughness (linear array), emissive (sRGB array);
+    // NO_TEXTURE: none.
+    base_color_texture: u32,
+    metallic_roughness_texture: u32,
+    emissive_texture: u32,
+    _pad2: u32,
 }
 
 const NO_TEXTURE: u32 = 0xffffffffu;
@@ -57,22 +64,22 @@ struct SurfaceMaterial {
 fn surface_material(in: VertexOut, duv_dx: vec2<f32>, duv_dy: vec2<f32>) -> SurfaceMaterial {
     let m = materials[in.material];
     var base = m.base_color;
-    if m.textures.x != NO_TEXTURE {
-        base *= textureSampleGrad(srgb_textures, material_sampler, in.uv, m.textures.x, duv_dx, duv_dy);
+    if m.base_color_texture != NO_TEXTURE {
+        base *= textureSampleGrad(srgb_textures, material_sampler, in.uv, m.base_color_texture, duv_dx, duv_dy);
     }
-    if base.a < m.emissive.w {
+    if base.a < m.alpha_cutoff {
         discard;
     }
-    var metallic = m.params.x;
-    var roughness = m.params.y;
-    if m.textures.y != NO_TEXTURE {
-        let mr = textureSampleGrad(linear_textures, material_sampler, in.uv, m.textures.y, duv_dx, duv_dy);
+    var metallic = m.metallic;
+    var roughness = m.roughness;
+    if m.metallic_roughness_texture != NO_TEXTURE {
+        let mr = textureSampleGrad(linear_textures, material_sampler, in.uv, m.metallic_roughness_texture, duv_dx, duv_dy);
         roughness *= mr.g;
         metallic *= mr.b;
     }
-    var emissive = m.emissive.rgb;
-    if m.textures.z != NO_TEXTURE {
-        emissive *= textureSampleGrad(srgb_textures, material_sampler, in.uv, m.textures.z, duv_dx, duv_dy).rgb;
+    var emissive = m.emissive;
+    if m.emissive_texture != NO_TEXTURE {
+        emissive *= textureSampleGrad(srgb_textures, material_sampler, in.uv, m.emissive_texture, duv_dx, duv_dy).rgb;
     }
     return SurfaceMaterial(base.rgb, metallic, roughness, emissive);
 }

@@ -13,14 +13,13 @@ pub mod ssdo;
 
 use crate::RenderError;
 use crate::gpu_env::GpuEnvironment;
-use crate::gpu_scene::GpuScene;
+use crate::inputs::{NearFieldInputs, NearFieldOutputs, SceneInputs};
 use crate::passes::FrameGroup;
-use crate::passes::shadow::ShadowPass;
+use crate::passes::shadow::{LightResources, NoLights};
 use crate::profiler::GpuProfiler;
 pub use crate::settings::{
     Preset, Setting, SettingKind, TechniqueParams, keys, parse_integer, parse_number, parse_on_off,
 };
-use crate::targets::FrameTargets;
 
 /// What a technique may bind when it is created.
 pub struct TechniqueContext<'a> {
@@ -28,12 +27,44 @@ pub struct TechniqueContext<'a> {
     pub queue: &'a wgpu::Queue,
     /// Group 0 of every pass: the frame's uniforms and the environment.
     pub frame_group: &'a FrameGroup,
-    pub targets: &'a FrameTargets,
+    /// The images the technique reads.
+    pub inputs: &'a NearFieldInputs<'a>,
+    /// The images it writes.
+    pub outputs: &'a NearFieldOutputs<'a>,
+    /// The environment (its CPU map: ssdo-vpl's lights come from it).
     pub env: &'a GpuEnvironment,
-    pub scene: &'a GpuScene,
-    pub shadows: &'a ShadowPass,
+    /// nearfield's scene where there is one (lights, shadow maps, geometry for depth peeling
+    /// and virtual point lights); `None` for images from another engine.
+    pub scene: Option<SceneInputs<'a>>,
     /// The device may use pack2x16float / unpack2x16float.
     pub pack_half: bool,
+}
+
+impl<'a> TechniqueContext<'a> {
+    /// The scene's light bindings, or `fallback`'s where there is no scene (make it with
+    /// `ctx.scene.is_none().then(|| NoLights::new(device))`).
+    pub fn lights<'b>(&'b self, fallback: Option<&'b NoLights>) -> LightResources<'b>
+    where
+        'a: 'b,
+    {
+        match (self.scene, fallback) {
+            (Some(s), _) => s.shadows.light_resources(&s.scene.lights),
+            (None, Some(f)) => f.resources(),
+            (None, None) => panic!("TechniqueContext::lights: no scene and no fallback"),
+        }
+    }
+
+    /// The scene, or an error naming what needs it.
+    pub fn require_scene(
+        &self,
+        technique: &str,
+        what: &str,
+    ) -> Result<SceneInputs<'a>, RenderError> {
+        self.scene.ok_or_else(|| RenderError::Setting {
+            technique: technique.into(),
+            msg: format!("{what} needs nearfield's scene (lights, shadow maps, geometry)"),
+        })
+    }
 }
 
 /// What a technique learns about the frame it records.
@@ -66,6 +97,18 @@ pub trait Technique {
         profiler: &mut GpuProfiler,
         frame: FrameInfo,
     );
+    /// Applies new settings in place where they change only what the passes read from their
+    /// uniforms (floats, toggles, choices): the parameter buffers are written with
+    /// `write_buffer` and the result is `Ok(true)`. `Ok(false)` when a count or another setting
+    /// that shapes pipelines or resources changed: the technique must be rebuilt. On error
+    /// (settings out of range) nothing changes.
+    fn update(
+        &mut self,
+        _queue: &wgpu::Queue,
+        _params: &TechniqueParams,
+    ) -> Result<bool, RenderError> {
+        Ok(false)
+    }
     /// Technique-specific images of the frame `frame` (full resolution, level 0), by name, for
     /// inspection and tests (e.g. hbil's reprojected radiance before and after hole filling).
     fn extras(&self, _frame: FrameInfo) -> Vec<(&'static str, &wgpu::Texture)> {
@@ -173,6 +216,19 @@ pub fn split_spec(spec: &str) -> (&str, Vec<(String, String)>) {
                 .collect(),
         ),
     }
+}
+
+/// The parameters a technique is made with from a spec (`name` or `name:key=value+…`) and the
+/// command line's: the spec's settings after the others, `quality` expanded first.
+pub fn resolve_params(
+    spec: &str,
+    params: &TechniqueParams,
+) -> Result<(&'static TechniqueDesc, TechniqueParams), RenderError> {
+    let desc = find(spec)?;
+    let mut params = params.clone();
+    params.set.extend(split_spec(spec).1);
+    let params = expand_presets(desc, &params)?;
+    Ok((desc, params))
 }
 
 /// Looks a technique up by name (or by a `name:key=value` spec).

@@ -138,7 +138,9 @@ struct Horizon {
     outputs_bg: PingPong<wgpu::BindGroup>,
     extras: PingPong<Vec<(&'static str, wgpu::Texture)>>,
     _textures: Vec<wgpu::Texture>,
-    _params: wgpu::Buffer,
+    /// `HorizonParams` of [`Self::settings`].
+    params: wgpu::Buffer,
+    settings: Settings,
 }
 
 fn create_gtao(
@@ -174,8 +176,8 @@ fn create(
     })?;
     let device = ctx.device;
     let frame = ctx.frame_group;
-    let t = ctx.targets;
-    let size = t.size;
+    let (i, o) = (ctx.inputs, ctx.outputs);
+    let size = i.size;
     let p = settings.params(hbil, size);
     let params = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
         label: Some("horizon params"),
@@ -205,7 +207,7 @@ fn create(
         Reprojection::new(
             device,
             frame,
-            t,
+            i,
             [
                 History {
                     geometry: &hist_geo_views[0],
@@ -217,16 +219,11 @@ fn create(
                 },
             ],
             settings.reprojection,
-            ReprojectParams {
-                reject_depth: settings.reject_depth,
-                reject_normal: settings.reject_normal,
-                _pad0: 0.0,
-                _pad1: 0.0,
-            },
+            reproject_params(&settings),
         )
     });
     // Radiance sources by index: this frame's direct radiance (side 0, side 1), reprojected.
-    let direct_views = [&t.direct_radiance[0].view, &t.direct_radiance[1].view];
+    let direct_views = i.direct_radiance;
     let reprojected_view = reprojection
         .as_ref()
         .map(|r| &r.output)
@@ -272,8 +269,8 @@ fn create(
         let split_bg = |radiance: &wgpu::TextureView| {
             split::SplitBindings {
                 params: &params,
-                full_depth: &t.view_depth.view,
-                full_normal: &t.normal.view,
+                full_depth: i.view_depth,
+                full_normal: i.normal,
                 full_radiance: radiance,
                 split_geometry: &vg,
                 split_radiance: &vr,
@@ -303,15 +300,18 @@ fn create(
         Some(s)
     } else {
         let as_array = |t: &wgpu::Texture| array_view(t);
-        let (depth, normal) = (as_array(&t.view_depth.texture), as_array(&t.normal.texture));
+        let (depth, normal) = (
+            as_array(i.view_depth.texture()),
+            as_array(i.normal.texture()),
+        );
         let (cone, near, far) = (as_array(&raw_cone), as_array(&raw_near), as_array(&raw_far));
         let source_textures = [
-            &t.direct_radiance[0].texture,
-            &t.direct_radiance[1].texture,
+            i.direct_radiance[0].texture(),
+            i.direct_radiance[1].texture(),
             reprojection
                 .as_ref()
                 .map(|r| &r.output_texture)
-                .unwrap_or(&t.direct_radiance[0].texture),
+                .unwrap_or(i.direct_radiance[0].texture()),
         ];
         for s in source_textures {
             let radiance = s.create_view(&wgpu::TextureViewDescriptor {
@@ -326,22 +326,13 @@ fn create(
     };
 
     let blur = settings.blur.then(|| {
-        let b = BilateralBlur::new(
-            device,
-            frame,
-            BlurSettings {
-                enabled: true,
-                radius: settings.blur_radius,
-                depth_sigma: 0.01,
-                normal_power: 8.0,
-            },
-        );
+        let b = BilateralBlur::new(device, frame, blur_settings(&settings));
         let scratch = full("horizon blur scratch", HDR_FORMAT);
         let cone_out = full("horizon cone blurred", HDR_FORMAT);
         let near_out = full("horizon near blurred", HDR_FORMAT);
         let far_out = full("horizon far blurred", HDR_FORMAT);
         let chain = |from: &wgpu::Texture, to: &wgpu::Texture| {
-            b.chain(device, t, &view(from), &view(&scratch), &view(to))
+            b.chain(device, i, &view(from), &view(&scratch), &view(to))
         };
         let mut chains = vec![chain(&raw_cone, &cone_out)];
         if hbil {
@@ -370,8 +361,8 @@ fn create(
         let prev = 1 - side;
         accumulate::AccumulateBindings {
             params: &params,
-            gb_normal: &t.normal.view,
-            gb_view_depth: &t.view_depth.view,
+            gb_normal: i.normal,
+            gb_view_depth: i.view_depth,
             raw_cone: &cone_in,
             raw_near: &near_in,
             raw_far: &far_in,
@@ -390,17 +381,17 @@ fn create(
     let outputs_bg = PingPong::from_fn(|side| {
         outputs::OutputsBindings {
             params: &params,
-            gb_normal: &t.normal.view,
-            gb_albedo: &t.albedo.view,
-            gb_material: &t.material.view,
-            gb_emissive: &t.emissive.view,
-            light_irradiance: &t.light_irradiance.view,
+            gb_normal: i.normal,
+            gb_albedo: i.albedo,
+            gb_material: i.material,
+            gb_emissive: i.emission,
+            light_irradiance: o.light_irradiance,
             final_cone: &view(&hist_cone[side]),
             final_near: &view(&hist_near[side]),
             final_far: &view(&hist_far[side]),
-            out_ao: &t.ao.view,
-            out_env: &t.env_irradiance.view,
-            out_indirect: &t.indirect_irradiance.view,
+            out_ao: o.ao,
+            out_env: o.env_irradiance,
+            out_indirect: o.indirect_irradiance,
             out_feedback: &feedback_views[side],
         }
         .bind_group(device, &outputs_layout)
@@ -418,25 +409,36 @@ fn create(
         }
         e
     });
-    let step = |label: &'static str, source: String, entry: &str, layout| {
+    let counts = [
+        ("SLICES", settings.slices as f64),
+        ("STEPS", settings.steps as f64),
+    ];
+    let step = |label: &'static str, source: String, entry: &str, layout, constants: &[_]| {
         let module = crate::passes::shader_module(device, label, &source);
-        ComputeStep::new(device, label, &module, entry, frame, layout, &[])
+        ComputeStep::new(device, label, &module, entry, frame, layout, constants)
     };
     let technique = Horizon {
         name,
         hbil,
         size,
         source: settings.source,
-        split_step: step("split", split::source(), "split", &split_layout),
-        search_step: step(name, search::source(), "horizon", &search_layout),
-        merge_step: step("merge", merge::source(), "merge", &merge_layout),
+        split_step: step("split", split::source(), "split", &split_layout, &[]),
+        search_step: step(name, search::source(), "horizon", &search_layout, &counts),
+        merge_step: step("merge", merge::source(), "merge", &merge_layout, &[]),
         accumulate_step: step(
             "accumulate",
             accumulate::source(),
             "accumulate",
             &accumulate_layout,
+            &[],
         ),
-        outputs_step: step("outputs", outputs::source(), "outputs", &outputs_layout),
+        outputs_step: step(
+            "outputs",
+            outputs::source(),
+            "outputs",
+            &outputs_layout,
+            &[],
+        ),
         split,
         full_bg,
         accumulate_bg,
@@ -456,9 +458,41 @@ fn create(
             textures.extend(feedback);
             textures
         },
-        _params: params,
+        params,
+        settings,
     };
     Ok(Box::new(technique))
+}
+
+fn blur_settings(settings: &Settings) -> BlurSettings {
+    BlurSettings {
+        enabled: true,
+        radius: settings.blur_radius,
+        depth_sigma: 0.01,
+        normal_power: 8.0,
+    }
+}
+
+fn reproject_params(settings: &Settings) -> ReprojectParams {
+    ReprojectParams {
+        reject_depth: settings.reject_depth,
+        reject_normal: settings.reject_normal,
+        _pad0: 0.0,
+        _pad1: 0.0,
+    }
+}
+
+/// What shapes the passes' pipelines and resources: a change of any of these rebuilds.
+fn structure(s: &Settings) -> impl PartialEq + use<> {
+    (
+        s.slices,
+        s.steps,
+        s.interleaved,
+        s.reprojection,
+        s.source,
+        s.blur,
+        s.far == Far::Slices,
+    )
 }
 
 impl Technique for Horizon {
@@ -526,6 +560,31 @@ impl Technique for Horizon {
         );
         self.outputs_step
             .dispatch(&mut pass, self.outputs_bg.current(frame.index), (gx, gy, 1));
+    }
+
+    fn update(&mut self, queue: &wgpu::Queue, tp: &TechniqueParams) -> Result<bool, RenderError> {
+        let settings = Settings::from_params(tp).map_err(|msg| RenderError::Setting {
+            technique: self.name.into(),
+            msg,
+        })?;
+        if structure(&settings) != structure(&self.settings) {
+            return Ok(false);
+        }
+        let p = settings.params(self.hbil, self.size);
+        queue.write_buffer(&self.params, 0, bytemuck::bytes_of(&p));
+        if let Some((blur, _)) = &self.blur {
+            blur.write(queue, blur_settings(&settings));
+        }
+        if let Some(r) = &self.reprojection {
+            queue.write_buffer(
+                &r.params,
+                0,
+                bytemuck::bytes_of(&reproject_params(&settings)),
+            );
+        }
+        self.source = settings.source;
+        self.settings = settings;
+        Ok(true)
     }
 
     fn extras(&self, frame: FrameInfo) -> Vec<(&'static str, &wgpu::Texture)> {

@@ -9,8 +9,8 @@ impl Settings {
         let scale = if self.interleaved { 4 } else { 1 };
         HorizonParams {
             radius: self.radius,
-            slices: self.slices,
-            steps: self.steps,
+            _pad0: 0,
+            _pad1: 0,
             falloff: self.falloff,
             max_pixels: self.max_pixels,
             scale,
@@ -42,8 +42,9 @@ impl Settings {
 #[derive(Clone, Copy, Debug, Pod, Zeroable)]
 pub struct HorizonParams {
     pub radius: f32,
-    pub slices: u32,
-    pub steps: u32,
+    /// (Slices and steps: the overrides `SLICES` and `STEPS`.)
+    pub _pad0: u32,
+    pub _pad1: u32,
     pub falloff: f32,
     pub max_pixels: f32,
     pub scale: u32,

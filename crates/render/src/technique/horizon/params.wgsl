@@ -3,8 +3,9 @@
 
 struct HorizonParams {
     radius: f32,
-    slices: u32,
-    steps: u32,
+    // (Slices per pixel and samples per side: the overrides SLICES and STEPS.)
+    _pad0: u32,
+    _pad1: u32,
     falloff: f32,
     max_pixels: f32,
     // 4 with interleaving (layers of 1/4 × 1/4 resolution), else 1.
@@ -33,6 +34,12 @@ struct HorizonParams {
     // Sub-arcs per side of the environment integration (far = 3).
     far_steps: u32,
 }
+
+// Counts, fixed per pipeline (WGSL override constants; technique/horizon/mod.rs sets them).
+// Slices per pixel S.
+override SLICES: u32 = 2u;
+// Samples per side of a slice.
+override STEPS: u32 = 16u;
 
 
 const BAYER4: array<u32, 16> = array<u32, 16>(0u, 8u, 2u, 10u, 12u, 4u, 14u, 6u, 3u, 11u, 1u, 9u, 15u, 7u, 13u, 5u);

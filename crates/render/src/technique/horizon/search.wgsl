@@ -102,7 +102,7 @@ fn horizon(@builtin(global_invocation_id) id: vec3<u32>) {
     var bent = vec3<f32>(0.0);
     var near = vec3<f32>(0.0);
     var far = vec3<f32>(0.0);
-    let slices = params.slices;
+    let slices = SLICES;
     for (var k = 0u; k < slices; k++) {
         let phi = PI * (f32(k) + (f32(cell) + frame_jitter) / 16.0) / f32(slices);
         let d = cos(phi) * omega_x + sin(phi) * omega_y;
@@ -125,8 +125,8 @@ fn horizon(@builtin(global_invocation_id) id: vec3<u32>) {
             var cos_max = cos(theta_init);
             var theta = theta_init;
             var radiance = vec3<f32>(0.0);
-            for (var j = 0u; j < params.steps; j++) {
-                let t = r_layer * pow((f32(j) + step_jitter) / f32(params.steps), params.step_power);
+            for (var j = 0u; j < STEPS; j++) {
+                let t = r_layer * pow((f32(j) + step_jitter) / f32(STEPS), params.step_power);
                 let offset = side_sign * dir * max(t, 1.0);
                 let pos = vec2<f32>(texel) + 0.5 + offset;
                 let q = vec2<i32>(floor(pos));

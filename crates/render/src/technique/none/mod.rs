@@ -58,14 +58,14 @@ fn create(
 ) -> Result<Box<dyn Technique>, RenderError> {
     super::reject_unknown_keys("none", params, &[])?;
     let device = ctx.device;
-    let t = ctx.targets;
+    let (i, o) = (ctx.inputs, ctx.outputs);
     let layout = NoneBindings::layout(device);
     let module = crate::passes::shader_module(device, "none", &source());
     let own = NoneBindings {
-        gb_normal: &t.normal.view,
-        out_ao: &t.ao.view,
-        out_env_irradiance: &t.env_irradiance.view,
-        out_indirect_irradiance: &t.indirect_irradiance.view,
+        gb_normal: i.normal,
+        out_ao: o.ao,
+        out_env_irradiance: o.env_irradiance,
+        out_indirect_irradiance: o.indirect_irradiance,
     }
     .bind_group(device, &layout);
     Ok(Box::new(NoneTechnique {
@@ -81,7 +81,7 @@ fn create(
             ),
             own,
         ),
-        size: t.size,
+        size: i.size,
     }))
 }
 

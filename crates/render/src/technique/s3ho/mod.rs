@@ -54,6 +54,7 @@ use crate::RenderError;
 use crate::passes::ComputeStep;
 use crate::passes::bilateral_blur::{BilateralBlur, BlurChain, BlurSettings};
 use crate::passes::layers::LayerStack;
+use crate::passes::shadow::NoLights;
 use crate::profiler::GpuProfiler;
 use crate::settings::Declared;
 use crate::targets::HDR_FORMAT;
@@ -83,6 +84,9 @@ pub const SSBN: TechniqueDesc = TechniqueDesc {
 
 struct S3ho {
     name: &'static str,
+    /// The settings the parameter buffer holds.
+    settings: Settings,
+    params: wgpu::Buffer,
     size: (u32, u32),
     ssbn: bool,
     indirect: bool,
@@ -130,8 +134,8 @@ fn create(
     }
     let device = ctx.device;
     let frame = ctx.frame_group;
-    let t = ctx.targets;
-    let texture = |label: &str, format| super::screen_texture(device, t.size, label, format);
+    let (i, o) = (ctx.inputs, ctx.outputs);
+    let texture = |label: &str, format| super::screen_texture(device, i.size, label, format);
     let textures = vec![
         texture("s3ho coefficients 0", COEFFS_FORMAT),
         texture("s3ho coefficients 1", COEFFS_FORMAT),
@@ -159,18 +163,23 @@ fn create(
         contents: bytemuck::cast_slice(&sets),
         usage: wgpu::BufferUsages::STORAGE,
     });
-    let shadows = ctx.shadows;
-    let stack = LayerStack::new(device, t, ctx.scene, frame, shadows, settings.layers);
+    let stack = LayerStack::new(device, i, ctx.scene, frame, settings.layers).map_err(|msg| {
+        RenderError::Setting {
+            technique: name.into(),
+            msg,
+        }
+    })?;
     let layer = stack.resources();
-    let l = shadows.light_resources(&ctx.scene.lights);
+    let no_lights = ctx.scene.is_none().then(|| NoLights::new(device));
+    let l = ctx.lights(no_lights.as_ref());
 
     let sample_layout = sample::SampleBindings::layout(device);
     let sample_bg = sample::SampleBindings {
         params: &params,
         sample_sets: &sample_sets,
-        gb_normal: &t.normal.view,
-        gb_view_depth: &t.view_depth.view,
-        gb_albedo: &t.albedo.view,
+        gb_normal: i.normal,
+        gb_view_depth: i.view_depth,
+        gb_albedo: i.albedo,
         layer_views: layer.layer_views,
         peel_normal: layer.peel_normal,
         peel_depth: layer.peel_depth,
@@ -191,8 +200,8 @@ fn create(
     .bind_group(device, &sample_layout);
     let filter_layout = filter::FilterBindings::layout(device);
     let filter_bg = filter::FilterBindings {
-        gb_normal: &t.normal.view,
-        gb_view_depth: &t.view_depth.view,
+        gb_normal: i.normal,
+        gb_view_depth: i.view_depth,
         in_coeffs0: &v[0],
         in_coeffs1: &v[1],
         out_coeffs0: &v[2],
@@ -208,8 +217,8 @@ fn create(
     let shade_layout = shade::ShadeBindings::layout(device);
     let shade_bg = shade::ShadeBindings {
         params: &params,
-        gb_normal: &t.normal.view,
-        gb_view_depth: &t.view_depth.view,
+        gb_normal: i.normal,
+        gb_view_depth: i.view_depth,
         lights: l.lights,
         shadow_clip_from_world: l.shadow_clip_from_world,
         shadow_maps: l.shadow_maps,
@@ -218,9 +227,9 @@ fn create(
         in_coeffs1: c1,
         in_bent: &v[5],
         in_ao_raw: &v[7],
-        out_env_irradiance: &t.env_irradiance.view,
-        out_light_irradiance: &t.light_irradiance.view,
-        out_ao: &t.ao.view,
+        out_env_irradiance: o.env_irradiance,
+        out_light_irradiance: o.light_irradiance,
+        out_ao: o.ao,
     }
     .bind_group(device, &shade_layout);
     let blur = BilateralBlur::new(
@@ -233,40 +242,78 @@ fn create(
             normal_power: 8.0,
         },
     );
-    let step = |label: &'static str, source: String, entry: &str, layout| {
+    let counts = [
+        ("SAMPLES", settings.samples as f64),
+        ("STEPS", settings.steps as f64),
+    ];
+    let step = |label: &'static str, source: String, entry: &str, layout, constants: &[_]| {
         let module = crate::passes::shader_module(device, label, &source);
-        ComputeStep::new(device, label, &module, entry, frame, layout, &[])
+        ComputeStep::new(device, label, &module, entry, frame, layout, constants)
     };
     Ok(Box::new(S3ho {
         name,
-        size: t.size,
+        settings,
+        params,
+        size: i.size,
         ssbn,
         indirect: !ssbn && settings.indirect,
         blur_on: settings.blur,
         sample: (
-            step(name, sample::source(), "sample_pass", &sample_layout),
+            step(
+                name,
+                sample::source(),
+                "sample_pass",
+                &sample_layout,
+                &counts,
+            ),
             sample_bg,
         ),
         filter: (
-            step("sh filter", filter::source(), "filter_pass", &filter_layout),
+            step(
+                "sh filter",
+                filter::source(),
+                "filter_pass",
+                &filter_layout,
+                &[],
+            ),
             filter_bg,
         ),
         shade: (
-            step("shade", shade::source(), "shade_pass", &shade_layout),
+            step("shade", shade::source(), "shade_pass", &shade_layout, &[]),
             shade_bg,
         ),
-        blur_bent: blur.chain(device, t, &v[4], &v[9], &v[5]),
-        blur_ao: blur.chain(device, t, &v[6], &v[9], &v[7]),
-        blur_indirect: blur.chain(device, t, &v[8], &v[9], &t.indirect_irradiance.view),
+        blur_bent: blur.chain(device, i, &v[4], &v[9], &v[5]),
+        blur_ao: blur.chain(device, i, &v[6], &v[9], &v[7]),
+        blur_indirect: blur.chain(device, i, &v[8], &v[9], o.indirect_irradiance),
         blur,
         layers: stack,
         _textures: textures,
     }))
 }
 
+/// What shapes the passes' pipelines and resources: a change of any of these rebuilds.
+fn structure(s: &Settings) -> impl PartialEq + use<> {
+    (s.samples, s.steps, s.layers, s.blur)
+}
+
 impl Technique for S3ho {
     fn name(&self) -> &'static str {
         self.name
+    }
+
+    fn update(&mut self, queue: &wgpu::Queue, tp: &TechniqueParams) -> Result<bool, RenderError> {
+        let settings = Settings::from_params(tp).map_err(|msg| RenderError::Setting {
+            technique: self.name.into(),
+            msg,
+        })?;
+        if structure(&settings) != structure(&self.settings) {
+            return Ok(false);
+        }
+        let p = settings.params(self.ssbn);
+        queue.write_buffer(&self.params, 0, bytemuck::bytes_of(&p));
+        self.indirect = !self.ssbn && settings.indirect;
+        self.settings = settings;
+        Ok(true)
     }
 
     fn prepare(&self, queue: &wgpu::Queue, camera: &nearfield_scene::Camera) {

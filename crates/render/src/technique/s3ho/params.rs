@@ -9,10 +9,10 @@ impl Settings {
     pub fn params(&self, ssbn: bool) -> S3hoParams {
         S3hoParams {
             radius: self.radius,
-            samples: self.samples,
+            _pad0: 0,
             pattern: (self.pattern == Pattern::Interleaved) as u32,
             fade: self.fade,
-            steps: self.steps,
+            _pad1: 0,
             lambda: self.lambda,
             technique: ssbn as u32,
             indirect: (!ssbn && self.indirect) as u32,
@@ -29,10 +29,12 @@ impl Settings {
 #[derive(Clone, Copy, Debug, Pod, Zeroable)]
 pub struct S3hoParams {
     pub radius: f32,
-    pub samples: u32,
+    /// (Directions per pixel: the override `SAMPLES`.)
+    pub _pad0: u32,
     pub pattern: u32,
     pub fade: f32,
-    pub steps: u32,
+    /// (Points per direction: the override `STEPS`.)
+    pub _pad1: u32,
     pub lambda: f32,
     pub technique: u32,
     pub indirect: u32,

@@ -26,7 +26,7 @@
 @group(1) @binding(20) var out_indirect: texture_storage_2d<rgba16float, write>;
 
 fn cfg() -> SampleConfig {
-    return SampleConfig(params.samples, params.pattern, params.radius, params.fade, params.layers, params.cameras);
+    return SampleConfig(SAMPLES, params.pattern, params.radius, params.fade, params.layers, params.cameras);
 }
 
 // Irradiance (E, not /π) at a surface of normal n from the lights, unshadowed, plus the
@@ -61,7 +61,7 @@ fn sample_pass(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     let c = cfg();
     let tb = tangent_frame(here.n);
-    let n = params.samples;
+    let n = SAMPLES;
     let d_omega = 2.0 * PI / f32(n);
     var occluded = array<f32, 16>();
     var bent = vec3<f32>(0.0);
@@ -75,7 +75,7 @@ fn sample_pass(@builtin(global_invocation_id) id: vec3<u32>) {
         let omega = normalize(tb.t * s.x + tb.b * s.y + here.n * s.z);
         let length_j = s.w * params.radius;
         // Ray marching: the first occluded point decides.
-        let occ = march_occlusion(here.p, omega, length_j, params.steps, c);
+        let occ = march_occlusion(here.p, omega, length_j, STEPS, c);
         var v = 1.0 - occ.amount;
         if occ.amount > 0.0 && params.lambda > 0.0 {
             v = max(v, 1.0 - 1.0 / (1.0 + params.lambda * occ.distance));

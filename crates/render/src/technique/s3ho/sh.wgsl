@@ -3,11 +3,12 @@
 
 struct S3hoParams {
     radius: f32,
-    samples: u32,
+    // (Directions per pixel: the override SAMPLES.)
+    _pad0: u32,
     pattern: u32,
     fade: f32,
-    // Ray-marching points per direction.
-    steps: u32,
+    // (Ray-marching points per direction: the override STEPS.)
+    _pad1: u32,
     // Smooth visibility weight (0: off).
     lambda: f32,
     // 0 s3ho, 1 ssbn.
@@ -20,6 +21,12 @@ struct S3hoParams {
     layers: u32,
     cameras: u32,
 }
+
+// Counts, fixed per pipeline (WGSL override constants; technique/s3ho/mod.rs sets them).
+// Directions per pixel N.
+override SAMPLES: u32 = 16u;
+// Ray-marching points per direction.
+override STEPS: u32 = 2u;
 
 // Clamped-cosine band factors A_l (Funk–Hecke), bands 0..3.
 fn cosine_band(l: u32) -> f32 {

@@ -53,7 +53,7 @@ fn bounce(@builtin(global_invocation_id) id: vec3<u32>) {
 // peeled layer's or additional camera's radiance is not split by source and counts as light.
 fn screen_bounce(here: Surface, pixel: vec2<u32>) -> vec3<f32> {
     let tb = tangent_frame(here.n);
-    let n = params.samples;
+    let n = SAMPLES;
     let radiosity = params.vpl_mode == 2u;
     // Sender patch area: the hemisphere's base disc split into N parts.
     let area = PI * params.radius * params.radius / f32(n);
@@ -61,7 +61,7 @@ fn screen_bounce(here: Surface, pixel: vec2<u32>) -> vec3<f32> {
     for (var i = 0u; i < n; i++) {
         let s = sample_local(i, pixel, sample_config());
         let omega = normalize(tb.t * s.x + tb.b * s.y + here.n * s.z);
-        let occ = march_occlusion(here.p, omega, s.w * params.radius, params.steps, sample_config());
+        let occ = march_occlusion(here.p, omega, s.w * params.radius, STEPS, sample_config());
         if occ.amount <= 0.0 {
             continue;
         }
@@ -97,14 +97,14 @@ fn radiosity_bounce(here: Surface) -> vec3<f32> {
     var e = vec3<f32>(0.0);
     for (var k = 0u; k < params.vpl_count; k++) {
         let l = lights[k];
-        let d = l.position.xyz - here.p;
+        let d = l.position - here.p;
         let dist2 = dot(d, d);
         if dist2 <= 0.0 {
             continue;
         }
         let dir = d * inverseSqrt(dist2);
         let cos_x = dot(here.n, dir);
-        let cos_v = -dot(l.direction.xyz, dir);
+        let cos_v = -dot(l.direction, dir);
         if cos_x <= 0.0 || cos_v <= 0.0 {
             continue;
         }
@@ -112,7 +112,7 @@ fn radiosity_bounce(here: Surface) -> vec3<f32> {
         if v > 0.0 && params.light_samples > 0u {
             v *= 1.0 - segment_blocked(here, l, dir);
         }
-        e += l.color.rgb * (cos_x * cos_v * v / max(dist2, c2));
+        e += l.color * (cos_x * cos_v * v / max(dist2, c2));
     }
     return e / PI;
 }

@@ -43,7 +43,7 @@ fn direct(@builtin(global_invocation_id) id: vec3<u32>) {
         return;
     }
     let tb = tangent_frame(here.n);
-    let n = params.samples;
+    let n = SAMPLES;
     var ao_num = 0.0;
     var ao_den = 0.0;
     var total_light = 0.0;
@@ -53,7 +53,7 @@ fn direct(@builtin(global_invocation_id) id: vec3<u32>) {
         let s = sample_local(i, pixel, sample_config());
         let omega = normalize(tb.t * s.x + tb.b * s.y + here.n * s.z);
         let lambda = s.w * params.radius;
-        let v = 1.0 - march_occlusion(here.p, omega, lambda, params.steps, sample_config()).amount;
+        let v = 1.0 - march_occlusion(here.p, omega, lambda, STEPS, sample_config()).amount;
         let cos_theta = max(s.z, 0.0);
         ao_num += v * cos_theta;
         ao_den += cos_theta;
@@ -111,7 +111,7 @@ fn vpl_environment(here: Surface) -> vec3<f32> {
     var e = vec3<f32>(0.0);
     for (var k = 0u; k < params.vpl_count; k++) {
         let l = lights[k];
-        let to_light = -l.position.xyz;
+        let to_light = -l.position;
         let n_l = dot(here.n, to_light);
         if n_l <= 0.0 {
             continue;
@@ -120,7 +120,7 @@ fn vpl_environment(here: Surface) -> vec3<f32> {
         if v > 0.0 && params.light_samples > 0u {
             v *= 1.0 - segment_blocked(here, l, to_light);
         }
-        e += l.color.rgb * (n_l * v);
+        e += l.color * (n_l * v);
     }
     return e / PI;
 }

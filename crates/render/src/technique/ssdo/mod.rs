@@ -47,6 +47,7 @@ use crate::RenderError;
 use crate::passes::ComputeStep;
 use crate::passes::bilateral_blur::{BilateralBlur, BlurChain, BlurSettings};
 use crate::passes::layers::LayerStack;
+use crate::passes::shadow::NoLights;
 use crate::profiler::GpuProfiler;
 use crate::settings::Declared;
 use crate::targets::HDR_FORMAT;
@@ -131,6 +132,10 @@ fn create_instant_radiosity(
 /// A created ssao/ssdo/ssdo-vpl/instant-radiosity: its passes with their bind groups, built once.
 struct Ssdo {
     name: &'static str,
+    variant: Variant,
+    /// The settings the parameter buffers hold.
+    settings: Settings,
+    params: wgpu::Buffer,
     size: (u32, u32),
     bounce_on: bool,
     direct: (ComputeStep, wgpu::BindGroup),
@@ -151,37 +156,24 @@ fn create(
     tp: &TechniqueParams,
     variant: Variant,
 ) -> Result<Box<dyn Technique>, RenderError> {
-    let name = match variant {
-        Variant::Ssao => "ssao",
-        Variant::Ssdo => "ssdo",
-        Variant::SsdoVpl => "ssdo-vpl",
-        Variant::InstantRadiosity => "instant-radiosity",
-    };
-    let ssdo = variant != Variant::Ssao;
-    let settings = Settings::from_params(tp).map_err(|msg| RenderError::Setting {
-        technique: name.into(),
-        msg,
-    })?;
-    if variant == Variant::InstantRadiosity
-        && settings.bounce
-        && settings.vpl_clamp > settings.radius
-    {
-        return Err(RenderError::Setting {
-            technique: name.into(),
-            msg: format!(
-                "vpl_clamp {} > radius {}: the screen-space bounce cannot add back what the clamp removes beyond R; set vpl_clamp ≤ radius or bounce=off",
-                settings.vpl_clamp, settings.radius
-            ),
-        });
-    }
+    let name = variant.name();
+    let settings = variant.settings(tp)?;
     let vpls = match variant {
-        Variant::SsdoVpl => Some(Vpls::environment(ctx, &settings)),
-        Variant::InstantRadiosity => Some(Vpls::radiosity(ctx, &settings)),
+        Variant::SsdoVpl => Some(Vpls::environment(
+            ctx,
+            ctx.require_scene(name, "virtual point lights")?,
+            &settings,
+        )),
+        Variant::InstantRadiosity => Some(Vpls::radiosity(
+            ctx,
+            ctx.require_scene(name, "virtual point lights")?,
+            &settings,
+        )),
         _ => None,
     };
     let device = ctx.device;
-    let t = ctx.targets;
-    let texture = |label: &str| super::screen_texture(device, t.size, label, HDR_FORMAT);
+    let (i, o) = (ctx.inputs, ctx.outputs);
+    let texture = |label: &str| super::screen_texture(device, i.size, label, HDR_FORMAT);
     let textures: Vec<wgpu::Texture> = [
         "ssdo a",
         "ssdo b",
@@ -201,14 +193,7 @@ fn create(
         &views[0], &views[1], &views[2], &views[3], &views[4], &views[5],
     );
 
-    let mut gpu_params = settings.params(ssdo);
-    if let Some(v) = &vpls {
-        gpu_params.vpl_mode = if variant == Variant::SsdoVpl { 1 } else { 2 };
-        gpu_params.vpl_count = v.count;
-        // Screen-space correction of the shadow maps' bias (ssdo-vpl: the VPLs take the direct
-        // pass's light table; the scene's lights keep their shadow-mapped light irradiance).
-        gpu_params.light_segment = 1;
-    }
+    let gpu_params = variant.params(&settings, vpls.as_ref().map_or(0, |v| v.count));
     let params = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
         label: Some("ssdo params"),
         contents: bytemuck::bytes_of(&gpu_params),
@@ -220,17 +205,16 @@ fn create(
         contents: bytemuck::cast_slice(&sets),
         usage: wgpu::BufferUsages::STORAGE,
     });
-    let shadows = ctx.shadows;
-    let stack = LayerStack::new(
-        device,
-        t,
-        ctx.scene,
-        ctx.frame_group,
-        shadows,
-        settings.layers,
-    );
+    let stack =
+        LayerStack::new(device, i, ctx.scene, ctx.frame_group, settings.layers).map_err(|msg| {
+            RenderError::Setting {
+                technique: name.into(),
+                msg,
+            }
+        })?;
     let layer = stack.resources();
-    let scene_lights = shadows.light_resources(&ctx.scene.lights);
+    let no_lights = ctx.scene.is_none().then(|| NoLights::new(device));
+    let scene_lights = ctx.lights(no_lights.as_ref());
     // The light table of each pass: the VPLs where it uses them, else the scene's lights.
     let (direct_lights, bounce_lights) = match (&vpls, variant) {
         (Some(v), Variant::SsdoVpl) => (v.light_resources(), scene_lights),
@@ -243,8 +227,8 @@ fn create(
     let direct_bg = direct::DirectBindings {
         params: &params,
         sample_sets: &sample_sets,
-        gb_normal: &t.normal.view,
-        gb_view_depth: &t.view_depth.view,
+        gb_normal: i.normal,
+        gb_view_depth: i.view_depth,
         layer_views: layer.layer_views,
         peel_normal: layer.peel_normal,
         peel_depth: layer.peel_depth,
@@ -256,7 +240,7 @@ fn create(
         shadow_sampler: direct_lights.shadow_sampler,
         out_a: raw_a,
         out_b: raw_b,
-        out_light_irradiance: &t.light_irradiance.view,
+        out_light_irradiance: o.light_irradiance,
     }
     .bind_group(device, &direct_layout);
     let direct_module = crate::passes::shader_module(device, "ssdo direct", &direct::source());
@@ -264,11 +248,11 @@ fn create(
     let resolve_layout = resolve::ResolveBindings::layout(device);
     let resolve_bg = resolve::ResolveBindings {
         params: &params,
-        gb_normal: &t.normal.view,
+        gb_normal: i.normal,
         in_a: blurred_a,
         in_b: blurred_b,
-        out_env_irradiance: &t.env_irradiance.view,
-        out_ao: &t.ao.view,
+        out_env_irradiance: o.env_irradiance,
+        out_ao: o.ao,
     }
     .bind_group(device, &resolve_layout);
     let resolve_module = crate::passes::shader_module(device, "ssdo resolve", &resolve::source());
@@ -277,8 +261,8 @@ fn create(
     let bounce_bg = bounce::BounceBindings {
         params: &params,
         sample_sets: &sample_sets,
-        gb_normal: &t.normal.view,
-        gb_view_depth: &t.view_depth.view,
+        gb_normal: i.normal,
+        gb_view_depth: i.view_depth,
         layer_views: layer.layer_views,
         peel_normal: layer.peel_normal,
         peel_depth: layer.peel_depth,
@@ -290,53 +274,45 @@ fn create(
         shadow_clip_from_world: bounce_lights.shadow_clip_from_world,
         shadow_maps: bounce_lights.shadow_maps,
         shadow_sampler: bounce_lights.shadow_sampler,
-        gb_albedo: &t.albedo.view,
-        gb_emissive: &t.emissive.view,
-        env_irradiance: &t.env_irradiance.view,
-        light_irradiance: &t.light_irradiance.view,
+        gb_albedo: i.albedo,
+        gb_emissive: i.emission,
+        env_irradiance: o.env_irradiance,
+        light_irradiance: o.light_irradiance,
         out_indirect: raw_indirect,
     }
     .bind_group(device, &bounce_layout);
     let bounce_module = crate::passes::shader_module(device, "ssdo bounce", &bounce::source());
 
-    let blur = BilateralBlur::new(
-        device,
-        frame,
-        BlurSettings {
-            enabled: settings.blur,
-            radius: settings.blur_radius,
-            depth_sigma: settings.blur_depth,
-            normal_power: settings.blur_normal,
-        },
-    );
-    let step = |label, module, entry, layout| {
-        ComputeStep::new(device, label, module, entry, frame, layout, &[])
+    let blur = BilateralBlur::new(device, frame, blur_settings(&settings));
+    let counts = [
+        ("SAMPLES", settings.samples as f64),
+        ("STEPS", settings.steps as f64),
+    ];
+    let step = |label, module, entry, layout, constants: &[(&str, f64)]| {
+        ComputeStep::new(device, label, module, entry, frame, layout, constants)
     };
     Ok(Box::new(Ssdo {
         name,
-        size: t.size,
-        bounce_on: (ssdo && settings.bounce) || variant == Variant::InstantRadiosity,
+        variant,
+        settings,
+        params,
+        size: i.size,
+        bounce_on: variant.bounce_on(&settings),
         direct: (
-            step(name, &direct_module, "direct", &direct_layout),
+            step(name, &direct_module, "direct", &direct_layout, &counts),
             direct_bg,
         ),
         resolve: (
-            step("resolve", &resolve_module, "resolve", &resolve_layout),
+            step("resolve", &resolve_module, "resolve", &resolve_layout, &[]),
             resolve_bg,
         ),
         bounce: (
-            step("bounce", &bounce_module, "bounce", &bounce_layout),
+            step("bounce", &bounce_module, "bounce", &bounce_layout, &counts),
             bounce_bg,
         ),
-        blur_a: blur.chain(device, t, raw_a, scratch, blurred_a),
-        blur_b: blur.chain(device, t, raw_b, scratch, blurred_b),
-        blur_indirect: blur.chain(
-            device,
-            t,
-            raw_indirect,
-            scratch,
-            &t.indirect_irradiance.view,
-        ),
+        blur_a: blur.chain(device, i, raw_a, scratch, blurred_a),
+        blur_b: blur.chain(device, i, raw_b, scratch, blurred_b),
+        blur_indirect: blur.chain(device, i, raw_indirect, scratch, o.indirect_irradiance),
         blur,
         layers: stack,
         vpls,
@@ -344,9 +320,86 @@ fn create(
     }))
 }
 
+impl Variant {
+    fn name(self) -> &'static str {
+        match self {
+            Variant::Ssao => "ssao",
+            Variant::Ssdo => "ssdo",
+            Variant::SsdoVpl => "ssdo-vpl",
+            Variant::InstantRadiosity => "instant-radiosity",
+        }
+    }
+
+    /// The settings of `tp`, checked (instant-radiosity's clamp against R too).
+    fn settings(self, tp: &TechniqueParams) -> Result<Settings, RenderError> {
+        let error = |msg| RenderError::Setting {
+            technique: self.name().into(),
+            msg,
+        };
+        let settings = Settings::from_params(tp).map_err(error)?;
+        if self == Variant::InstantRadiosity
+            && settings.bounce
+            && settings.vpl_clamp > settings.radius
+        {
+            return Err(error(format!(
+                "vpl_clamp {} > radius {}: the screen-space bounce cannot add back what the clamp removes beyond R; set vpl_clamp ≤ radius or bounce=off",
+                settings.vpl_clamp, settings.radius
+            )));
+        }
+        Ok(settings)
+    }
+
+    /// The GPU constants of `settings` with `vpl_count` virtual point lights (pure).
+    fn params(self, settings: &Settings, vpl_count: u32) -> SsdoParams {
+        let mut p = settings.params(self != Variant::Ssao);
+        if matches!(self, Variant::SsdoVpl | Variant::InstantRadiosity) {
+            p.vpl_mode = if self == Variant::SsdoVpl { 1 } else { 2 };
+            p.vpl_count = vpl_count;
+            // Screen-space correction of the shadow maps' bias (ssdo-vpl: the VPLs take the
+            // direct pass's light table; the scene's lights keep their shadow-mapped light
+            // irradiance).
+            p.light_segment = 1;
+        }
+        p
+    }
+
+    /// Whether the bounce pass runs.
+    fn bounce_on(self, settings: &Settings) -> bool {
+        (self != Variant::Ssao && settings.bounce) || self == Variant::InstantRadiosity
+    }
+}
+
+fn blur_settings(settings: &Settings) -> BlurSettings {
+    BlurSettings {
+        enabled: settings.blur,
+        radius: settings.blur_radius,
+        depth_sigma: settings.blur_depth,
+        normal_power: settings.blur_normal,
+    }
+}
+
+/// What shapes the passes' pipelines and resources: a change of any of these rebuilds.
+fn structure(s: &Settings) -> impl PartialEq + use<> {
+    (s.samples, s.steps, s.layers, s.vpls, s.vpl_map, s.rsm)
+}
+
 impl Technique for Ssdo {
     fn name(&self) -> &'static str {
         self.name
+    }
+
+    fn update(&mut self, queue: &wgpu::Queue, tp: &TechniqueParams) -> Result<bool, RenderError> {
+        let settings = self.variant.settings(tp)?;
+        if structure(&settings) != structure(&self.settings) {
+            return Ok(false);
+        }
+        let vpl_count = self.vpls.as_ref().map_or(0, |v| v.count);
+        let p = self.variant.params(&settings, vpl_count);
+        queue.write_buffer(&self.params, 0, bytemuck::bytes_of(&p));
+        self.blur.write(queue, blur_settings(&settings));
+        self.bounce_on = self.variant.bounce_on(&settings);
+        self.settings = settings;
+        Ok(true)
     }
 
     fn prepare(&self, queue: &wgpu::Queue, camera: &nearfield_scene::Camera) {

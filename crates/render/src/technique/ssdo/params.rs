@@ -8,7 +8,7 @@ impl Settings {
     pub fn params(&self, ssdo: bool) -> SsdoParams {
         SsdoParams {
             radius: self.radius,
-            samples: self.samples,
+            _pad0: 0,
             mode: (self.mode == Mode::Radiance) as u32,
             technique: ssdo as u32,
             lod: self.lod,
@@ -26,7 +26,7 @@ impl Settings {
             vpl_count: 0,
             vpl_clamp: self.vpl_clamp,
             near: (ssdo && self.bounce) as u32,
-            steps: self.steps,
+            _pad1: 0,
         }
     }
 }
@@ -36,7 +36,8 @@ impl Settings {
 #[derive(Clone, Copy, Debug, Pod, Zeroable)]
 pub struct SsdoParams {
     pub radius: f32,
-    pub samples: u32,
+    /// (Directions per pixel: the override `SAMPLES`.)
+    pub _pad0: u32,
     pub mode: u32,
     pub technique: u32,
     pub lod: f32,
@@ -56,5 +57,6 @@ pub struct SsdoParams {
     pub vpl_clamp: f32,
     /// 1: the bounce pass gathers sender pixels.
     pub near: u32,
-    pub steps: u32,
+    /// (Points per direction: the override `STEPS`.)
+    pub _pad1: u32,
 }

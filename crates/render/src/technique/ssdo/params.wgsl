@@ -4,8 +4,8 @@
 struct SsdoParams {
     // Hemisphere radius R (m).
     radius: f32,
-    // Directions per pixel N.
-    samples: u32,
+    // (Directions per pixel: the override SAMPLES.)
+    _pad0: u32,
     // 0 visibility mode, 1 radiance mode.
     mode: u32,
     // 0 ssao, 1 ssdo.
@@ -42,7 +42,15 @@ struct SsdoParams {
     vpl_clamp: f32,
     // 1: the bounce pass gathers sender pixels (ssdo with bounce=on).
     near: u32,
-    // Points tested per direction (ray marching, the first occluded decides); 1: the paper's
-    // single point at λ.
-    steps: u32,
+    // (Points per direction: the override STEPS.)
+    _pad1: u32,
 }
+
+// Counts, fixed per pipeline (WGSL override constants; technique/ssdo/mod.rs sets them): a
+// change of one of them rebuilds the technique, every other setting is a uniform.
+// Directions per pixel N.
+override SAMPLES: u32 = 16u;
+// Points tested per direction (ray marching, the first occluded decides); 1: the paper's single
+// point at λ.
+override STEPS: u32 = 1u;
+

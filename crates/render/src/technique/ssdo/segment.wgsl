@@ -3,7 +3,7 @@
 // samples.wgsl and lights.wgsl, and `params: SsdoParams` declared by the including pass.
 
 fn sample_config() -> SampleConfig {
-    return SampleConfig(params.samples, params.pattern, params.radius, params.fade, params.layers, params.cameras);
+    return SampleConfig(SAMPLES, params.pattern, params.radius, params.fade, params.layers, params.cameras);
 }
 
 // Amount of light towards `to_light` that the screen-space test finds blocked on the segment
@@ -14,8 +14,8 @@ fn segment_blocked(here: Surface, l: GpuLight, to_light: vec3<f32>) -> f32 {
     if params.light_segment == 1u {
         seg_length = shadow_bias_length(l, here.p, here.n);
     }
-    if u32(l.position.w) != 0u {
-        seg_length = min(seg_length, distance(l.position.xyz, here.p));
+    if u32(l.kind) != 0u {
+        seg_length = min(seg_length, distance(l.position, here.p));
     }
     var blocked = 0.0;
     for (var k = 0u; k < params.light_samples; k++) {

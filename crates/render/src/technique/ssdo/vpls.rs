@@ -2,6 +2,7 @@
 //! and instant-radiosity (cosine emitters from reflective shadow maps), each with a shadow map.
 
 use super::Settings;
+use crate::inputs::SceneInputs;
 use crate::passes::shadow::{LightResources, ShadowPass};
 use crate::technique::TechniqueContext;
 use bytemuck::Zeroable;
@@ -17,7 +18,7 @@ pub struct Vpls {
 
 impl Vpls {
     /// ssdo-vpl: the environment as directional lights.
-    pub fn environment(ctx: &TechniqueContext, settings: &Settings) -> Self {
+    pub fn environment(ctx: &TechniqueContext, scene: SceneInputs, settings: &Settings) -> Self {
         let env = ctx.env;
         let lights = crate::vpl::environment_lights(
             env.source(),
@@ -25,23 +26,23 @@ impl Vpls {
             env.intensity,
             settings.vpls,
         );
-        Self::new(ctx, settings, &lights, "environment lights")
+        Self::new(ctx, scene, settings, &lights, "environment lights")
     }
 
     /// instant-radiosity: cosine emitters drawn from the reflective shadow maps of the scene's
     /// lights, as spot lights about their normals (shadow maps over 160°; shadow_visibility
     /// counts receivers beyond 80° from the normal, where cos θ < 0.18, as unshadowed), with
     /// colour Φ/π (bounce.wgsl `radiosity_bounce`).
-    pub fn radiosity(ctx: &TechniqueContext, settings: &Settings) -> Self {
+    pub fn radiosity(ctx: &TechniqueContext, scene: SceneInputs, settings: &Settings) -> Self {
         let texels = crate::passes::rsm::render(
             ctx.device,
             ctx.queue,
-            ctx.scene,
-            &ctx.scene.scene_lights,
+            scene.scene,
+            &scene.scene.scene_lights,
             settings.rsm,
         );
         // Lift each light off its surface by a thousandth of the scene's radius.
-        let lift = 1e-3 * ctx.scene.bounds.radius();
+        let lift = 1e-3 * scene.scene.bounds.radius();
         let lights: Vec<nearfield_scene::Light> =
             crate::vpl::radiosity_lights(&texels, settings.vpls)
                 .iter()
@@ -62,7 +63,7 @@ impl Vpls {
             lights.len(),
             texels.len()
         );
-        Self::new(ctx, settings, &lights, "radiosity lights")
+        Self::new(ctx, scene, settings, &lights, "radiosity lights")
     }
 
     /// The light bindings (lights.wgsl) with the VPLs as the light table.
@@ -72,6 +73,7 @@ impl Vpls {
 
     fn new(
         ctx: &TechniqueContext,
+        scene: SceneInputs,
         settings: &Settings,
         lights: &[nearfield_scene::Light],
         label: &'static str,
@@ -79,7 +81,7 @@ impl Vpls {
         let kinds: Vec<_> = lights.iter().map(|l| l.kind).collect();
         let shadows = ShadowPass::for_lights(
             ctx.device,
-            ctx.scene,
+            scene.scene,
             &kinds,
             crate::passes::shadow::ShadowSettings {
                 size: settings.vpl_map,

@@ -1,6 +1,6 @@
 //! Extra layers for the screen-space blocker test (SSDO paper Sec. 4): depth peeling of the main
 //! view and additional cameras, each with normal, albedo, emission, view depth and the direct
-//! radiance of what it sees (layers.wgsl).
+//! radiance of what it sees (layers/shade.wgsl).
 //!
 //! - Depth peeling: layers 2..=`layers` of the main camera, rasterized without culling; layer k
 //!   keeps the nearest fragment farther than layer k − 1 (read from that layer's depth buffer,
@@ -18,19 +18,24 @@
 //! Views in `views` (one 256-byte [`LayerView`] each): 0..=2 the peeled layers 2..=4, 3..=6 the
 //! cameras. The blocker test that reads them is `occlusion()` in technique/samples.wgsl.
 
-use super::{ComputeStep, FrameGroup};
-use crate::bindings::{PassLayout, kind};
-use crate::gpu_scene::GpuScene;
-use crate::passes::shadow::ShadowPass;
+use super::FrameGroup;
+use crate::bindings::PassLayout;
+use crate::inputs::{NearFieldInputs, SceneInputs};
 use crate::profiler::GpuProfiler;
-use crate::targets::{self, FrameTargets};
+use crate::targets;
 use crate::util;
 use bytemuck::{Pod, Zeroable};
 use glam::Vec3;
 use nearfield_scene::{Aabb, Camera};
 use wgpu::util::DeviceExt;
 
-pub const SHADER: &str = include_str!("layers.wgsl");
+pub mod draw;
+pub mod peel;
+pub mod shade;
+
+use draw::LayerDrawing;
+pub use peel::{PeelBindings, peel_source};
+pub use shade::{ShadeBindings, ShadeParams, source};
 
 pub use crate::settings::layers::{LayerSettings, MAX_CAMERAS, MAX_LAYERS};
 /// Index of the first camera in the views buffer.
@@ -204,17 +209,6 @@ impl LayerImages {
     }
 }
 
-/// `ShadeParams` in layers.wgsl.
-#[repr(C)]
-#[derive(Clone, Copy, Debug, Pod, Zeroable)]
-pub struct ShadeParams {
-    /// Index in the views buffer of this set's first layer.
-    pub first_view: u32,
-    pub count: u32,
-    pub _pad0: u32,
-    pub _pad1: u32,
-}
-
 /// What the blocker test binds of the extra layers, under these names (technique/samples.wgsl,
 /// senders.wgsl).
 #[derive(Clone, Copy)]
@@ -242,19 +236,13 @@ pub struct LayerStack {
     cams: LayerImages,
     views: wgpu::Buffer,
     bounds: Aabb,
-    vertices: wgpu::Buffer,
-    indices: wgpu::Buffer,
-    index_count: u32,
     main_size: (u32, u32),
     /// Depth buffers: two at the main size (peeling ping-pong), one at the camera size.
     _depth_textures: Vec<wgpu::Texture>,
     peel_depth: [wgpu::TextureView; 2],
     cam_depth: wgpu::TextureView,
-    raster: wgpu::RenderPipeline,
-    /// Per peeled layer (reading the depth of the layer before), then one for the cameras.
-    raster_groups: Vec<wgpu::BindGroup>,
-    shade: ComputeStep,
-    shade_groups: [wgpu::BindGroup; 2],
+    /// What draws and shades the layers; `None` when the settings ask for none.
+    draw: Option<LayerDrawing>,
     // Views the bindings hand out.
     peel_views: [wgpu::TextureView; 3],
     cam_views: [wgpu::TextureView; 3],
@@ -277,92 +265,22 @@ fn depth_texture(device: &wgpu::Device, size: (u32, u32), label: &str) -> wgpu::
     })
 }
 
-/// Shader text of the shading pass.
-pub fn source() -> String {
-    util::compose(&[util::COMMON_WGSL, util::ENV_WGSL, util::LIGHTS_WGSL, SHADER])
-}
-
-/// Shader text of the raster pass (depth peeling, additional cameras).
-pub fn peel_source() -> String {
-    util::compose(&[
-        util::COMMON_WGSL,
-        util::MATERIALS_WGSL,
-        include_str!("peel.wgsl"),
-    ])
-}
-
-crate::bind_group! {
-    /// Group 1 of the layers' raster pass (peel.wgsl; group 0 is not read).
-    pub struct PeelBindings: VERTEX | FRAGMENT {
-        /// The scene's materials (shaders/materials.wgsl).
-        materials: buffer = kind::STORAGE_READ,
-        srgb_textures: view = kind::TEXTURE_ARRAY,
-        linear_textures: view = kind::TEXTURE_ARRAY,
-        material_sampler: sampler = kind::SAMPLER,
-        /// This layer's `LayerView`, at a dynamic offset into the views buffer.
-        layer_view: buffer_range = kind::uniform_dynamic(VIEW_STRIDE),
-        /// The depth buffer of the layer before (peeling).
-        prev_depth: view = kind::TEXTURE_DEPTH,
-    }
-}
-
-crate::bind_group! {
-    /// Group 1 of the layers' shading pass (layers.wgsl).
-    pub struct ShadeBindings: COMPUTE {
-        /// `ShadeParams`: this set's first view and layer count.
-        shade_params: buffer = kind::UNIFORM,
-        /// Every layer's `LayerView`.
-        layer_views: buffer = kind::STORAGE_READ,
-        /// The set's normals (rgba16float array), base colours (rgba8unorm-srgb array),
-        /// emission (rgba16float array), view depths (r32float array).
-        layer_normal: view = kind::TEXTURE_ARRAY,
-        layer_albedo: view = kind::TEXTURE_ARRAY,
-        layer_emissive: view = kind::TEXTURE_ARRAY,
-        layer_depth: view = kind::TEXTURE_ARRAY_UNFILTERABLE,
-        /// Their direct radiance (rgba16float array).
-        layer_radiance: view = kind::write_array(targets::HDR_FORMAT),
-        /// The scene's lights (shaders/lights.wgsl).
-        lights: buffer = kind::STORAGE_READ,
-        shadow_clip_from_world: buffer = kind::STORAGE_READ,
-        shadow_maps: view = kind::TEXTURE_DEPTH_ARRAY,
-        shadow_sampler: sampler = kind::SAMPLER_COMPARISON,
-    }
-}
-
 /// The binding declarations the reflection test checks.
 pub fn pass_layouts() -> Vec<PassLayout> {
-    vec![
-        PassLayout {
-            name: "layers raster",
-            source: peel_source(),
-            entry_point: "vs_layer",
-            group1: PeelBindings::SLOTS,
-        },
-        PassLayout {
-            name: "layers raster",
-            source: peel_source(),
-            entry_point: "fs_layer",
-            group1: PeelBindings::SLOTS,
-        },
-        PassLayout {
-            name: "layers shade",
-            source: source(),
-            entry_point: "shade",
-            group1: ShadeBindings::SLOTS,
-        },
-    ]
+    let mut v = peel::pass_layouts();
+    v.push(shade::pass_layout());
+    v
 }
 
 impl LayerStack {
     pub fn new(
         device: &wgpu::Device,
-        targets: &FrameTargets,
-        scene: &GpuScene,
+        inputs: &NearFieldInputs,
+        scene: Option<SceneInputs>,
         frame: &FrameGroup,
-        shadows: &ShadowPass,
         settings: LayerSettings,
-    ) -> Self {
-        let main_size = targets.size;
+    ) -> Result<Self, String> {
+        let main_size = inputs.size;
         let peel_count = settings.layers.saturating_sub(1);
         let peel_size = if peel_count > 0 { main_size } else { (1, 1) };
         let cam_size = if settings.cameras > 0 {
@@ -391,55 +309,6 @@ impl LayerStack {
                 | wgpu::BufferUsages::COPY_DST,
         });
 
-        // Raster: vs_layer / fs_layer of peel.wgsl, no culling.
-        let raster_layout = PeelBindings::layout(device);
-        let m = scene.material_bindings();
-        let raster_group = |prev: &wgpu::TextureView| {
-            PeelBindings {
-                materials: m.materials,
-                srgb_textures: m.srgb_textures,
-                linear_textures: m.linear_textures,
-                material_sampler: m.material_sampler,
-                layer_view: wgpu::BufferBinding {
-                    buffer: &views,
-                    offset: 0,
-                    size: wgpu::BufferSize::new(VIEW_STRIDE),
-                },
-                prev_depth: prev,
-            }
-            .bind_group(device, &raster_layout)
-        };
-        // Layer 2 reads the G-buffer's depth, layer 3 depth a, layer 4 depth b; cameras read
-        // nothing (any depth view will do).
-        let raster_groups = vec![
-            raster_group(&targets.depth.view),
-            raster_group(&peel_depth[0]),
-            raster_group(&peel_depth[1]),
-            raster_group(&targets.depth.view),
-        ];
-        let module = super::shader_module(device, "layers raster", &peel_source());
-        let raster = util::raster_pipeline(
-            device,
-            &util::RasterPipeline {
-                label: "layers raster",
-                frame: None,
-                layout: &raster_layout,
-                module: &module,
-                vertex: "vs_layer",
-                fragment: "fs_layer",
-                color_formats: &[
-                    targets::NORMAL_FORMAT,
-                    targets::ALBEDO_FORMAT,
-                    targets::EMISSIVE_FORMAT,
-                    targets::VIEW_DEPTH_FORMAT,
-                ],
-                cull: None,
-                depth_bias: Default::default(),
-            },
-        );
-
-        // Shading: direct radiance of every layer texel.
-        let shade_layout = ShadeBindings::layout(device);
         let peel_views = [
             array_view(&peel.normal),
             array_view(&peel.depth),
@@ -450,69 +319,40 @@ impl LayerStack {
             array_view(&cams.depth),
             array_view(&cams.radiance),
         ];
-        let shade_group = |images: &LayerImages, first_view: u32| {
-            let params = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some("layers shade params"),
-                contents: bytemuck::bytes_of(&ShadeParams {
-                    first_view,
-                    count: images.count,
-                    _pad0: 0,
-                    _pad1: 0,
-                }),
-                usage: wgpu::BufferUsages::UNIFORM,
-            });
-            let normal = array_view(&images.normal);
-            let albedo = array_view(&images.albedo);
-            let emissive = array_view(&images.emissive);
-            let depth = array_view(&images.depth);
-            let radiance = array_view(&images.radiance);
-            let l = shadows.light_resources(&scene.lights);
-            ShadeBindings {
-                shade_params: &params,
-                layer_views: &views,
-                layer_normal: &normal,
-                layer_albedo: &albedo,
-                layer_emissive: &emissive,
-                layer_depth: &depth,
-                layer_radiance: &radiance,
-                lights: l.lights,
-                shadow_clip_from_world: l.shadow_clip_from_world,
-                shadow_maps: l.shadow_maps,
-                shadow_sampler: l.shadow_sampler,
-            }
-            .bind_group(device, &shade_layout)
+        let draw = if settings.active() {
+            let need =
+                "depth peeling and additional cameras need nearfield's scene and the depth buffer";
+            let (Some(SceneInputs { scene, shadows }), Some(gbuffer_depth)) = (scene, inputs.depth)
+            else {
+                return Err(need.into());
+            };
+            Some(LayerDrawing::new(
+                device,
+                frame,
+                scene,
+                shadows,
+                (&peel, &cams),
+                &views,
+                gbuffer_depth,
+                &peel_depth,
+            ))
+        } else {
+            None
         };
-        let shade_groups = [shade_group(&peel, 0), shade_group(&cams, CAMERA_VIEW_BASE)];
-        let shade_module = super::shader_module(device, "layers shade", &source());
-        let shade = ComputeStep::new(
-            device,
-            "layer shading",
-            &shade_module,
-            "shade",
-            frame,
-            &shade_layout,
-            &[],
-        );
-        LayerStack {
+        Ok(LayerStack {
             settings,
             peel,
             cams,
             views,
-            bounds: scene.bounds,
-            vertices: scene.vertices.clone(),
-            indices: scene.indices.clone(),
-            index_count: scene.index_count,
+            bounds: scene.map_or(Aabb::EMPTY, |s| s.scene.bounds),
             main_size,
             _depth_textures: depth_textures,
             peel_depth,
             cam_depth,
-            raster,
-            raster_groups,
-            shade,
-            shade_groups,
+            draw,
             peel_views,
             cam_views,
-        }
+        })
     }
 
     /// Writes this frame's views (the main camera for peeling, the additional cameras).
@@ -539,6 +379,7 @@ impl LayerStack {
     /// Records the peeling passes ("depth peeling"), the additional cameras ("extra cameras")
     /// and the shading of both ("layer shading"). Nothing when the settings ask for none.
     pub fn encode(&self, encoder: &mut wgpu::CommandEncoder, profiler: &mut GpuProfiler) {
+        let Some(d) = &self.draw else { return };
         let draw = |encoder: &mut wgpu::CommandEncoder,
                     profiler: &mut GpuProfiler,
                     label: &'static str,
@@ -579,11 +420,11 @@ impl LayerStack {
                 occlusion_query_set: None,
                 multiview_mask: None,
             });
-            pass.set_pipeline(&self.raster);
+            pass.set_pipeline(&d.raster);
             pass.set_bind_group(1, group, &[(view as u64 * VIEW_STRIDE) as u32]);
-            pass.set_vertex_buffer(0, self.vertices.slice(..));
-            pass.set_index_buffer(self.indices.slice(..), wgpu::IndexFormat::Uint32);
-            pass.draw_indexed(0..self.index_count, 0, 0..1);
+            pass.set_vertex_buffer(0, d.vertices.slice(..));
+            pass.set_index_buffer(d.indices.slice(..), wgpu::IndexFormat::Uint32);
+            pass.draw_indexed(0..d.index_count, 0, 0..1);
         };
         let n = self.peel.count;
         for k in 0..n {
@@ -594,7 +435,7 @@ impl LayerStack {
                 (k == 0, k + 1 == n),
                 &self.peel.attachments[k as usize],
                 &self.peel_depth[(k % 2) as usize],
-                &self.raster_groups[k as usize],
+                &d.raster_groups[k as usize],
                 k,
             );
         }
@@ -607,7 +448,7 @@ impl LayerStack {
                 (c == 0, c + 1 == m),
                 &self.cams.attachments[c as usize],
                 &self.cam_depth,
-                &self.raster_groups[3],
+                &d.raster_groups[3],
                 CAMERA_VIEW_BASE + c,
             );
         }
@@ -619,15 +460,14 @@ impl LayerStack {
             timestamp_writes: profiler.compute("layer shading"),
         });
         for (images, group) in [
-            (&self.peel, &self.shade_groups[0]),
-            (&self.cams, &self.shade_groups[1]),
+            (&self.peel, &d.shade_groups[0]),
+            (&self.cams, &d.shade_groups[1]),
         ] {
             if images.count == 0 {
                 continue;
             }
             let (gx, gy) = util::groups_8x8(images.size);
-            self.shade
-                .dispatch(&mut pass, group, (gx, gy, images.count));
+            d.shade.dispatch(&mut pass, group, (gx, gy, images.count));
         }
     }
 
