@@ -10,7 +10,9 @@ pub const ENV_WGSL: &str = include_str!("shaders/env.wgsl");
 /// declare).
 pub const LIGHTS_WGSL: &str = include_str!("shaders/lights.wgsl");
 
-/// Shared WGSL: the scene's vertices and materials for raster passes (names the bindings its
+/// Shared WGSL: `GpuMaterial` and `NO_TEXTURE`.
+pub const GPU_MATERIAL_WGSL: &str = include_str!("shaders/gpu_material.wgsl");
+/// Shared WGSL (after [`GPU_MATERIAL_WGSL`]): the scene's vertices and materials for raster passes (names the bindings its
 /// passes declare).
 pub const MATERIALS_WGSL: &str = include_str!("shaders/materials.wgsl");
 /// Shared WGSL: the G-buffer surface at a pixel (names the bindings its passes declare).

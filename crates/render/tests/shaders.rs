@@ -112,7 +112,7 @@ fn host_and_shader_structs_agree() {
         &material,
     );
     check(
-        nearfield_render::passes::shadow::SHADER,
+        &nearfield_render::passes::shadow::source(),
         "GpuMaterial",
         size_of::<GpuMaterial>(),
         &material,

@@ -332,7 +332,7 @@ impl Panel {
                 if integer {
                     slider = slider.integer();
                 }
-                let r = ui.add(slider).on_hover_text(setting.doc);
+                let r = ui.add(slider).on_hover_text(hover_text(setting));
                 if r.dragged() {
                     self.pending = Some((side, key, v));
                 } else if r.drag_stopped() || r.changed() {
@@ -349,7 +349,7 @@ impl Panel {
                 let mut on = value == "on";
                 if ui
                     .checkbox(&mut on, key)
-                    .on_hover_text(setting.doc)
+                    .on_hover_text(hover_text(setting))
                     .changed()
                 {
                     let v = if on { "on" } else { "off" };
@@ -369,7 +369,7 @@ impl Panel {
                         }
                     })
                     .response
-                    .on_hover_text(setting.doc);
+                    .on_hover_text(hover_text(setting));
             }
         }
     }
@@ -569,5 +569,14 @@ fn light_kind(l: &nearfield_scene::Light) -> &'static str {
         nearfield_scene::LightKind::Directional { .. } => "directional",
         nearfield_scene::LightKind::Point { .. } => "point",
         nearfield_scene::LightKind::Spot { .. } => "spot",
+    }
+}
+
+/// A setting's hover text: its doc line and, for numbers, its unit.
+fn hover_text(setting: &technique::Setting) -> String {
+    if setting.unit.is_empty() {
+        setting.doc.to_string()
+    } else {
+        format!("{} ({})", setting.doc, setting.unit)
     }
 }

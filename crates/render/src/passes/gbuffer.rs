@@ -12,7 +12,12 @@ use crate::util;
 pub const SHADER: &str = include_str!("gbuffer.wgsl");
 
 pub fn source() -> String {
-    util::compose(&[util::COMMON_WGSL, util::MATERIALS_WGSL, SHADER])
+    util::compose(&[
+        util::COMMON_WGSL,
+        util::GPU_MATERIAL_WGSL,
+        util::MATERIALS_WGSL,
+        SHADER,
+    ])
 }
 
 crate::bind_group! {

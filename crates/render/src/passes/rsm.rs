@@ -58,7 +58,12 @@ pub fn incoming_flux(light: &Light, p: Vec3, texel: f32, size: u32, x: u32, y: u
 pub const SHADER: &str = include_str!("rsm.wgsl");
 
 pub fn source() -> String {
-    util::compose(&[util::COMMON_WGSL, util::MATERIALS_WGSL, SHADER])
+    util::compose(&[
+        util::COMMON_WGSL,
+        util::GPU_MATERIAL_WGSL,
+        util::MATERIALS_WGSL,
+        SHADER,
+    ])
 }
 
 crate::bind_group! {

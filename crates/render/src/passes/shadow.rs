@@ -26,6 +26,11 @@ use wgpu::util::DeviceExt;
 
 pub const SHADER: &str = include_str!("shadow.wgsl");
 
+/// The shadow pass's WGSL as compiled.
+pub fn source() -> String {
+    util::compose(&[util::GPU_MATERIAL_WGSL, SHADER])
+}
+
 /// Shadow-map settings.
 #[derive(Clone, Copy, Debug)]
 pub struct ShadowSettings {
@@ -69,7 +74,7 @@ pub fn pass_layouts() -> Vec<PassLayout> {
         .into_iter()
         .map(|entry_point| PassLayout {
             name: "shadow",
-            source: SHADER.to_string(),
+            source: source(),
             entry_point,
             group1: ShadowBindings::SLOTS,
         })
@@ -323,7 +328,7 @@ impl ShadowPass {
             material_sampler: &scene.material_sampler,
         }
         .bind_group(device, &layout);
-        let module = super::shader_module(device, "shadow", SHADER);
+        let module = super::shader_module(device, "shadow", &source());
         // No culling: single-sided walls (open boxes) must still cast shadows.
         let pipeline = util::raster_pipeline(
             device,

@@ -10,23 +10,6 @@ struct ShadowView {
     light_clip_from_world: mat4x4<f32>,
 }
 
-struct GpuMaterial {
-    base_color: vec4<f32>,
-    // Emissive factor (strength applied); alpha cutoff (< 0: opaque).
-    emissive: vec3<f32>,
-    alpha_cutoff: f32,
-    metallic: f32,
-    roughness: f32,
-    _pad0: f32,
-    _pad1: f32,
-    // Layers: base colour (sRGB array), metallic-roughness (linear array), emissive (sRGB array);
-    // NO_TEXTURE: none.
-    base_color_texture: u32,
-    metallic_roughness_texture: u32,
-    emissive_texture: u32,
-    _pad2: u32,
-}
-
 @group(1) @binding(0) var<uniform> view: ShadowView;
 @group(1) @binding(1) var<storage, read> materials: array<GpuMaterial>;
 @group(1) @binding(2) var srgb_textures: texture_2d_array<f32>;
@@ -56,7 +39,7 @@ fn vs_main(v: VertexIn) -> VertexOut {
 @fragment
 fn fs_main(in: VertexOut) {
     let m = materials[in.material];
-    if m.alpha_cutoff >= 0.0 && m.base_color_texture != 0xffffffffu {
+    if m.alpha_cutoff >= 0.0 && m.base_color_texture != NO_TEXTURE {
         let a = m.base_color.a * textureSampleLevel(srgb_textures, material_sampler, in.uv, m.base_color_texture, 0.0).a;
         if a < m.alpha_cutoff {
             discard;

@@ -1,30 +1,11 @@
 // materials.wgsl — the scene's vertices and materials as the raster passes read them (G-buffer,
-// depth peeling and additional cameras, reflective shadow maps). `GpuMaterial` mirrors
-// crate::gpu_scene::GpuMaterial. Textures live in two 2D arrays (sRGB and linear) whose layers are
+// depth peeling and additional cameras, reflective shadow maps), after gpu_material.wgsl. Textures
+// live in two 2D arrays (sRGB and linear) whose layers are
 // resized to a common size; u32::MAX marks "no texture".
 //
 // It declares no bindings. A pass that includes it declares, in its group 1: materials:
 // array<GpuMaterial> (storage, read), srgb_textures and linear_textures: texture_2d_array<f32>,
 // material_sampler: sampler.
-
-struct GpuMaterial {
-    base_color: vec4<f32>,
-    // Emissive factor (strength applied); alpha cutoff (< 0: opaque).
-    emissive: vec3<f32>,
-    alpha_cutoff: f32,
-    metallic: f32,
-    roughness: f32,
-    _pad0: f32,
-    _pad1: f32,
-    // Layers: base colour (sRGB array), metallic-roughness (linear array), emissive (sRGB array);
-    // NO_TEXTURE: none.
-    base_color_texture: u32,
-    metallic_roughness_texture: u32,
-    emissive_texture: u32,
-    _pad2: u32,
-}
-
-const NO_TEXTURE: u32 = 0xffffffffu;
 
 struct VertexIn {
     @location(0) position: vec3<f32>,

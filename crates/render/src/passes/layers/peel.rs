@@ -9,6 +9,7 @@ use crate::util;
 pub fn peel_source() -> String {
     util::compose(&[
         util::COMMON_WGSL,
+        util::GPU_MATERIAL_WGSL,
         util::MATERIALS_WGSL,
         include_str!("peel.wgsl"),
     ])
