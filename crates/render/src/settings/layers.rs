@@ -1,4 +1,4 @@
-//! Depth peeling and additional cameras in the blocker test (`passes/layers.rs`): the settings
+//! Depth peeling and additional cameras in the blocker test (`passes/layers/`): the settings
 //! every technique with the shared blocker test takes.
 
 use crate::declare_settings;

@@ -54,7 +54,7 @@ struct Frame {
 
 @group(0) @binding(0) var<uniform> frame: Frame;
 
-// One view of the extra layers (passes/layers.rs, `LayerView` there): a peeled depth layer of the
+// One view of the extra layers (passes/layers/, `LayerView` there): a peeled depth layer of the
 // main camera or an additional camera. 256 bytes, so that one buffer serves as a storage array and
 // as a uniform with dynamic offsets.
 struct LayerView {

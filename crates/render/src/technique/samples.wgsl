@@ -8,7 +8,7 @@
 //   sample_sets: array<vec4<f32>> (storage, read) — the interleaved pattern: 16 sets × N samples
 //     (xyz unit direction in the tangent frame, z up; w: λ/R in (0, 1]);
 //   gb_normal, gb_view_depth (as shaders/surface.wgsl);
-//   layer_views: array<LayerView> (storage, read) — extra layers (passes/layers.rs): views 0..2 =
+//   layer_views: array<LayerView> (storage, read) — extra layers (passes/layers/): views 0..2 =
 //     peeled layers 2..4 of the main camera, views 3..6 = additional cameras;
 //   peel_normal, peel_depth, cam_normal, cam_depth: texture_2d_array<f32> — their normals
 //     (oriented: see layers.rs) and view depths (unfilterable).

@@ -2,7 +2,7 @@
 // that gather indirect light from occluding pixels (ssdo `bounce`, s3ho `sample`). Included after
 // samples.wgsl. A pass that includes it also declares, in its group 1:
 //   peel_radiance, cam_radiance: texture_2d_array<f32> — the direct radiance of the peeled layers
-//   and additional cameras (passes/layers.rs `shade`).
+//   and additional cameras (passes/layers/ `shade`).
 
 // Distance d from a receiver to a sender patch and the product of their cosines cos θ_s cos θ_r
 // (0 when either surface faces away).

@@ -1,4 +1,4 @@
-// peel.wgsl — the extra layers of passes/layers.rs (raster): depth peeling of the main view and
+// peel.wgsl — the extra layers of passes/layers/ (raster): depth peeling of the main view and
 // additional cameras.
 // One `LayerView` (common.wgsl) per pass (dynamic offset); `prev_depth` is the depth buffer of the layer before
 // (peeling only). Targets: 0 normal (rgba16float: xyz oriented as layers.rs documents, w = 1),

@@ -1,4 +1,4 @@
-// layers.wgsl — direct radiance of the extra layers (passes/layers.rs): for every texel of a
+// layers.wgsl — direct radiance of the extra layers (passes/layers/): for every texel of a
 // peeled layer or an additional camera, ρ × (unoccluded SH irradiance of the environment +
 // (1/π) Σ E_l · shadow-map visibility) + emission. This is the outgoing diffuse radiance of
 // DESIGN.md's `indirect-irradiance` senders (lit with full visibility by the environment).

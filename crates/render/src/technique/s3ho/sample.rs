@@ -32,7 +32,7 @@ crate::bind_group! {
         gb_view_depth: view = kind::TEXTURE_UNFILTERABLE,
         /// Base colour ρ (rgba8unorm).
         gb_albedo: view = kind::TEXTURE,
-        /// Extra layers (passes/layers.rs `LayerResources`).
+        /// Extra layers (passes/layers/ `LayerResources`).
         layer_views: buffer = kind::STORAGE_READ,
         peel_normal: view = kind::TEXTURE_ARRAY,
         peel_depth: view = kind::TEXTURE_ARRAY_UNFILTERABLE,

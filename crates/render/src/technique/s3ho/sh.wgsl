@@ -17,7 +17,7 @@ struct S3hoParams {
     indirect: u32,
     strength: f32,
     distance_clamp: f32,
-    // Depth layers of the main view and additional cameras in the blocker test (passes/layers.rs).
+    // Depth layers of the main view and additional cameras in the blocker test (passes/layers/).
     layers: u32,
     cameras: u32,
 }

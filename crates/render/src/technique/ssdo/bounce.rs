@@ -31,7 +31,7 @@ crate::bind_group! {
         gb_normal: view = kind::TEXTURE,
         /// View depth (r32float, m).
         gb_view_depth: view = kind::TEXTURE_UNFILTERABLE,
-        /// Extra layers (passes/layers.rs `LayerResources`).
+        /// Extra layers (passes/layers/ `LayerResources`).
         layer_views: buffer = kind::STORAGE_READ,
         peel_normal: view = kind::TEXTURE_ARRAY,
         peel_depth: view = kind::TEXTURE_ARRAY_UNFILTERABLE,

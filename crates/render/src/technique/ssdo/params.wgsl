@@ -26,7 +26,7 @@ struct SsdoParams {
     pattern: u32,
     // Points on each light's segment (0: no screen-space light occlusion).
     light_samples: u32,
-    // Depth layers of the main view (1..=4) and additional cameras (0..=4), passes/layers.rs.
+    // Depth layers of the main view (1..=4) and additional cameras (0..=4), passes/layers/.
     layers: u32,
     cameras: u32,
     // Light segment: 0 length R (Sec. 4 screen-space shadows), 1 the shadow map's bias
