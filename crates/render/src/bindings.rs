@@ -293,15 +293,6 @@ pub fn bind_group(
     })
 }
 
-/// Whether a format can be sampled with filtering (rgba32float and r32float cannot without a
-/// feature nearfield does not ask for).
-pub fn filterable(format: TextureFormat) -> bool {
-    !matches!(
-        format,
-        TextureFormat::R32Float | TextureFormat::Rgba32Float | TextureFormat::Rg32Float
-    )
-}
-
 /// One pass's binding declaration, for the reflection test: its name, its WGSL as compiled,
 /// the entry point, and the group-1 slots.
 pub struct PassLayout {

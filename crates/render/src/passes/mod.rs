@@ -72,11 +72,6 @@ impl<T> PingPong<T> {
     pub fn previous(&self, index: u32) -> &T {
         &self.sides[((index + 1) % 2) as usize]
     }
-
-    /// Side `i` (0 or 1).
-    pub fn side(&self, i: usize) -> &T {
-        &self.sides[i % 2]
-    }
 }
 
 /// A compute shader module: compiled once, its entry points made into pipelines with group 0

@@ -99,13 +99,6 @@ impl LayerView {
     }
 }
 
-/// The additional cameras of `main` (see the module documentation).
-pub fn camera_views(main: &Camera, bounds: Aabb, settings: &LayerSettings) -> Vec<Camera> {
-    (0..settings.cameras)
-        .map(|c| camera_view(main, bounds, settings, c))
-        .collect()
-}
-
 /// Additional camera `c` of `main`.
 pub fn camera_view(main: &Camera, bounds: Aabb, settings: &LayerSettings, c: u32) -> Camera {
     let back = -main.forward();
