@@ -301,3 +301,24 @@ pub struct PassLayout {
     pub entry_point: &'static str,
     pub group1: &'static [(&'static str, Slot)],
 }
+
+impl PassLayout {
+    /// The declarations of a pass whose entry points (a raster pass's vertex and fragment
+    /// stage, or kernels that share one group) all bind `group1`.
+    pub fn entries(
+        name: &'static str,
+        source: String,
+        entry_points: &[&'static str],
+        group1: &'static [(&'static str, Slot)],
+    ) -> Vec<PassLayout> {
+        entry_points
+            .iter()
+            .map(|&entry_point| PassLayout {
+                name,
+                source: source.clone(),
+                entry_point,
+                group1,
+            })
+            .collect()
+    }
+}

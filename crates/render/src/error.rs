@@ -23,3 +23,13 @@ pub enum RenderError {
     #[error("GPU error: {0}")]
     Gpu(String),
 }
+
+impl RenderError {
+    /// A refused setting of `technique`, for `map_err` over a settings parser's message.
+    pub fn setting(technique: &str) -> impl Fn(String) -> RenderError + '_ {
+        move |msg| RenderError::Setting {
+            technique: technique.into(),
+            msg,
+        }
+    }
+}

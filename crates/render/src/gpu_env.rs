@@ -39,15 +39,12 @@ crate::bind_group! {
 
 /// The binding declarations the reflection test checks.
 pub fn pass_layouts() -> Vec<PassLayout> {
-    ["downsample", "prefilter"]
-        .into_iter()
-        .map(|entry_point| PassLayout {
-            name: "env_prefilter",
-            source: PREFILTER_WGSL.to_string(),
-            entry_point,
-            group1: PrefilterBindings::SLOTS,
-        })
-        .collect()
+    PassLayout::entries(
+        "env_prefilter",
+        PREFILTER_WGSL.to_string(),
+        &["downsample", "prefilter"],
+        PrefilterBindings::SLOTS,
+    )
 }
 
 /// `PrefilterParams` in env_prefilter.wgsl.

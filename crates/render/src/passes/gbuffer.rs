@@ -36,15 +36,12 @@ crate::bind_group! {
 
 /// The binding declarations the reflection test checks (vertex and fragment stage).
 pub fn pass_layouts() -> Vec<PassLayout> {
-    ["vs_main", "fs_main"]
-        .into_iter()
-        .map(|entry_point| PassLayout {
-            name: "gbuffer",
-            source: source(),
-            entry_point,
-            group1: GBufferBindings::SLOTS,
-        })
-        .collect()
+    PassLayout::entries(
+        "gbuffer",
+        source(),
+        &["vs_main", "fs_main"],
+        GBufferBindings::SLOTS,
+    )
 }
 
 impl GpuScene {

@@ -92,9 +92,29 @@ pub fn standalone_pipeline(
     entry_point: &str,
     layout: &wgpu::BindGroupLayout,
 ) -> wgpu::ComputePipeline {
+    compute_pipeline(
+        device,
+        label,
+        module,
+        entry_point,
+        [None, Some(layout)],
+        &[],
+    )
+}
+
+/// A compute pipeline of `module`'s `entry_point` over groups 0 and 1, specialised by the WGSL
+/// `override` constants `constants`.
+fn compute_pipeline(
+    device: &wgpu::Device,
+    label: &str,
+    module: &wgpu::ShaderModule,
+    entry_point: &str,
+    groups: [Option<&wgpu::BindGroupLayout>; 2],
+    constants: &[(&str, f64)],
+) -> wgpu::ComputePipeline {
     let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
         label: Some(label),
-        bind_group_layouts: &[None, Some(layout)],
+        bind_group_layouts: &groups,
         immediate_size: 0,
     });
     device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
@@ -102,7 +122,10 @@ pub fn standalone_pipeline(
         layout: Some(&pipeline_layout),
         module,
         entry_point: Some(entry_point),
-        compilation_options: Default::default(),
+        compilation_options: wgpu::PipelineCompilationOptions {
+            constants,
+            ..Default::default()
+        },
         cache: None,
     })
 }
@@ -126,25 +149,10 @@ impl ComputeStep {
         layout: &wgpu::BindGroupLayout,
         constants: &[(&str, f64)],
     ) -> Self {
-        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some(label),
-            bind_group_layouts: &[Some(&frame.layout), Some(layout)],
-            immediate_size: 0,
-        });
-        let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-            label: Some(label),
-            layout: Some(&pipeline_layout),
-            module,
-            entry_point: Some(entry_point),
-            compilation_options: wgpu::PipelineCompilationOptions {
-                constants,
-                ..Default::default()
-            },
-            cache: None,
-        });
+        let groups = [Some(&frame.layout), Some(layout)];
         ComputeStep {
             label,
-            pipeline,
+            pipeline: compute_pipeline(device, label, module, entry_point, groups, constants),
             frame: frame.bind_group.clone(),
         }
     }

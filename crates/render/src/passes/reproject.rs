@@ -90,32 +90,25 @@ crate::bind_group! {
 
 /// The binding declarations the reflection test checks.
 pub fn pass_layouts() -> Vec<PassLayout> {
-    let mut v: Vec<PassLayout> = [
+    let kernels = [
         "scatter_depth",
         "scatter_color",
         "scatter_resolve",
         "gather",
-    ]
-    .into_iter()
-    .map(|entry_point| PassLayout {
-        name: "reproject",
-        source: source(),
-        entry_point,
-        group1: ReprojectBindings::SLOTS,
-    })
-    .collect();
-    v.push(PassLayout {
-        name: "push_pull",
-        source: push_pull_source(),
-        entry_point: "push",
-        group1: PushBindings::SLOTS,
-    });
-    v.push(PassLayout {
-        name: "push_pull",
-        source: push_pull_source(),
-        entry_point: "pull",
-        group1: PullBindings::SLOTS,
-    });
+    ];
+    let mut v = PassLayout::entries("reproject", source(), &kernels, ReprojectBindings::SLOTS);
+    v.extend(PassLayout::entries(
+        "push_pull",
+        push_pull_source(),
+        &["push"],
+        PushBindings::SLOTS,
+    ));
+    v.extend(PassLayout::entries(
+        "push_pull",
+        push_pull_source(),
+        &["pull"],
+        PullBindings::SLOTS,
+    ));
     v
 }
 

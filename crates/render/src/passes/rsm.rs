@@ -81,15 +81,7 @@ crate::bind_group! {
 
 /// The binding declarations the reflection test checks (vertex and fragment stage).
 pub fn pass_layouts() -> Vec<PassLayout> {
-    ["vs_rsm", "fs_rsm"]
-        .into_iter()
-        .map(|entry_point| PassLayout {
-            name: "rsm",
-            source: source(),
-            entry_point,
-            group1: RsmBindings::SLOTS,
-        })
-        .collect()
+    PassLayout::entries("rsm", source(), &["vs_rsm", "fs_rsm"], RsmBindings::SLOTS)
 }
 
 /// Renders the reflective shadow maps (`size`² per view) of `lights` and returns their lit

@@ -70,15 +70,12 @@ crate::bind_group! {
 
 /// The binding declarations the reflection test checks (vertex and fragment stage).
 pub fn pass_layouts() -> Vec<PassLayout> {
-    ["vs_main", "fs_main"]
-        .into_iter()
-        .map(|entry_point| PassLayout {
-            name: "shadow",
-            source: source(),
-            entry_point,
-            group1: ShadowBindings::SLOTS,
-        })
-        .collect()
+    PassLayout::entries(
+        "shadow",
+        source(),
+        &["vs_main", "fs_main"],
+        ShadowBindings::SLOTS,
+    )
 }
 
 /// What a pass that includes shaders/lights.wgsl binds, under these names, in its group 1.

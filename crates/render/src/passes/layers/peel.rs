@@ -32,13 +32,10 @@ crate::bind_group! {
 
 /// The binding declarations the reflection test checks (vertex and fragment stage).
 pub fn pass_layouts() -> Vec<PassLayout> {
-    ["vs_layer", "fs_layer"]
-        .into_iter()
-        .map(|entry_point| PassLayout {
-            name: "layers raster",
-            source: peel_source(),
-            entry_point,
-            group1: PeelBindings::SLOTS,
-        })
-        .collect()
+    PassLayout::entries(
+        "layers raster",
+        peel_source(),
+        &["vs_layer", "fs_layer"],
+        PeelBindings::SLOTS,
+    )
 }

@@ -170,10 +170,7 @@ fn create(
     hbil: bool,
 ) -> Result<Box<dyn Technique>, RenderError> {
     let name = if hbil { "hbil" } else { "gtao" };
-    let settings = Settings::from_params(tp).map_err(|msg| RenderError::Setting {
-        technique: name.into(),
-        msg,
-    })?;
+    let settings = Settings::from_params(tp).map_err(RenderError::setting(name))?;
     let device = ctx.device;
     let frame = ctx.frame_group;
     let (i, o) = (ctx.inputs, ctx.outputs);
@@ -563,10 +560,7 @@ impl Technique for Horizon {
     }
 
     fn update(&mut self, queue: &wgpu::Queue, tp: &TechniqueParams) -> Result<bool, RenderError> {
-        let settings = Settings::from_params(tp).map_err(|msg| RenderError::Setting {
-            technique: self.name.into(),
-            msg,
-        })?;
+        let settings = Settings::from_params(tp).map_err(RenderError::setting(self.name))?;
         if structure(&settings) != structure(&self.settings) {
             return Ok(false);
         }

@@ -122,10 +122,7 @@ fn create(
     ssbn: bool,
 ) -> Result<Box<dyn Technique>, RenderError> {
     let name = if ssbn { "ssbn" } else { "s3ho" };
-    let settings = Settings::from_params(tp).map_err(|msg| RenderError::Setting {
-        technique: name.into(),
-        msg,
-    })?;
+    let settings = Settings::from_params(tp).map_err(RenderError::setting(name))?;
     if !ctx.pack_half {
         return Err(RenderError::Setting {
             technique: name.into(),
@@ -163,12 +160,8 @@ fn create(
         contents: bytemuck::cast_slice(&sets),
         usage: wgpu::BufferUsages::STORAGE,
     });
-    let stack = LayerStack::new(device, i, ctx.scene, frame, settings.layers).map_err(|msg| {
-        RenderError::Setting {
-            technique: name.into(),
-            msg,
-        }
-    })?;
+    let stack = LayerStack::new(device, i, ctx.scene, frame, settings.layers)
+        .map_err(RenderError::setting(name))?;
     let layer = stack.resources();
     let no_lights = ctx.scene.is_none().then(|| NoLights::new(device));
     let l = ctx.lights(no_lights.as_ref());
@@ -302,10 +295,7 @@ impl Technique for S3ho {
     }
 
     fn update(&mut self, queue: &wgpu::Queue, tp: &TechniqueParams) -> Result<bool, RenderError> {
-        let settings = Settings::from_params(tp).map_err(|msg| RenderError::Setting {
-            technique: self.name.into(),
-            msg,
-        })?;
+        let settings = Settings::from_params(tp).map_err(RenderError::setting(self.name))?;
         if structure(&settings) != structure(&self.settings) {
             return Ok(false);
         }

@@ -205,13 +205,8 @@ fn create(
         contents: bytemuck::cast_slice(&sets),
         usage: wgpu::BufferUsages::STORAGE,
     });
-    let stack =
-        LayerStack::new(device, i, ctx.scene, ctx.frame_group, settings.layers).map_err(|msg| {
-            RenderError::Setting {
-                technique: name.into(),
-                msg,
-            }
-        })?;
+    let stack = LayerStack::new(device, i, ctx.scene, ctx.frame_group, settings.layers)
+        .map_err(RenderError::setting(name))?;
     let layer = stack.resources();
     let no_lights = ctx.scene.is_none().then(|| NoLights::new(device));
     let scene_lights = ctx.lights(no_lights.as_ref());
@@ -332,11 +327,8 @@ impl Variant {
 
     /// The settings of `tp`, checked (instant-radiosity's clamp against R too).
     fn settings(self, tp: &TechniqueParams) -> Result<Settings, RenderError> {
-        let error = |msg| RenderError::Setting {
-            technique: self.name().into(),
-            msg,
-        };
-        let settings = Settings::from_params(tp).map_err(error)?;
+        let error = RenderError::setting(self.name());
+        let settings = Settings::from_params(tp).map_err(&error)?;
         if self == Variant::InstantRadiosity
             && settings.bounce
             && settings.vpl_clamp > settings.radius
