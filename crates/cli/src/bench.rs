@@ -136,6 +136,7 @@ pub fn run(args: BenchArgs) -> Result<()> {
             &params,
             settings,
         )?;
+        loaded.report_sun();
         for i in 0..args.warmup {
             crate::options::orbit_frame(&mut r, i, args.orbit);
         }

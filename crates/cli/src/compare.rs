@@ -180,6 +180,7 @@ pub fn run(args: CompareArgs) -> Result<()> {
             &params,
             settings,
         )?;
+        loaded.report_sun();
         let still = args.orbit == 0.0 && args.frames > 1;
         let mut convergence = Vec::new();
         let mut mask = None;

@@ -5,7 +5,7 @@ use crate::BadInput;
 use anyhow::Result;
 use clap::Args;
 use glam::Vec3;
-use nearfield_scene::{Camera, CameraFile, EnvSource, Environment, Scene, SceneSource};
+use nearfield_scene::{Camera, CameraFile, EnvSource, Environment, Scene, SceneSource, SunMode};
 
 #[derive(Args, Clone, Debug)]
 pub struct SceneOpts {
@@ -38,6 +38,11 @@ pub struct SceneOpts {
     /// Vertical field of view (degrees, 0..180); overrides the camera's.
     #[arg(long)]
     pub fov: Option<f32>,
+    /// The environment's sun: auto splits a compact bright region (the built-in sky's sun, an
+    /// HDR map's sun) into a disc light with shadows and lights with the residual map; off keeps
+    /// the map whole.
+    #[arg(long, default_value = "auto")]
+    pub sun: String,
     /// Use the GPU adapter whose name contains this text (case-insensitive).
     #[arg(long)]
     pub adapter: Option<String>,
@@ -49,6 +54,18 @@ pub struct Loaded {
     pub env: Environment,
     pub env_source: EnvSource,
     pub camera: Camera,
+    /// What `--sun auto` found, printed once by [`Loaded::report_sun`].
+    sun_line: std::cell::Cell<Option<String>>,
+}
+
+impl Loaded {
+    /// Prints what `--sun auto` found (once, after the command's setup succeeded, so that a
+    /// bad input still gets exactly one line).
+    pub fn report_sun(&self) {
+        if let Some(line) = self.sun_line.take() {
+            eprintln!("nearfield: {line}");
+        }
+    }
 }
 
 pub fn parse_size(s: &str) -> Result<(u32, u32)> {
@@ -109,10 +126,11 @@ impl SceneOpts {
             .map(|s| parse_vec3("--target", s))
             .transpose()?;
         let env_source = self.env.as_deref().map(EnvSource::parse).transpose()?;
+        let sun = SunMode::parse(&self.sun)?;
 
         let scene = SceneSource::parse(&self.scene).load()?;
         let env_source = env_source.unwrap_or_else(|| scene.default_env.clone());
-        let mut env = env_source.load()?;
+        let (mut env, found) = env_source.load_split(sun)?;
         env.intensity = self.env_intensity;
         env.rotation = self.env_rotation.to_radians();
 
@@ -145,6 +163,7 @@ impl SceneOpts {
             env,
             env_source,
             camera,
+            sun_line: std::cell::Cell::new(found),
         })
     }
 }

@@ -9,7 +9,7 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 /// Bumped whenever the reference's results change for the same inputs (invalidates caches).
-const REFERENCE_VERSION: u32 = 3;
+const REFERENCE_VERSION: u32 = 4;
 
 /// Reference options shared by `reference` and `compare`.
 #[derive(Args, Debug, Clone)]
@@ -26,6 +26,10 @@ pub struct ReferenceOpts {
     /// Worker threads (default: all cores); results do not depend on it.
     #[arg(long)]
     pub threads: Option<usize>,
+    /// What the senders of indirect-irradiance (and diffuse) emit: physical (their direct light
+    /// with shadows, DESIGN.md) or unshadowed (V ≡ 1 at the sender, for analysis).
+    #[arg(long, default_value = "physical")]
+    pub senders: String,
 }
 
 #[derive(Args, Debug)]
@@ -95,6 +99,13 @@ impl ReferenceOpts {
         {
             return Err(BadInput(format!("--threads {t}: must be in 1..=4096")).into());
         }
+        let senders = nearfield_reference::Senders::parse(&self.senders).ok_or_else(|| {
+            BadInput(format!(
+                "--senders {}: expected {}",
+                self.senders,
+                nearfield_reference::Senders::NAMES.join(" or ")
+            ))
+        })?;
         Ok(ReferenceSettings {
             aov,
             size,
@@ -102,6 +113,7 @@ impl ReferenceOpts {
             spp: self.spp,
             seed,
             max_depth: self.max_depth,
+            senders,
         })
     }
 }
@@ -126,7 +138,7 @@ fn scene_fingerprint(scene: &nearfield_scene::Scene) -> u64 {
 fn describe(opts: &SceneOpts, loaded: &Loaded, s: &ReferenceSettings) -> String {
     let c = loaded.camera;
     format!(
-        "v{REFERENCE_VERSION}|{}|scene={}|content={:016x}|env={}|intensity={}|rotation={}|eye={}|target={}|up={}|yfov={}|size={}x{}|aov={}|radius={}|spp={}|seed={}|depth={}",
+        "v{REFERENCE_VERSION}|{}|scene={}|content={:016x}|env={}|intensity={}|rotation={}|eye={}|target={}|up={}|yfov={}|size={}x{}|aov={}|radius={}|spp={}|seed={}|depth={}|senders={}|sun={}",
         env!("CARGO_PKG_VERSION"),
         cache::describe_input(&opts.scene),
         scene_fingerprint(&loaded.scene),
@@ -143,7 +155,9 @@ fn describe(opts: &SceneOpts, loaded: &Loaded, s: &ReferenceSettings) -> String 
         s.radius,
         s.spp,
         s.seed,
-        s.max_depth
+        s.max_depth,
+        s.senders.name(),
+        opts.sun
     )
 }
 
@@ -207,6 +221,7 @@ pub fn run(args: ReferenceArgs) -> Result<()> {
         .unwrap_or_else(|| PathBuf::from(format!("reference-{}.exr", aov.name())));
     check_exr_output(&output)?;
     let loaded = args.scene.load()?;
+    loaded.report_sun();
     let (img, _) = compute(&args.scene, &args.reference, &loaded, &settings)?;
     crate::render::save_atomically(&output, |tmp| exr_io::write(&img, tmp).map_err(Into::into))?;
     eprintln!("nearfield: wrote {}", output.display());

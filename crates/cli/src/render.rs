@@ -132,6 +132,7 @@ pub fn run(args: RenderArgs) -> Result<()> {
         ))
         .into());
     }
+    loaded.report_sun();
     for i in 0..args.frames {
         crate::options::orbit_frame(&mut renderer, i, args.orbit);
     }

@@ -94,6 +94,7 @@ fn none_differs_from_the_reference_by_sh_truncation_only() {
             spp: 256,
             seed: 5,
             max_depth: 1,
+            senders: nearfield_reference::Senders::Physical,
         };
         let reference = nearfield_reference::render(&scene, &env, &camera, &settings, false);
         let pixels: Vec<usize> = (0..gpu.pixels.len())

@@ -62,6 +62,7 @@ fn corner_faces_keep_their_colours() {
             spp: 256,
             seed: 1,
             max_depth: 1,
+            senders: nearfield_reference::Senders::Physical,
         },
         false,
     );

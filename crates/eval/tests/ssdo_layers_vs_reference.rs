@@ -186,6 +186,7 @@ fn reference(
         spp,
         seed: 1,
         max_depth: 1,
+        senders: nearfield_reference::Senders::Physical,
     };
     nearfield_reference::render(scene, env, &scene.default_camera(), &settings, false)
 }

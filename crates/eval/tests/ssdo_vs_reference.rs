@@ -77,6 +77,7 @@ fn ssdo_beats_ssao_and_the_bounce_helps() {
                 spp: 128,
                 seed: 3,
                 max_depth: 2,
+                senders: nearfield_reference::Senders::Physical,
             };
             nearfield_reference::render(&scene, &env, &camera, &s, false)
         };

@@ -6,10 +6,18 @@
 //!   direction drawn from the map's energy (`env_sampling`), each contributing
 //!   V_R L_env cos θ/π / (pdf_cos + pdf_env);
 //! - `indirect-irradiance` ≈ mean (1 − V_R(ωᵢ)) L_o(x′ᵢ), x′ᵢ the closest hit within R, with
-//!   L_o(x′) = Le(x′) + ρ(x′) (E_env(n′)/π + Σ_l E_l(x′, n′)/π): environment and lights with
-//!   full visibility (no occlusion, no shadows; E_env from `irradiance::IrradianceMap`), n′ the
-//!   shading normal of the side facing P;
-//! - `light-irradiance` = (1/π) Σ_l E_l(P, n) · [shadow ray reaches the light] — exact, no noise;
+//!   L_o(x′) = Le(x′) + ρ(x′) (E_env(n′)/π + Σ_l E_l(x′, n′)/π), n′ the shading normal of the
+//!   side facing P. [`Senders::Physical`] (the default, DESIGN.md): the physical direct light
+//!   of x′ — E_env/π estimated at x′ with the full shadow test V_∞ by one cosine-weighted and one
+//!   environment-drawn direction (balance heuristic, as at P), and each light with its shadow
+//!   ray (a disc light: one direction drawn uniformly over its disc). So `diffuse` at R = ∞ is
+//!   the path tracer's `radiance` through the path vertices camera, P, x′ and the light x′ sees
+//!   (`max_depth` 3 in our convention, which counts segments: camera → P → x′ → light) minus
+//!   P's emission, on scenes whose only emitters are the environment and the lights. [`Senders::Unshadowed`] (analysis only): E_env from
+//!   `irradiance::IrradianceMap` and the lights' unshadowed irradiance (V ≡ 1 at x′);
+//! - `light-irradiance` = (1/π) Σ_l E_l(P, n) · [shadow ray reaches the light] — exact for
+//!   punctual lights; a disc light (the environment's sun, `nearfield_scene::sun`) is sampled
+//!   with `spp` directions stratified over its disc, each with its shadow ray;
 //! - `diffuse` = ρ (env + light + indirect), R as given;
 //! - `radiance`: a path tracer with Lambertian surfaces of albedo ρ, next-event estimation of the
 //!   punctual lights and of the environment (drawn from its energy, balance heuristic against the
@@ -23,9 +31,9 @@ use crate::env_sampling::EnvDistribution;
 use crate::irradiance::IrradianceMap;
 use crate::sampling::{Pcg32, cosine_hemisphere, pixel_seed, r2, r2_offset};
 use crate::tracer::{Hit, Tracer, offset_origin};
-use crate::{PixelResult, ReferenceAov, ReferenceSettings};
-use glam::Vec3;
-use nearfield_scene::{Camera, Environment, Scene};
+use crate::{PixelResult, ReferenceAov, ReferenceSettings, Senders};
+use glam::{Vec2, Vec3};
+use nearfield_scene::{Camera, Environment, Light, LightKind, Scene};
 use std::f32::consts::PI;
 
 pub struct Context<'a> {
@@ -37,6 +45,10 @@ pub struct Context<'a> {
     irradiance: Option<IrradianceMap>,
     env_dist: Option<EnvDistribution>,
     scene_radius: f32,
+    /// The scene's lights and the environment's sun (a disc light), if split out.
+    lights: Vec<Light>,
+    /// Some light is a disc (needs sampling).
+    has_disc: bool,
 }
 
 /// Running mean and variance (Welford).
@@ -72,10 +84,18 @@ impl<'a> Context<'a> {
         camera: &Camera,
         settings: &ReferenceSettings,
     ) -> Self {
-        let needs_irradiance = matches!(
-            settings.aov,
-            ReferenceAov::IndirectIrradiance | ReferenceAov::Diffuse
-        );
+        let needs_irradiance = settings.senders == Senders::Unshadowed
+            && matches!(
+                settings.aov,
+                ReferenceAov::IndirectIrradiance | ReferenceAov::Diffuse
+            );
+        let lights: Vec<Light> = scene
+            .lights
+            .iter()
+            .copied()
+            .chain(env.sun_light())
+            .collect();
+        let has_disc = lights.iter().any(|l| disc_radius(l) > 0.0);
         Context {
             tracer: Tracer::new(scene),
             scene,
@@ -86,36 +106,102 @@ impl<'a> Context<'a> {
             env_dist: if matches!(
                 settings.aov,
                 ReferenceAov::EnvIrradiance | ReferenceAov::Diffuse | ReferenceAov::Radiance
-            ) {
+            ) || (settings.aov == ReferenceAov::IndirectIrradiance
+                && settings.senders == Senders::Physical)
+            {
                 EnvDistribution::new(env)
             } else {
                 None
             },
             scene_radius: scene.bounds().radius(),
+            lights,
+            has_disc,
         }
     }
 
-    /// (1/π) Σ_l E_l(P, n) with exact shadow rays.
-    fn light_irradiance(&self, hit: &Hit, rays: &mut u64) -> Vec3 {
-        self.light_irradiance_from(hit, self.camera.eye, rays)
+    /// (1/π) Σ_l E_l(P, n) with shadow rays: exact for punctual lights, the mean of `spp`
+    /// stratified directions over each disc light.
+    fn light_irradiance(&self, hit: &Hit, x: u32, y: u32, rays: &mut u64) -> (Vec3, Vec3) {
+        let eye = self.camera.eye;
+        if !self.has_disc {
+            return (
+                self.light_irradiance_from(hit, eye, Vec2::ZERO, rays),
+                Vec3::ZERO,
+            );
+        }
+        let offset = r2_offset(pixel_seed(x, y, self.settings.seed) ^ 0xbb67_ae85);
+        let mut stats = Stats::default();
+        for i in 0..self.settings.spp {
+            stats.push(self.light_irradiance_from(hit, eye, r2(i, offset), rays));
+        }
+        (stats.mean, stats.stderr())
     }
 
-    /// L_o(x′) towards −dir: emission + ρ (unoccluded env + unshadowed lights) / π.
-    fn outgoing_diffuse(&self, hit: &Hit) -> Vec3 {
+    /// L_o(x′) towards the point `from` it is seen from: emission + ρ (E_env + Σ E_l) / π, with
+    /// shadows ([`Senders::Physical`], one estimate from `rng`) or without.
+    fn outgoing_diffuse(&self, hit: &Hit, from: Vec3, rng: &mut Pcg32, rays: &mut u64) -> Vec3 {
         let albedo = self.scene.base_color(hit.material, hit.uv).truncate();
-        let env = self
-            .irradiance
-            .as_ref()
-            .map(|m| m.lookup(hit.ns))
-            .unwrap_or(Vec3::ZERO);
-        let lights: Vec3 = self
-            .scene
-            .lights
-            .iter()
-            .map(|l| l.irradiance(hit.p, hit.ns))
-            .sum::<Vec3>()
-            / PI;
-        self.scene.emission(hit.material, hit.uv) + albedo * (env + lights)
+        let emission = self.scene.emission(hit.material, hit.uv);
+        if self.settings.senders == Senders::Unshadowed {
+            let env = self
+                .irradiance
+                .as_ref()
+                .map(|m| m.lookup(hit.ns))
+                .unwrap_or(Vec3::ZERO);
+            let lights: Vec3 = self
+                .lights
+                .iter()
+                .map(|l| l.irradiance(hit.p, hit.ns))
+                .sum::<Vec3>()
+                / PI;
+            return emission + albedo * (env + lights);
+        }
+        if albedo.max_element() <= 0.0 {
+            return emission;
+        }
+        let env = self.shadowed_env(hit, from, rng.next_vec2(), rng.next_vec2(), rays);
+        let lights = self.light_irradiance_from(hit, from, rng.next_vec2(), rays);
+        emission + albedo * (env + lights)
+    }
+
+    /// One estimate of (1/π) ∫ L_env V_∞ cos θ dω at `hit`: a cosine-weighted direction (from
+    /// `u_cos`) and one drawn from the map's energy (`u_env`), balance heuristic.
+    fn shadowed_env(
+        &self,
+        hit: &Hit,
+        from: Vec3,
+        u_cos: Vec2,
+        u_env: Vec2,
+        rays: &mut u64,
+    ) -> Vec3 {
+        let mut e = Vec3::ZERO;
+        let w = cosine_hemisphere(hit.ns, u_cos);
+        if w.dot(hit.ng) > 0.0 {
+            *rays += 1;
+            let o = offset_origin(hit, w, from, self.scene_radius);
+            if !self.tracer.occluded(o, w, f32::INFINITY) {
+                let weight = match &self.env_dist {
+                    Some(d) => {
+                        let pc = w.dot(hit.ns).max(0.0) / PI;
+                        pc / (pc + d.pdf(self.env, w))
+                    }
+                    None => 1.0,
+                };
+                e += self.env.radiance(w) * weight;
+            }
+        }
+        if let Some(d) = &self.env_dist {
+            let (we, pe) = d.sample(self.env, u_env);
+            let cos = we.dot(hit.ns);
+            if pe > 0.0 && cos > 0.0 && we.dot(hit.ng) > 0.0 {
+                *rays += 1;
+                let o = offset_origin(hit, we, from, self.scene_radius);
+                if !self.tracer.occluded(o, we, f32::INFINITY) {
+                    e += self.env.radiance(we) * (cos / PI) / (cos / PI + pe);
+                }
+            }
+        }
+        e
     }
 
     pub fn pixel(&self, x: u32, y: u32) -> PixelResult {
@@ -151,8 +237,8 @@ impl<'a> Context<'a> {
             ReferenceAov::Normal => return done(hit.ns, Vec3::ZERO, rays),
             ReferenceAov::Depth => return done(Vec3::splat(depth), Vec3::ZERO, rays),
             ReferenceAov::LightIrradiance => {
-                let e = self.light_irradiance(&hit, &mut rays);
-                return done(e, Vec3::ZERO, rays);
+                let (e, se) = self.light_irradiance(&hit, x, y, &mut rays);
+                return done(e, se, rays);
             }
             ReferenceAov::Radiance => return self.path_trace(x, y, &hit, depth),
             _ => {}
@@ -167,12 +253,14 @@ impl<'a> Context<'a> {
             ReferenceAov::IndirectIrradiance | ReferenceAov::Diffuse
         );
         let env_terms = matches!(s.aov, ReferenceAov::EnvIrradiance | ReferenceAov::Diffuse);
-        let (rho, light) = if s.aov == ReferenceAov::Diffuse {
-            (albedo(), self.light_irradiance(&hit, &mut rays))
+        let (rho, (light, light_se)) = if s.aov == ReferenceAov::Diffuse {
+            (albedo(), self.light_irradiance(&hit, x, y, &mut rays))
         } else {
-            (Vec3::ONE, Vec3::ZERO)
+            (Vec3::ONE, (Vec3::ZERO, Vec3::ZERO))
         };
         let eye = self.camera.eye;
+        // The senders' own estimates (physical senders).
+        let mut rng = Pcg32::new(pixel_seed(x, y, s.seed) as u64, 0x9e37_79b9_7f4a_7c15);
         for i in 0..s.spp {
             // Cosine-weighted direction: visibility (ao, env), the near hit (indirect).
             let w = cosine_hemisphere(hit.ns, r2(i, offset));
@@ -189,7 +277,10 @@ impl<'a> Context<'a> {
                     radius,
                     false,
                 ) {
-                    Some(near) => (false, self.outgoing_diffuse(&near)),
+                    Some(near) => (
+                        false,
+                        self.outgoing_diffuse(&near, hit.p, &mut rng, &mut rays),
+                    ),
                     None => (true, Vec3::ZERO),
                 }
             } else {
@@ -244,6 +335,9 @@ impl<'a> Context<'a> {
         }
         let (mean, se) = (stats.mean, stats.stderr());
         if s.aov == ReferenceAov::Diffuse {
+            // The light's mean comes from its own stratified samples, independent of the
+            // hemisphere's: the errors add in quadrature.
+            let se = (se * se + light_se * light_se).map(f32::sqrt);
             done(rho * (mean + light), rho * se, rays)
         } else {
             done(mean, se, rays)
@@ -263,8 +357,11 @@ impl<'a> Context<'a> {
             let mut from = self.camera.eye;
             while segments < s.max_depth {
                 let rho = self.scene.base_color(hit.material, hit.uv).truncate();
-                // Next-event estimation: one more segment, to each punctual light …
-                l += throughput * rho * self.light_irradiance_from(&hit, from, &mut rays);
+                // Next-event estimation: one more segment, to each light (a disc: one direction
+                // over it) …
+                l += throughput
+                    * rho
+                    * self.light_irradiance_from(&hit, from, rng.next_vec2(), &mut rays);
                 // … and to the environment, drawn from its energy and weighted by the balance
                 // heuristic against the cosine-weighted continuation below.
                 if let Some(d) = &self.env_dist {
@@ -324,11 +421,28 @@ impl<'a> Context<'a> {
         }
     }
 
-    /// (1/π) Σ_l E_l at `hit` with exact shadow rays whose origins are pushed towards `from`
-    /// (the camera, or the previous path vertex).
-    fn light_irradiance_from(&self, hit: &Hit, from: Vec3, rays: &mut u64) -> Vec3 {
+    /// (1/π) Σ_l E_l at `hit` with shadow rays whose origins are pushed towards `from` (the
+    /// camera, or the previous path vertex): exact for punctual lights; a disc light gives one
+    /// unbiased sample from `u`, a direction uniform over the disc's solid angle Ω, weighted
+    /// L·(ω·n)·Ω = E_n (ω·n) · 2/(1 + cos r) (E_n its normal irradiance, r its radius).
+    fn light_irradiance_from(&self, hit: &Hit, from: Vec3, u: Vec2, rays: &mut u64) -> Vec3 {
         let mut e = Vec3::ZERO;
-        for light in &self.scene.lights {
+        for light in &self.lights {
+            let radius = disc_radius(light);
+            if radius > 0.0 {
+                let (centre, _) = light.direction_from(hit.p);
+                let l = uniform_cone(centre, radius.cos(), u);
+                let cos = l.dot(hit.ns);
+                if cos <= 0.0 || l.dot(hit.ng) <= 0.0 {
+                    continue;
+                }
+                *rays += 1;
+                let o = offset_origin(hit, l, from, self.scene_radius);
+                if !self.tracer.occluded(o, l, f32::INFINITY) {
+                    e += light.normal_irradiance(hit.p) * (cos * 2.0 / (1.0 + radius.cos()));
+                }
+                continue;
+            }
             let (l, dist) = light.direction_from(hit.p);
             if l.dot(hit.ns) <= 0.0 || l.dot(hit.ng) <= 0.0 {
                 continue;
@@ -350,4 +464,21 @@ impl<'a> Context<'a> {
         }
         e / PI
     }
+}
+
+/// Angular radius of a disc light (0 for punctual lights).
+fn disc_radius(l: &Light) -> f32 {
+    match l.kind {
+        LightKind::Directional { angular_radius, .. } => angular_radius.max(0.0),
+        _ => 0.0,
+    }
+}
+
+/// A direction uniform over the cone of half-angle acos(`cos_max`) about the unit `axis`.
+fn uniform_cone(axis: Vec3, cos_max: f32, u: Vec2) -> Vec3 {
+    let cos = 1.0 - u.x * (1.0 - cos_max);
+    let sin = (1.0 - cos * cos).max(0.0).sqrt();
+    let phi = 2.0 * PI * u.y;
+    let (t, b) = crate::sampling::orthonormal_basis(axis);
+    (t * (sin * phi.cos()) + b * (sin * phi.sin()) + axis * cos).normalize()
 }

@@ -79,6 +79,32 @@ impl ReferenceAov {
     }
 }
 
+/// What the senders x′ of `indirect-irradiance` emit (DESIGN.md).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
+pub enum Senders {
+    /// Their physical direct light: environment with the full shadow test, lights with shadows.
+    #[default]
+    Physical,
+    /// For analysis: environment and lights without shadows at x′ (V ≡ 1).
+    Unshadowed,
+}
+
+impl Senders {
+    pub const NAMES: [&'static str; 2] = ["physical", "unshadowed"];
+
+    pub fn parse(s: &str) -> Option<Self> {
+        match s {
+            "physical" => Some(Senders::Physical),
+            "unshadowed" => Some(Senders::Unshadowed),
+            _ => None,
+        }
+    }
+
+    pub fn name(self) -> &'static str {
+        Self::NAMES[self as usize]
+    }
+}
+
 /// Settings of one reference render.
 #[derive(Clone, Copy, Debug)]
 pub struct ReferenceSettings {
@@ -91,6 +117,8 @@ pub struct ReferenceSettings {
     pub seed: u32,
     /// Path length limit for `radiance` (segments, camera segment included), ≥ 1.
     pub max_depth: u32,
+    /// What the senders of `indirect-irradiance` (and `diffuse`) emit.
+    pub senders: Senders,
 }
 
 impl Default for ReferenceSettings {
@@ -102,6 +130,7 @@ impl Default for ReferenceSettings {
             spp: 64,
             seed: 0,
             max_depth: 5,
+            senders: Senders::Physical,
         }
     }
 }

@@ -2,7 +2,7 @@
 //! allowing 4 standard errors of the reference's own noise (plus the stated discretisation).
 
 use glam::{Vec2, Vec3};
-use nearfield_reference::{ReferenceAov, ReferenceImage, ReferenceSettings, render};
+use nearfield_reference::{ReferenceAov, ReferenceImage, ReferenceSettings, Senders, render};
 use nearfield_scene::{Camera, Environment, Material, Mesh, Scene, builtin};
 use std::f32::consts::PI;
 
@@ -14,6 +14,7 @@ fn settings(aov: ReferenceAov, size: (u32, u32), radius: f32, spp: u32) -> Refer
         spp,
         seed: 1,
         max_depth: 5,
+        senders: nearfield_reference::Senders::Physical,
     }
 }
 
@@ -188,28 +189,31 @@ fn clamped_cosine_environment() {
     }
 }
 
-/// Indirect light from the wall onto the floor, with radius R, at floor distance d (k = d/R):
-/// the wall covers a cosine-weighted fraction 1 − ao(k) of the near field, and its outgoing
-/// radiance is uniform, so indirect-irradiance = L_wall (1 − ao(k)).
+/// Indirect light from the wall onto the floor (the floor/wall wedge), with radius R, at floor
+/// distance d (k = d/R): the wall covers a cosine-weighted fraction 1 − ao(k) of the near
+/// field, and its outgoing radiance is uniform, so indirect-irradiance = L_wall (1 − ao(k)).
 /// (a) an emissive black wall (Le = 1.5) in a black world: L_wall = 1.5;
-/// (b) a white wall (ρ = 0.8) under a constant environment L = 2 (full visibility, so its
-///     irradiance/π is L): L_wall = 1.6.
+/// (b) a white wall (ρ = 0.8) under a constant sky L = 2 with physical senders: every wall
+///     point sees half sky and half (unlit) floor, so its direct radiance is ρ L/2 = 0.8 — the
+///     floor reaches 400 m and 200 m sideways, so the sky seen past its edges from the wall
+///     points within R (height < 1 m) is below 0.3 % of the hemisphere;
+/// (c) the same with `Senders::Unshadowed` (V ≡ 1 at the wall): L_wall = ρ L = 1.6.
 #[test]
 fn indirect_from_a_uniform_wall() {
     let r = 1.0;
     let cam = Camera::new(Vec3::new(0.3, 0.9, 2.2), Vec3::new(0.0, 0.0, 0.4), 60.0);
-    for (emissive, albedo, env_l, wall_l) in [(1.5, 0.0, 0.0, 1.5), (0.0, 0.8, 2.0, 1.6)] {
+    for (emissive, albedo, env_l, senders, wall_l) in [
+        (1.5, 0.0, 0.0, Senders::Physical, 1.5),
+        (0.0, 0.8, 2.0, Senders::Physical, 0.8),
+        (0.0, 0.8, 2.0, Senders::Unshadowed, 1.6),
+    ] {
         let mut scene = builtin::scene("wall").unwrap();
         scene.materials[1].emissive = Vec3::splat(emissive);
         scene.materials[1].base_color = Vec3::splat(albedo).extend(1.0);
         let env = Environment::constant(Vec3::splat(env_l));
-        let img = render(
-            &scene,
-            &env,
-            &cam,
-            &settings(ReferenceAov::IndirectIrradiance, (24, 18), r, 512),
-            false,
-        );
+        let mut s = settings(ReferenceAov::IndirectIrradiance, (24, 18), r, 512);
+        s.senders = senders;
+        let img = render(&scene, &env, &cam, &s, false);
         let mut floor = 0;
         for y in 0..img.height {
             for x in 0..img.width {
@@ -221,7 +225,8 @@ fn indirect_from_a_uniform_wall() {
                 floor += 1;
                 let want = wall_l * (1.0 - ao_near_wall(p.z / r));
                 let se = img.stderr[(y * img.width + x) as usize][0];
-                // 0.5 %: the irradiance table's interpolation (irradiance.rs) for case (b).
+                // 0.5 %: the irradiance table's interpolation (irradiance.rs) for case (c), the
+                // floor's finite extent for (b).
                 assert!(
                     (v[0] - want).abs() <= 4.0 * se + 0.005 * wall_l,
                     "{p}: {} vs {want}",
@@ -294,6 +299,106 @@ fn radiance_depth_two_equals_direct_diffuse() {
         "{} vs {mean_se}",
         sum_diff / n as f64
     );
+}
+
+/// `diffuse` at R = ∞ is one bounce of physical direct light: the path tracer's `radiance`
+/// through camera, P, x′ and the light x′ sees (`max_depth` 3: our convention counts
+/// segments) minus P's emission, per pixel within the two estimates' noise. On `boxes` (its
+/// directional light) under the built-in sky with its sun split out as a disc light, so
+/// punctual, disc and environment light all take part.
+#[test]
+fn diffuse_at_infinite_radius_is_the_three_segment_path_tracer() {
+    let scene = builtin::scene("boxes").unwrap();
+    let cam = scene.default_camera();
+    let env = nearfield_scene::sky::Sky {
+        width: 256,
+        ..Default::default()
+    }
+    .to_split_environment();
+    assert!(env.sun.is_some());
+    let size = (24, 16);
+    let mut rad = settings(ReferenceAov::Radiance, size, f32::INFINITY, 512);
+    rad.max_depth = 3;
+    let radiance = render(&scene, &env, &cam, &rad, false);
+    let diffuse = render(
+        &scene,
+        &env,
+        &cam,
+        &settings(ReferenceAov::Diffuse, size, f32::INFINITY, 512),
+        false,
+    );
+    let (mut n, mut sum_diff, mut sum_se2) = (0, 0.0f64, 0.0f64);
+    for i in 0..radiance.value.len() {
+        if radiance.value[i][3] == 0.0 {
+            continue;
+        }
+        for c in 0..3 {
+            let want = diffuse.value[i][c];
+            let se = (radiance.stderr[i][c].powi(2) + diffuse.stderr[i][c].powi(2)).sqrt();
+            let d = radiance.value[i][c] - want;
+            assert!(
+                d.abs() <= 5.0 * se + 1e-3 * want.abs() + 1e-4,
+                "pixel {i} channel {c}: radiance {} vs diffuse {want} (se {se})",
+                radiance.value[i][c]
+            );
+            sum_diff += d as f64;
+            sum_se2 += (se * se) as f64;
+            n += 1;
+        }
+    }
+    let mean_se = sum_se2.sqrt() / n as f64;
+    eprintln!(
+        "diffuse vs 3-segment radiance: mean difference {:.5} (its standard error {mean_se:.5}) over {n} values",
+        sum_diff / n as f64
+    );
+    assert!(
+        (sum_diff / n as f64).abs() <= 4.0 * mean_se,
+        "{} vs {mean_se}",
+        sum_diff / n as f64
+    );
+}
+
+/// Splitting the sky's sun into a disc light changes how it is sampled, not the physics: the
+/// path-traced `radiance` of `builtin:cornell` with the split agrees with the whole map's per
+/// pixel within the two estimates' noise.
+#[test]
+fn sun_split_keeps_the_path_traced_image() {
+    let scene = builtin::scene("cornell").unwrap();
+    let cam = scene.default_camera();
+    let sky = nearfield_scene::sky::Sky {
+        width: 256,
+        ..Default::default()
+    };
+    let size = (24, 14);
+    let mut s = settings(ReferenceAov::Radiance, size, f32::INFINITY, 1024);
+    s.max_depth = 4;
+    let whole = render(&scene, &sky.to_environment(), &cam, &s, false);
+    let split = render(&scene, &sky.to_split_environment(), &cam, &s, false);
+    let (mut n, mut sum_diff, mut sum_se2) = (0, 0.0f64, 0.0f64);
+    for i in 0..whole.value.len() {
+        if whole.value[i][3] == 0.0 {
+            continue;
+        }
+        for c in 0..3 {
+            let se = (whole.stderr[i][c].powi(2) + split.stderr[i][c].powi(2)).sqrt();
+            let d = split.value[i][c] - whole.value[i][c];
+            assert!(
+                d.abs() <= 5.0 * se + 2e-3 * whole.value[i][c],
+                "pixel {i} channel {c}: split {} vs whole {} (se {se})",
+                split.value[i][c],
+                whole.value[i][c]
+            );
+            sum_diff += d as f64;
+            sum_se2 += (se * se) as f64;
+            n += 1;
+        }
+    }
+    let mean_se = sum_se2.sqrt() / n as f64;
+    eprintln!(
+        "split − whole: mean {:.5} (standard error {mean_se:.5})",
+        sum_diff / n as f64
+    );
+    assert!((sum_diff / n as f64).abs() <= 4.0 * mean_se);
 }
 
 /// Error against a 16× spp render falls at least as fast as 1/√spp.

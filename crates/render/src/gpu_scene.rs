@@ -65,7 +65,8 @@ pub struct GpuLight {
     pub range: f32,
     /// Colour × intensity.
     pub color: [f32; 3],
-    pub _pad0: f32,
+    /// tan of a directional disc light's angular radius (0: punctual): sizes its PCF.
+    pub tan_radius: f32,
     /// cos of a spot's inner and outer cone angle.
     pub cos_inner: f32,
     pub cos_outer: f32,
@@ -92,17 +93,23 @@ pub struct GpuScene {
     pub material_sampler: wgpu::Sampler,
     pub lights: wgpu::Buffer,
     pub light_count: u32,
-    /// The scene lights, in the order of `lights`.
+    /// The lights, in the order of `lights`: the scene's, then the environment's sun.
     pub scene_lights: Vec<nearfield_scene::Light>,
+    /// How many lights `lights` holds at most.
+    pub light_capacity: usize,
     pub bounds: Aabb,
     pub triangle_count: u32,
 }
 
 impl GpuScene {
+    /// Uploads `scene` lit by `lights` (its own lights, and the environment's sun if split out;
+    /// the table has room for one more light than `scene.lights`, for a sun that arrives with a
+    /// later environment).
     pub fn new(
         device: &wgpu::Device,
         queue: &wgpu::Queue,
         scene: &Scene,
+        lights: &[nearfield_scene::Light],
     ) -> Result<Self, RenderError> {
         // Geometry: single-sided meshes first, then double-sided ones.
         let mut vertices: Vec<Vertex> = Vec::new();
@@ -188,10 +195,12 @@ impl GpuScene {
             mipmap_filter: wgpu::MipmapFilterMode::Linear,
             ..Default::default()
         });
-        let light_count = scene.lights.len() as u32;
+        let light_count = lights.len() as u32;
+        let scene_lights = lights.to_vec();
+        let capacity = (scene.lights.len() + 1).max(lights.len());
         let lights = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("lights"),
-            size: (std::mem::size_of::<GpuLight>() * scene.lights.len().max(1)) as u64,
+            size: (std::mem::size_of::<GpuLight>() * capacity) as u64,
             usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
@@ -206,7 +215,8 @@ impl GpuScene {
             material_sampler,
             lights,
             light_count,
-            scene_lights: scene.lights.clone(),
+            scene_lights,
+            light_capacity: capacity,
             bounds: scene.bounds(),
             triangle_count: index_count / 3,
         })
@@ -245,8 +255,15 @@ impl GpuScene {
 
 pub(crate) fn gpu_light(l: &nearfield_scene::Light, layer: Option<u32>, texel: f32) -> GpuLight {
     let c = l.color * l.intensity;
+    let mut tan_radius = 0.0;
     let (pos, kind, dir, cones) = match l.kind {
-        LightKind::Directional { direction } => (direction, 0.0, Vec3::ZERO, (1.0, 1.0)),
+        LightKind::Directional {
+            direction,
+            angular_radius,
+        } => {
+            tan_radius = angular_radius.clamp(0.0, 1.0).tan();
+            (direction, 0.0, Vec3::ZERO, (1.0, 1.0))
+        }
         LightKind::Point { position } => (position, 1.0, Vec3::ZERO, (1.0, 1.0)),
         LightKind::Spot {
             position,
@@ -266,7 +283,7 @@ pub(crate) fn gpu_light(l: &nearfield_scene::Light, layer: Option<u32>, texel: f
         direction: dir.into(),
         range: l.range.unwrap_or(0.0),
         color: c.into(),
-        _pad0: 0.0,
+        tan_radius,
         cos_inner: cones.0,
         cos_outer: cones.1,
         shadow_layer: layer.map(|l| l as f32).unwrap_or(-1.0),

@@ -95,7 +95,14 @@ impl Renderer {
         let device = ctx.device.clone();
         let queue = ctx.queue.clone();
         let scopes = ErrorScopes::push(&device);
-        let gpu_scene = GpuScene::new(&device, &queue, scene)?;
+        // The environment's sun (split out by `--sun auto`) is one more light, after the scene's.
+        let lights: Vec<nearfield_scene::Light> = scene
+            .lights
+            .iter()
+            .copied()
+            .chain(env.sun_light())
+            .collect();
+        let gpu_scene = GpuScene::new(&device, &queue, scene, &lights)?;
         let gpu_env = GpuEnvironment::new(&device, &queue, env);
         let targets = FrameTargets::new(&device, settings.size);
         let frame_buffer = device.create_buffer(&wgpu::BufferDescriptor {
@@ -218,8 +225,26 @@ impl Renderer {
         Ok(())
     }
 
-    /// Replaces the environment (map, intensity and rotation); passes are rebuilt.
+    /// Replaces the environment (map, intensity and rotation, its sun); passes are rebuilt.
     pub fn set_environment(&mut self, env: &Environment) -> Result<(), RenderError> {
+        let scene_count =
+            self.scene.scene_lights.len() - usize::from(self.env.source().sun.is_some());
+        let mut lights = self.scene.scene_lights[..scene_count].to_vec();
+        lights.extend(env.sun_light());
+        if lights.len() > self.scene.light_capacity {
+            return Err(RenderError::Scene("the light table is full".into()));
+        }
+        let old_lights = std::mem::replace(&mut self.scene.scene_lights, lights);
+        let old_count = std::mem::replace(
+            &mut self.scene.light_count,
+            self.scene.scene_lights.len() as u32,
+        );
+        let old_shadows = std::mem::replace(
+            &mut self.shadows,
+            ShadowPass::new(&self.device, &self.scene, self.settings.shadows),
+        );
+        self.lights_off.resize(self.scene.scene_lights.len(), false);
+        self.write_lights();
         let old = std::mem::replace(
             &mut self.env,
             GpuEnvironment::new(&self.device, &self.queue, env),
@@ -232,6 +257,11 @@ impl Renderer {
         if let Err(e) = self.rebuild_passes(&spec, &params) {
             self.env = old;
             self.frame_group = old_group;
+            self.scene.scene_lights = old_lights;
+            self.scene.light_count = old_count;
+            self.shadows = old_shadows;
+            self.lights_off.resize(self.scene.scene_lights.len(), false);
+            self.write_lights();
             return Err(e);
         }
         self.gbuffer.set_frame(&self.frame_group);
@@ -241,6 +271,24 @@ impl Renderer {
     /// Multiplies the environment's radiance by `intensity` (≥ 0) for the next frames.
     pub fn set_environment_intensity(&mut self, intensity: f32) {
         self.env.set_intensity(&self.queue, intensity.max(0.0));
+        self.update_sun();
+    }
+
+    /// After the environment turned or changed intensity: its sun light follows.
+    fn update_sun(&mut self) {
+        let Some(sun) = self.env.source().sun_light() else {
+            return;
+        };
+        let index = self.scene.scene_lights.len() - 1;
+        self.scene.scene_lights[index] = sun;
+        self.shadows.set_light_kind(index, sun.kind);
+        self.write_lights();
+    }
+
+    /// Writes the light table (shadow layers, switches).
+    fn write_lights(&self) {
+        self.scene
+            .write_lights_masked(&self.queue, &self.shadows.light_layers, &self.lights_off);
     }
 
     /// Exposure (EV stops, clamped to −20..=20) and tonemap operator of the next frames.
@@ -263,11 +311,7 @@ impl Renderer {
     pub fn set_light_enabled(&mut self, index: usize, on: bool) {
         if let Some(off) = self.lights_off.get_mut(index) {
             *off = !on;
-            self.scene.write_lights_masked(
-                &self.queue,
-                &self.shadows.light_layers,
-                &self.lights_off,
-            );
+            self.write_lights();
         }
     }
 
@@ -310,6 +354,7 @@ impl Renderer {
     /// other pass stay as they are.
     pub fn set_environment_rotation(&mut self, rotation: f32) {
         self.env.set_rotation(&self.queue, rotation);
+        self.update_sun();
     }
 
     pub fn frame_index(&self) -> u32 {
@@ -358,6 +403,12 @@ impl Renderer {
         self.queue
             .write_buffer(&self.frame_buffer, 0, bytemuck::bytes_of(&u));
         self.passes.technique.prepare(&self.queue, &self.camera);
+        if self
+            .shadows
+            .fit_to_view(&self.queue, &self.camera, self.settings.size)
+        {
+            self.write_lights();
+        }
         let mut encoder = self
             .device
             .create_command_encoder(&wgpu::CommandEncoderDescriptor {

@@ -62,6 +62,7 @@ pub fn environment_lights(
         texels: texels.clone(),
         rotation: 0.0,
         intensity: 1.0,
+        sun: None,
     };
     let weights = (0..texels.len()).map(|i| {
         let y = i as u32 / w;
@@ -77,6 +78,7 @@ pub fn environment_lights(
             Light {
                 kind: LightKind::Directional {
                     direction: -towards,
+                    angular_radius: 0.0,
                 },
                 color: e,
                 intensity: 1.0,
@@ -132,7 +134,7 @@ mod tests {
             let e: f32 = lights
                 .iter()
                 .map(|l| match l.kind {
-                    LightKind::Directional { direction } => {
+                    LightKind::Directional { direction, .. } => {
                         l.color.x * (-direction).dot(n).max(0.0)
                     }
                     _ => 0.0,
@@ -155,7 +157,7 @@ mod tests {
         });
         let lights = environment_lights(&env, 0.0, 1.0, 16);
         for l in &lights {
-            let LightKind::Directional { direction } = l.kind else {
+            let LightKind::Directional { direction, .. } = l.kind else {
                 panic!()
             };
             assert!(-direction.y > 0.95, "{direction}");

@@ -202,7 +202,10 @@ fn directional_light_casts_the_box_shadow() {
     scene.meshes.push(mesh);
     let direction = Vec3::new(1.0, -1.0, 0.3).normalize();
     scene.lights = vec![Light {
-        kind: LightKind::Directional { direction },
+        kind: LightKind::Directional {
+            direction,
+            angular_radius: 0.0,
+        },
         color: Vec3::ONE,
         intensity: 3.0,
         range: None,

@@ -121,7 +121,7 @@ fn host_and_shader_structs_agree() {
         &nearfield_render::passes::direct_lighting::source(),
         "GpuLight",
         size_of::<GpuLight>(),
-        &offsets!(GpuLight: position, kind, direction, range, color, _pad0, cos_inner, cos_outer,
+        &offsets!(GpuLight: position, kind, direction, range, color, tan_radius, cos_inner, cos_outer,
             shadow_layer, shadow_texel),
     );
     check(

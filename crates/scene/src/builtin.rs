@@ -443,6 +443,7 @@ fn columns() -> Scene {
     b.scene.lights = vec![Light {
         kind: LightKind::Directional {
             direction: Vec3::new(-0.85, -0.45, 0.25).normalize(),
+            angular_radius: 0.0,
         },
         color: Vec3::ONE,
         intensity: 3.0,
@@ -477,6 +478,7 @@ fn contact() -> Scene {
                 -elevation.cos() * 0.6,
             )
             .normalize(),
+            angular_radius: 0.0,
         },
         color: Vec3::ONE,
         intensity: 3.0,

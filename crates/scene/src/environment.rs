@@ -51,12 +51,37 @@ impl EnvSource {
         Ok(EnvSource::File(PathBuf::from(s)))
     }
 
-    /// Builds the environment map.
+    /// Builds the environment map (whole: `--sun off`).
     pub fn load(&self) -> Result<Environment, SceneError> {
         match self {
             EnvSource::File(p) => Environment::load(p),
             EnvSource::Sky => Ok(sky::Sky::default().to_environment()),
             EnvSource::Constant(c) => Ok(Environment::constant(*c)),
+        }
+    }
+
+    /// Builds the environment map with its sun split out under `SunMode::Auto`
+    /// ([`crate::sun`]): the built-in sky's sun exactly, a file's by [`crate::sun::find`].
+    /// Returns the map and the log line saying what was found (none for `off` and constants).
+    pub fn load_split(
+        &self,
+        mode: crate::sun::SunMode,
+    ) -> Result<(Environment, Option<String>), SceneError> {
+        if mode == crate::sun::SunMode::Off {
+            return Ok((self.load()?, None));
+        }
+        match self {
+            EnvSource::Sky => {
+                let env = sky::Sky::default().to_split_environment();
+                let line = env.sun.map(|s| format!("sky: {}", s.describe()));
+                Ok((env, line))
+            }
+            EnvSource::Constant(c) => Ok((Environment::constant(*c), None)),
+            EnvSource::File(p) => {
+                let mut env = Environment::load(p)?;
+                let line = crate::sun::split(&mut env, mode);
+                Ok((env, line))
+            }
         }
     }
 }
@@ -83,6 +108,9 @@ pub struct Environment {
     pub rotation: f32,
     /// Radiance scale applied on lookup.
     pub intensity: f32,
+    /// The sun split out of the map (`--sun auto`, [`crate::sun`]); `texels` are then the
+    /// residual. `None`: the map is whole.
+    pub sun: Option<crate::sun::Sun>,
 }
 
 impl Environment {
@@ -96,6 +124,7 @@ impl Environment {
             texels: vec![radiance; 256 * 128],
             rotation: 0.0,
             intensity: 1.0,
+            sun: None,
         }
     }
 
@@ -118,6 +147,7 @@ impl Environment {
             texels,
             rotation: 0.0,
             intensity: 1.0,
+            sun: None,
         }
     }
 
@@ -183,6 +213,7 @@ impl Environment {
             texels,
             rotation: 0.0,
             intensity: 1.0,
+            sun: None,
         })
     }
 
@@ -213,6 +244,11 @@ impl Environment {
         let top = t(xi0, yi0).lerp(t(xi1, yi0), fx);
         let bottom = t(xi0, yi1).lerp(t(xi1, yi1), fx);
         top.lerp(bottom, fy) * self.intensity
+    }
+
+    /// The sun's disc light in world space (rotation and intensity applied), if split out.
+    pub fn sun_light(&self) -> Option<crate::Light> {
+        self.sun.map(|s| s.light(self.rotation, self.intensity))
     }
 
     /// Solid angle (sr) of a texel in row `y`.
@@ -263,6 +299,7 @@ impl Environment {
             texels: t,
             rotation: 0.0,
             intensity: 1.0,
+            sun: None,
         };
         let sources: Vec<(Vec3, Vec3)> = (0..h)
             .flat_map(|y| (0..w).map(move |x| (x, y)))

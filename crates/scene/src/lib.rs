@@ -20,6 +20,7 @@ pub mod material;
 pub mod mesh;
 pub mod sh;
 pub mod sky;
+pub mod sun;
 
 pub use camera::{Camera, CameraFile};
 pub use environment::{EnvSource, Environment};
@@ -27,6 +28,7 @@ pub use error::SceneError;
 pub use light::{Light, LightKind};
 pub use material::{AlphaMode, Material, Texture, TextureColorSpace};
 pub use mesh::{Aabb, Mesh};
+pub use sun::{Sun, SunMode};
 
 use std::path::{Path, PathBuf};
 

@@ -6,8 +6,14 @@ use glam::Vec3;
 /// What kind of punctual light, with its geometry in world space.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum LightKind {
-    /// Parallel light travelling along `direction` (unit, world space). Intensity in lux.
-    Directional { direction: Vec3 },
+    /// Light travelling along `direction` (unit, world space) from a distant disc of
+    /// `angular_radius` (radians; 0 = a parallel, punctual light). Intensity in lux: the
+    /// irradiance at normal incidence from the whole disc. The environment's sun
+    /// ([`crate::sun`]) is such a disc.
+    Directional {
+        direction: Vec3,
+        angular_radius: f32,
+    },
     /// Omnidirectional light at `position`. Intensity in candela.
     Point { position: Vec3 },
     /// Cone light at `position` shining along `direction`, full intensity inside
@@ -37,7 +43,7 @@ impl Light {
     /// directional lights).
     pub fn direction_from(&self, p: Vec3) -> (Vec3, f32) {
         match self.kind {
-            LightKind::Directional { direction } => (-direction, f32::INFINITY),
+            LightKind::Directional { direction, .. } => (-direction, f32::INFINITY),
             LightKind::Point { position } | LightKind::Spot { position, .. } => {
                 let d = position - p;
                 let dist = d.length();
@@ -80,7 +86,9 @@ impl Light {
     }
 
     /// Unshadowed irradiance E_l(P) on a surface at `p` with unit normal `n` (RGB). The
-    /// `light-irradiance` AOV is (1/π) Σ E_l with shadows.
+    /// `light-irradiance` AOV is (1/π) Σ E_l with shadows. For a disc of uniform radiance
+    /// wholly above the surface's horizon, ∫_disc ω·n dω is exactly (c·n) times its normal
+    /// irradiance (c its centre), so a disc light uses the centre's cosine too.
     pub fn irradiance(&self, p: Vec3, n: Vec3) -> Vec3 {
         let (l, _) = self.direction_from(p);
         self.normal_irradiance(p) * n.dot(l).max(0.0)

@@ -118,8 +118,20 @@ impl Sky {
         (to_rgb * xyz).max(Vec3::ZERO)
     }
 
-    /// Builds the normalised lat-long map.
+    /// Builds the normalised lat-long map, sun disc included.
     pub fn to_environment(&self) -> Environment {
+        self.build(false)
+    }
+
+    /// The same map with its sun split out exactly (`--sun auto`, [`crate::sun`]): the texels
+    /// without the disc, and `sun` with the disc's direction, angular radius and irradiance
+    /// (the painted disc texels' radiance × solid angle). Same normalisation as
+    /// [`Self::to_environment`]: residual + disc deliver the same irradiance.
+    pub fn to_split_environment(&self) -> Environment {
+        self.build(true)
+    }
+
+    fn build(&self, split: bool) -> Environment {
         let (w, h) = (self.width, self.width / 2);
         let sky = Environment::from_fn("sky", w, h, |d| {
             if d.y >= 0.0 {
@@ -154,6 +166,7 @@ impl Sky {
         let sun_radiance = sun_color * (self.sun_to_sky_ratio * e_sky_lum / disc_solid_angle);
         let ground = Vec3::splat(0.3 * e_sky_lum / PI);
         let mut env = sky;
+        let whole = if split { Some(env.clone()) } else { None };
         for y in 0..h {
             for x in 0..w {
                 let d = env.texel_direction(x, y);
@@ -180,7 +193,22 @@ impl Sky {
         for t in &mut env.texels {
             *t *= scale;
         }
-        env
+        let Some(mut residual) = whole else {
+            return env;
+        };
+        for y in 0..h {
+            for x in 0..w {
+                let d = residual.texel_direction(x, y);
+                let t = &mut residual.texels[(y * w + x) as usize];
+                *t = if d.y < 0.0 { ground } else { *t } * scale;
+            }
+        }
+        residual.sun = Some(crate::sun::Sun {
+            direction: sun,
+            angular_radius: self.sun_radius_deg.to_radians(),
+            irradiance: sun_radiance * disc_solid_angle * scale,
+        });
+        residual
     }
 }
 
@@ -206,5 +234,39 @@ mod tests {
         // The sun is far brighter than the sky beside it.
         let s = env.radiance(sky.sun_direction());
         assert!(s.x > 50.0 * z.x);
+    }
+
+    /// The split map is the whole map without the disc, and the disc's light carries exactly
+    /// the flux the disc texels held (cosine ≈ 1 over a 1° disc).
+    #[test]
+    fn split_keeps_the_flux() {
+        let sky = Sky {
+            width: 256,
+            ..Default::default()
+        };
+        let whole = sky.to_environment();
+        let split = sky.to_split_environment();
+        let sun = split.sun.expect("the sky has a sun");
+        assert!((sun.direction - sky.sun_direction()).length() < 1e-6);
+        let mut removed = Vec3::ZERO;
+        for y in 0..whole.height {
+            for x in 0..whole.width {
+                let i = (y * whole.width + x) as usize;
+                let d = whole.texels[i] - split.texels[i];
+                assert!(d.min_element() >= -1e-4, "texel {x},{y} grew");
+                removed += d * whole.texel_solid_angle(y);
+            }
+        }
+        assert!(
+            (removed - sun.irradiance).abs().max_element() < 1e-3 * sun.irradiance.max_element()
+        );
+        // 4× the sky's horizontal irradiance at normal incidence, in a sky normalised to E/π = 1
+        // upwards: E_sun · sin 35° + E_sky = π with E_sun = 4 c E_sky, c the luminance of the
+        // sun's colour (1, 0.93, 0.84).
+        let luminance = Vec3::new(0.2126, 0.7152, 0.0722);
+        let lum = sun.irradiance.dot(luminance);
+        let c = Vec3::new(1.0, 0.93, 0.84).dot(luminance);
+        let want = 4.0 * c * PI / (4.0 * c * 35f32.to_radians().sin() + 1.0);
+        assert!((lum - want).abs() < 0.02 * want, "{lum} vs {want}");
     }
 }

@@ -80,6 +80,7 @@ pub fn run(args: ViewArgs) -> Result<()> {
     let size = crate::options::parse_size(&args.scene.size)?;
     let settings = args.technique.settings(size)?;
     let loaded = args.scene.load()?;
+    loaded.report_sun();
     let env_name = args
         .scene
         .env
@@ -100,6 +101,7 @@ pub fn run(args: ViewArgs) -> Result<()> {
             a,
             b,
             aov: args.aov.clone(),
+            sun: nearfield_scene::SunMode::parse(&args.scene.sun)?,
         },
         adapter: args.scene.adapter.clone(),
         vsync: !args.no_vsync,

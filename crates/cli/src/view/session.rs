@@ -7,7 +7,7 @@ use super::technique_state::TechniqueState;
 use anyhow::Result;
 use nearfield_render::passes::display::{DisplayMode, DisplayPass, DisplayPost, DisplaySide};
 use nearfield_render::{Aov, GpuContext, RenderSettings, Renderer, Tonemap};
-use nearfield_scene::{Camera, CameraFile, EnvSource, Environment, Scene, SceneSource};
+use nearfield_scene::{Camera, CameraFile, EnvSource, Environment, Scene, SceneSource, SunMode};
 use std::path::{Path, PathBuf};
 
 /// Which side of the A/B view.
@@ -85,6 +85,8 @@ pub struct Session {
     pub scene: Scene,
     /// The environment as typed (`sky`, `constant:…`, a path).
     pub env_name: String,
+    /// `--sun`: how every environment of the session is split.
+    pub sun: SunMode,
     pub env_intensity: f32,
     pub env_rotation_deg: f32,
     pub settings: RenderSettings,
@@ -112,6 +114,8 @@ pub struct Start {
     pub a: TechniqueState,
     pub b: Option<TechniqueState>,
     pub aov: String,
+    /// `--sun`: environments loaded later are split the same way.
+    pub sun: SunMode,
 }
 
 impl Session {
@@ -135,6 +139,7 @@ impl Session {
         let mut s = Session {
             scene_name: start.scene_name,
             env_name: start.env_name,
+            sun: start.sun,
             env_intensity: start.env.intensity,
             env_rotation_deg: start.env.rotation.to_degrees(),
             settings: start.settings,
@@ -361,7 +366,7 @@ impl Session {
 
     fn load_env(&self, name: &str) -> Result<Environment, String> {
         let source = EnvSource::parse(name).map_err(|e| e.to_string())?;
-        let mut env = source.load().map_err(|e| e.to_string())?;
+        let (mut env, _) = source.load_split(self.sun).map_err(|e| e.to_string())?;
         env.intensity = self.env_intensity;
         env.rotation = self.env_rotation_deg.to_radians();
         Ok(env)

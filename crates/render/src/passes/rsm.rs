@@ -144,9 +144,9 @@ pub fn render(
 
     let mut texels = Vec::new();
     for light in lights {
-        let (views, texel) = light_views(&light.kind, scene.bounds, size);
+        let (views, texel) = light_views(&light.kind, scene.bounds, size, None);
         let to_light = match light.kind {
-            LightKind::Directional { direction } => (-direction).extend(0.0),
+            LightKind::Directional { direction, .. } => (-direction).extend(0.0),
             LightKind::Point { position } | LightKind::Spot { position, .. } => {
                 position.extend(1.0)
             }
@@ -272,6 +272,7 @@ mod tests {
         let light = Light {
             kind: LightKind::Directional {
                 direction: Vec3::NEG_Y,
+                angular_radius: 0.0,
             },
             color: Vec3::new(1.0, 0.5, 0.25),
             intensity: 4.0,

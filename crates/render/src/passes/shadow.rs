@@ -2,7 +2,9 @@
 //! direct_lighting.wgsl.
 //!
 //! Layout: one depth32float 2D array of `size`² layers. A directional light takes one layer
-//! (orthographic, fitted to the scene's bounding sphere), a spot light one (perspective over its
+//! (orthographic, fitted to the scene's bounding sphere; a disc light — the environment's sun —
+//! fitted each frame to the part of the view frustum inside that sphere, snapped to whole
+//! texels so that shadows do not crawl as the camera moves), a spot light one (perspective over its
 //! outer cone plus a margin, capped at 160°), a point light six (90° faces ±X, ±Y, ±Z). At most
 //! [`ShadowSettings::max_layers`] layers are allocated; lights beyond get no shadow (logged).
 //!
@@ -21,7 +23,7 @@ use crate::targets::DEPTH_FORMAT;
 use crate::util;
 use bytemuck::Zeroable;
 use glam::{Mat4, Vec3};
-use nearfield_scene::{Aabb, LightKind};
+use nearfield_scene::{Aabb, Camera, LightKind};
 use wgpu::util::DeviceExt;
 
 pub const SHADER: &str = include_str!("shadow.wgsl");
@@ -155,6 +157,12 @@ impl NoLights {
 }
 
 pub struct ShadowPass {
+    /// The lights' kinds, in table order.
+    kinds: Vec<LightKind>,
+    bounds: Aabb,
+    /// The last (camera, image size) a disc light's layer was fitted to.
+    fitted_to: Option<(Camera, (u32, u32))>,
+    view_buffer: wgpu::Buffer,
     pipeline: wgpu::RenderPipeline,
     bind_group: wgpu::BindGroup,
     layer_views: Vec<wgpu::TextureView>,
@@ -174,24 +182,40 @@ pub struct ShadowPass {
 }
 
 /// Shadow projections of one light, and its texel size factor (metres for orthographic,
-/// metres per metre of distance for perspective layers).
-pub fn light_views(kind: &LightKind, bounds: Aabb, size: u32) -> (Vec<Mat4>, f32) {
+/// metres per metre of distance for perspective layers). `view` (camera, image size): a disc
+/// light's layer covers only what that camera sees ([`fit_square`]).
+pub fn light_views(
+    kind: &LightKind,
+    bounds: Aabb,
+    size: u32,
+    view: Option<(&Camera, (u32, u32))>,
+) -> (Vec<Mat4>, f32) {
     let center = bounds.center();
     let radius = bounds.radius().max(1e-3);
     let up_for = |d: Vec3| if d.y.abs() > 0.99 { Vec3::X } else { Vec3::Y };
     match *kind {
-        LightKind::Directional { direction } => {
+        LightKind::Directional {
+            direction,
+            angular_radius,
+        } => {
             let eye = center - direction * (2.0 * radius);
-            let view = glam::camera::rh::view::look_to_mat4(eye, direction, up_for(direction));
+            let light_view =
+                glam::camera::rh::view::look_to_mat4(eye, direction, up_for(direction));
+            let (cx, cy, half) = match view {
+                Some((camera, image)) if angular_radius > 0.0 => {
+                    fit_square(&light_view, camera, image, bounds, radius, size)
+                }
+                _ => (0.0, 0.0, radius),
+            };
             let proj = glam::camera::rh::proj::directx::orthographic(
-                -radius,
-                radius,
-                -radius,
-                radius,
+                cx - half,
+                cx + half,
+                cy - half,
+                cy + half,
                 0.5 * radius,
                 3.5 * radius,
             );
-            (vec![proj * view], 2.0 * radius / size as f32)
+            (vec![proj * light_view], 2.0 * half / size as f32)
         }
         LightKind::Spot {
             position,
@@ -230,6 +254,44 @@ pub fn light_views(kind: &LightKind, bounds: Aabb, size: u32) -> (Vec<Mat4>, f32
     }
 }
 
+/// The square (centre x, y and half side, in light-view metres) of a directional light's map
+/// that covers what `camera` sees of the scene: the view frustum from the camera's near to its
+/// far plane around `bounds` (Camera::depth_range), projected along the light, intersected with
+/// the scene's bounding sphere (radius `radius` about the light view's axis). The centre is
+/// snapped to whole texels of a `size`-texel map.
+fn fit_square(
+    light_view: &Mat4,
+    camera: &Camera,
+    image: (u32, u32),
+    bounds: Aabb,
+    radius: f32,
+    size: u32,
+) -> (f32, f32, f32) {
+    let (near, far) = camera.depth_range(bounds);
+    let forward = camera.forward();
+    let (w, h) = (image.0.max(1) as f32, image.1.max(1) as f32);
+    let mut lo = glam::Vec2::splat(f32::INFINITY);
+    let mut hi = glam::Vec2::splat(f32::NEG_INFINITY);
+    for (px, py) in [(0.0, 0.0), (w, 0.0), (0.0, h), (w, h)] {
+        let ray = camera.ray_through(glam::Vec2::new(px, py), image);
+        let along = ray.dot(forward).max(1e-6);
+        for depth in [near, far] {
+            let p = light_view.transform_point3(camera.eye + ray * (depth / along));
+            lo = lo.min(p.truncate());
+            hi = hi.max(p.truncate());
+        }
+    }
+    let lo = lo.max(glam::Vec2::splat(-radius));
+    let hi = hi.min(glam::Vec2::splat(radius));
+    if !(lo.x < hi.x && lo.y < hi.y) {
+        return (0.0, 0.0, radius);
+    }
+    let half = (0.5 * (hi - lo).max_element()).clamp(1e-3 * radius, radius);
+    let texel = 2.0 * half / size as f32;
+    let centre = (0.5 * (lo + hi) / texel).round() * texel;
+    (centre.x, centre.y, half)
+}
+
 impl ShadowPass {
     /// Shadow maps of the scene's lights.
     pub fn new(device: &wgpu::Device, scene: &GpuScene, settings: ShadowSettings) -> Self {
@@ -249,7 +311,7 @@ impl ShadowPass {
         let mut light_layers = Vec::new();
         let mut dropped = 0;
         for kind in kinds {
-            let (views, texel) = light_views(kind, scene.bounds, settings.size);
+            let (views, texel) = light_views(kind, scene.bounds, settings.size, None);
             if matrices.len() + views.len() > settings.max_layers as usize {
                 light_layers.push((None, texel));
                 dropped += 1;
@@ -301,7 +363,7 @@ impl ShadowPass {
         let matrix_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("shadow matrices"),
             contents: bytemuck::cast_slice(&flat),
-            usage: wgpu::BufferUsages::STORAGE,
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
         });
         let mut strided = vec![0u8; VIEW_STRIDE as usize * flat.len()];
         for (i, m) in flat.iter().enumerate() {
@@ -311,7 +373,7 @@ impl ShadowPass {
         let view_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("shadow views"),
             contents: &strided,
-            usage: wgpu::BufferUsages::UNIFORM,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
         });
         let layout = ShadowBindings::layout(device);
         let bind_group = ShadowBindings {
@@ -355,6 +417,10 @@ impl ShadowPass {
             ..Default::default()
         });
         ShadowPass {
+            kinds: kinds.to_vec(),
+            bounds: scene.bounds,
+            fitted_to: None,
+            view_buffer,
             pipeline,
             bind_group,
             layer_views,
@@ -367,6 +433,44 @@ impl ShadowPass {
             vertices: scene.vertices.clone(),
             indices: scene.indices.clone(),
             index_count: scene.index_count,
+        }
+    }
+
+    /// Fits the layers of disc lights to what `camera` sees at `image` size (a no-op without
+    /// disc lights or when neither changed). Returns whether any light's texel factor changed:
+    /// the light table must then be rewritten (`GpuScene::write_lights`).
+    pub fn fit_to_view(&mut self, queue: &wgpu::Queue, camera: &Camera, image: (u32, u32)) -> bool {
+        let disc = |k: &LightKind| matches!(k, LightKind::Directional { angular_radius, .. } if *angular_radius > 0.0);
+        if !self.kinds.iter().any(disc) || self.fitted_to == Some((*camera, image)) {
+            return false;
+        }
+        self.fitted_to = Some((*camera, image));
+        let mut changed = false;
+        for (i, kind) in self.kinds.iter().enumerate() {
+            let (Some(layer), true) = (self.light_layers[i].0, disc(kind)) else {
+                continue;
+            };
+            let (views, texel) =
+                light_views(kind, self.bounds, self.settings.size, Some((camera, image)));
+            let m = views[0].to_cols_array_2d();
+            queue.write_buffer(&self.matrices, layer as u64 * 64, bytemuck::bytes_of(&m));
+            queue.write_buffer(
+                &self.view_buffer,
+                layer as u64 * VIEW_STRIDE,
+                bytemuck::bytes_of(&m),
+            );
+            changed |= self.light_layers[i].1 != texel;
+            self.light_layers[i].1 = texel;
+        }
+        changed
+    }
+
+    /// Replaces light `index`'s kind by another with the same number of layers (the sun after
+    /// the environment turned); the next [`Self::fit_to_view`] refits it.
+    pub fn set_light_kind(&mut self, index: usize, kind: LightKind) {
+        if let Some(k) = self.kinds.get_mut(index) {
+            *k = kind;
+            self.fitted_to = None;
         }
     }
 

@@ -14,9 +14,10 @@ struct GpuLight {
     // Spot axis; range (m), 0 = unlimited.
     direction: vec3<f32>,
     range: f32,
-    // Colour × intensity (lux or candela).
+    // Colour × intensity (lux or candela); tan of a directional disc light's angular radius (0:
+    // punctual), which sizes its soft shadow.
     color: vec3<f32>,
-    _pad0: f32,
+    tan_radius: f32,
     // cos(inner), cos(outer) of a spot's cone; first shadow layer (−1: none); shadow texel size:
     // world metres for a directional light, metres per metre of distance for spot and point
     // lights.
@@ -94,6 +95,9 @@ fn shadow_visibility(l: GpuLight, p: vec3<f32>, n: vec3<f32>) -> f32 {
     if any(uv < vec2<f32>(0.0)) || any(uv > vec2<f32>(1.0)) || ndc.z > 1.0 || ndc.z < 0.0 {
         return 1.0;
     }
+    if kind == 0u && l.tan_radius > 0.0 {
+        return disc_shadow(l, layer, offset_p, n, uv, ndc.z);
+    }
     let texel = 1.0 / vec2<f32>(textureDimensions(shadow_maps));
     var sum = 0.0;
     for (var j = -1; j <= 1; j++) {
@@ -103,6 +107,79 @@ fn shadow_visibility(l: GpuLight, p: vec3<f32>, n: vec3<f32>) -> f32 {
         }
     }
     return sum / 9.0;
+}
+
+// Visibility of a directional disc light (the environment's sun) of angular radius r,
+// tan r = l.tan_radius, from its orthographic layer: percentage-closer soft shadows (Fernando
+// 2005). (1) Blocker search: the mean depth of the texels (the centre and a spiral of
+// DISC_SEARCH_SAMPLES over the disc's cone from p up to the light's near plane, at most
+// DISC_SEARCH_TEXELS) nearer the light than the receiver that
+// can hide part of the disc from p (lateral offset ≤ depth gap · tan r); none: lit, 1.
+// (2) The penumbra's half width at p is
+// (receiver − blocker distance) · tan r. (3) A 5×5 PCF of that radius (at least one texel).
+// Both compare against the receiver's plane (its depth slope over the map from n), not a flat
+// depth, so wide kernels do not shadow a surface by itself.
+const DISC_SEARCH_TEXELS: f32 = 24.0;
+const DISC_SEARCH_SAMPLES: i32 = 32;
+
+fn disc_shadow(l: GpuLight, layer: u32, p: vec3<f32>, n: vec3<f32>, uv: vec2<f32>, z: f32) -> f32 {
+    let m = shadow_clip_from_world[layer];
+    let dims = vec2<f32>(textureDimensions(shadow_maps));
+    // Metres of depth per unit of the map's depth (orthographic: a constant).
+    let metres_per_depth = 1.0 / max(length(vec3<f32>(m[0].z, m[1].z, m[2].z)), 1e-12);
+    let texel_world = l.shadow_texel;
+    // The receiver plane's depth slope per uv unit: project two steps along the surface.
+    let t1 = normalize(cross(n, select(vec3<f32>(0.0, 1.0, 0.0), vec3<f32>(1.0, 0.0, 0.0), abs(n.y) > 0.9)));
+    let t2 = cross(n, t1);
+    let c1 = m * vec4<f32>(p + t1 * texel_world, 1.0);
+    let c2 = m * vec4<f32>(p + t2 * texel_world, 1.0);
+    let d1 = vec3<f32>(c1.x * 0.5 + 0.5, 0.5 - c1.y * 0.5, c1.z) - vec3<f32>(uv, z);
+    let d2 = vec3<f32>(c2.x * 0.5 + 0.5, 0.5 - c2.y * 0.5, c2.z) - vec3<f32>(uv, z);
+    let det = d1.x * d2.y - d2.x * d1.y;
+    var slope = vec2<f32>(0.0);
+    if abs(det) > 1e-12 {
+        slope = vec2<f32>(d1.z * d2.y - d2.z * d1.y, d2.z * d1.x - d1.z * d2.x) / det;
+    }
+    // Surfaces nearly edge-on to the light: cap the slope at 10 texels of depth per texel.
+    let cap = 10.0 * texel_world / metres_per_depth * dims.x;
+    slope = clamp(slope, vec2<f32>(-cap), vec2<f32>(cap));
+    // Two texels of depth slack for the map's own quantisation and bias.
+    let slack = 2.0 * texel_world / metres_per_depth;
+
+    let search_world = l.tan_radius * z * metres_per_depth;
+    let search = clamp(search_world / texel_world, 1.0, DISC_SEARCH_TEXELS) / dims;
+    var blockers = 0.0;
+    var blocker_depth = 0.0;
+    for (var k = 0; k <= DISC_SEARCH_SAMPLES; k++) {
+        // The centre, then a golden-angle spiral filling the search disc evenly.
+        let rk = sqrt(f32(k) / f32(DISC_SEARCH_SAMPLES));
+        let ak = f32(k) * 2.39996323;
+        let o = vec2<f32>(cos(ak), sin(ak)) * rk * search;
+        let q = clamp(uv + o, vec2<f32>(0.0), vec2<f32>(1.0) - 0.5 / dims);
+        let d = textureLoad(shadow_maps, vec2<i32>(q * dims), layer, 0);
+        let gap = z + dot(slope, o) - d;
+        // A blocker counts only where it can hide part of the disc from p: its lateral offset
+        // is within gap · tan r (plus a texel).
+        let lateral = length(o * dims) * texel_world;
+        if gap > slack && lateral <= gap * metres_per_depth * l.tan_radius + texel_world {
+            blockers += 1.0;
+            blocker_depth += d;
+        }
+    }
+    if blockers == 0.0 {
+        return 1.0;
+    }
+    let gap = max(z - blocker_depth / blockers, 0.0) * metres_per_depth;
+    let filter_texels = clamp(gap * l.tan_radius / texel_world, 1.0, DISC_SEARCH_TEXELS);
+    let kernel = filter_texels / dims;
+    var sum = 0.0;
+    for (var j = 0; j < 5; j++) {
+        for (var i = 0; i < 5; i++) {
+            let o = (vec2<f32>(f32(i), f32(j)) - 2.0) * 0.5 * kernel;
+            sum += textureSampleCompareLevel(shadow_maps, shadow_sampler, uv + o, layer, z + dot(slope, o));
+        }
+    }
+    return sum / 25.0;
 }
 
 // Length along the light direction from p within which `shadow_visibility` cannot see an

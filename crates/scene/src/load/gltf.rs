@@ -216,9 +216,10 @@ pub fn load(path: &Path) -> Result<Scene, SceneError> {
                 .try_normalize()
                 .unwrap_or(Vec3::NEG_Z);
             let kind = match light.kind() {
-                ::gltf::khr_lights_punctual::Kind::Directional => {
-                    LightKind::Directional { direction }
-                }
+                ::gltf::khr_lights_punctual::Kind::Directional => LightKind::Directional {
+                    direction,
+                    angular_radius: 0.0,
+                },
                 ::gltf::khr_lights_punctual::Kind::Point => LightKind::Point { position },
                 ::gltf::khr_lights_punctual::Kind::Spot {
                     inner_cone_angle,
