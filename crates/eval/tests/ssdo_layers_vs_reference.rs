@@ -127,7 +127,8 @@ fn a_second_layer_only_frees_samples() {
     let (two, _) = render(
         &ctx,
         "gap",
-        "ssdo:blur=off+layers=2",
+        // At the same single point per direction (two layers march 16 by default).
+        "ssdo:blur=off+layers=2+steps=1",
         0.5,
         size,
         2048,

@@ -1,5 +1,6 @@
-//! Punctual lights (`KHR_lights_punctual`) and their unshadowed irradiance, shared by the GPU
-//! renderer (mirrored in `direct_lighting.wgsl`) and the reference tracer.
+//! Punctual lights (`KHR_lights_punctual`), the environment's sun as a directional disc light,
+//! and their unshadowed irradiance, shared by the GPU renderer (mirrored in
+//! `direct_lighting.wgsl`) and the reference tracer.
 
 use glam::Vec3;
 

@@ -10,7 +10,7 @@ declare_settings! {
     pub struct Settings {
         samples: u32 = "16", integer(1, 256), "", "directions per pixel";
         radius: f32 = "0.5", log(1e-6, 1e6), "m", "hemisphere radius d_max (`--radius`; finite)";
-        steps: u32 = "2", integer(1, 16), "", "ray-marching points per direction (at λ·k/steps; 2 = the paper's)";
+        steps: u32 = "2", integer(1, 16), "", "ray-marching points per direction (at λ·k/steps; 2 = the paper's); 16 by default with `layers` 2 or 4 (`layers::LAYERED_STEPS`)";
         lambda: f32 = "0", number(0, 1000), "", "smooth visibility 1 − 1/(1 + λd) for occluded directions (d: blocker distance); 0 = off";
         indirect: bool = "on", toggle, "", "the indirect extension, Eq. 5 (s3ho)";
         pattern: Pattern = "interleaved", choice, "", "sample sets: the chapter's, or the paper's 4×4 interleaved sets (as ssdo)";
@@ -36,6 +36,7 @@ impl Settings {
             s.radius = r;
         }
         super::apply(&mut s, params, &[])?;
+        s.steps = super::layers::resolve_steps(params, s.layers.layers, s.steps);
         super::check_sampling(s.samples, s.radius)?;
         Ok(s)
     }

@@ -41,7 +41,7 @@ declare_settings! {
     /// Settings of `ssao` and `ssdo` (`--samples`, `--radius`, `--set key=value`).
     pub struct Settings {
         samples: u32 = "16", integer(1, 256), "", "directions per pixel N";
-        steps: u32 = "1", integer(1, 16), "", "points tested per direction at λ·k/steps, the first occluded one decides (ray marching); 1 = the paper's single point at λ";
+        steps: u32 = "1", integer(1, 16), "", "points tested per direction at λ·k/steps, the first occluded one decides (ray marching); 1 = the paper's single point at λ; 16 by default with `layers` 2 or 4 (one point frees what the ray cannot reach: `layers::LAYERED_STEPS`)";
         radius: f32 = "0.5", log(1e-6, 1e6), "m", "hemisphere radius R (`--radius`; finite)";
         mode: Mode = "visibility", choice, "", "`visibility`: luminance-weighted visible fraction × SH irradiance; `radiance`: Σ (1/π) L_in V cos θ Δω with Δω = 2π/N, L_in from the environment at `lod` (ssdo)";
         bounce: bool = "on", toggle, "", "one indirect bounce (ssdo)";
@@ -97,6 +97,7 @@ impl Settings {
             s.radius = r;
         }
         super::apply(&mut s, params, &[])?;
+        s.steps = super::layers::resolve_steps(params, s.layers.layers, s.steps);
         super::check_sampling(s.samples, s.radius)?;
         Ok(s)
     }

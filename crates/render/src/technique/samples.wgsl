@@ -266,13 +266,30 @@ fn occlusion(p: vec3<f32>, omega: vec3<f32>, lambda: f32, cfg: SampleConfig) -> 
     return best.o;
 }
 
+// Where a world point falls on the main view, in pixels.
+fn screen_pixel(x: vec3<f32>) -> vec2<f32> {
+    let c = frame.clip_from_world * vec4<f32>(x, 1.0);
+    let ndc = c.xy / max(c.w, 1e-12);
+    return vec2<f32>(ndc.x * 0.5 + 0.5, 0.5 - ndc.y * 0.5) * frame.size;
+}
+
 // The blocker test along a direction (ray marching): `steps` points at λ·k/steps, k = 1..steps;
-// the first occluded one decides (steps = 1: the paper's single point at λ).
+// the first occluded one decides (steps = 1: the paper's single point at λ). Points before the
+// last that land within MARCH_MIN_PIXELS of p on screen are skipped: the depth buffer cannot
+// resolve them (they read p's own pixel or its neighbours, whose faces at a corner would count
+// as blockers), so a sub-pixel radius gets the single-point test.
+const MARCH_MIN_PIXELS: f32 = 1.5;
+
 fn march_occlusion(p: vec3<f32>, omega: vec3<f32>, lambda: f32, steps: u32, cfg: SampleConfig) -> Occlusion {
     var o: Occlusion;
     o.amount = 0.0;
+    let at = screen_pixel(p);
     for (var k = 1u; k <= steps; k++) {
-        o = occlusion(p, omega, lambda * f32(k) / f32(steps), cfg);
+        let l = lambda * f32(k) / f32(steps);
+        if cfg.layers > 1u && k < steps && distance(screen_pixel(p + omega * l), at) < MARCH_MIN_PIXELS {
+            continue;
+        }
+        o = occlusion(p, omega, l, cfg);
         if o.amount > 0.0 {
             break;
         }
