@@ -90,18 +90,31 @@ fn sample_pass(@builtin(global_invocation_id) id: vec3<u32>) {
             for (var i = 0u; i < 16u; i++) {
                 occluded[i] += (1.0 - v) * y[i] * cos_theta * d_omega;
             }
-            if params.indirect == 1u {
-                let sender = occ.sender;
+        }
+        if params.indirect == 1u {
+            // The bounce's sender (as samples.wgsl's bounce_occlusion for ssdo): with two or four
+            // layers, where 16 marched points are the default for visibility, the paper's 2.
+            var bo = occ;
+            var vb = v;
+            if c.layers > 1u && STEPS > 2u {
+                bo = march_occlusion(here.p, omega, length_j, 2u, c);
+                vb = 1.0 - bo.amount;
+                if bo.amount > 0.0 && params.lambda > 0.0 {
+                    vb = max(vb, 1.0 - 1.0 / (1.0 + params.lambda * bo.distance));
+                }
+            }
+            if vb < 1.0 {
+                let sender = bo.sender;
                 let transfer = sender_transfer(here, sender, area, params.radius, params.distance_clamp);
                 if transfer > 0.0 {
                     var radiance: vec3<f32>;
-                    if occ.source == 0u {
-                        let rho = textureLoad(gb_albedo, occ.pixel, 0).rgb;
+                    if bo.source == 0u {
+                        let rho = textureLoad(gb_albedo, bo.pixel, 0).rgb;
                         radiance = rho / PI * incident_at(sender.n, sender.p);
                     } else {
-                        radiance = layer_sender_radiance(occ);
+                        radiance = layer_sender_radiance(bo);
                     }
-                    indirect += radiance * (transfer * params.strength * (1.0 - v));
+                    indirect += radiance * (transfer * params.strength * (1.0 - vb));
                 }
             }
         }
