@@ -315,6 +315,12 @@ impl Renderer {
         }
     }
 
+    /// The lights the frame is lit by: the scene's, then the environment's sun if split out
+    /// (`--sun auto`). [`Self::set_light_enabled`] indexes this list.
+    pub fn lights(&self) -> &[nearfield_scene::Light] {
+        &self.scene.scene_lights
+    }
+
     /// Whether light `index` is on.
     pub fn light_enabled(&self, index: usize) -> bool {
         !self.lights_off.get(index).copied().unwrap_or(true)

@@ -249,7 +249,11 @@ impl Panel {
         {
             req.changes.push(Change::EnvRotation(rotation));
         }
-        for (i, light) in s.scene.lights.iter().enumerate() {
+        let lights = s
+            .renderer(Side::A)
+            .map(|r| r.lights().to_vec())
+            .unwrap_or_default();
+        for (i, light) in lights.iter().enumerate() {
             let mut on = s.renderer(Side::A).is_some_and(|r| r.light_enabled(i));
             let label = format!("light {i} ({})", light_kind(light));
             if ui.checkbox(&mut on, label).changed() {
@@ -566,6 +570,9 @@ fn tonemap_name(t: Tonemap) -> &'static str {
 
 fn light_kind(l: &nearfield_scene::Light) -> &'static str {
     match l.kind {
+        nearfield_scene::LightKind::Directional { angular_radius, .. } if angular_radius > 0.0 => {
+            "the environment's sun"
+        }
         nearfield_scene::LightKind::Directional { .. } => "directional",
         nearfield_scene::LightKind::Point { .. } => "point",
         nearfield_scene::LightKind::Spot { .. } => "spot",

@@ -287,10 +287,10 @@ impl Session {
                 Ok(())
             }
             Change::Light(i, on) => {
-                if i >= self.scene.lights.len() {
+                let count = self.renderer_a.lights().len();
+                if i >= count {
                     return Err(format!(
-                        "light {i}: the scene has {} light(s)",
-                        self.scene.lights.len()
+                        "light {i}: the frame has {count} light(s) (the scene's, then the environment's sun)"
                     ));
                 }
                 self.for_each_renderer(|r| r.set_light_enabled(i, on));
@@ -388,7 +388,7 @@ impl Session {
 
     /// Light switches of side A onto a new renderer.
     fn copy_live_state(&self, r: &mut Renderer) {
-        for i in 0..self.scene.lights.len() {
+        for i in 0..self.renderer_a.lights().len() {
             r.set_light_enabled(i, self.renderer_a.light_enabled(i));
         }
     }
