@@ -4,21 +4,13 @@
 //! rounding. Checked on a plane and on a sphere under a real HDR map (st_fagans_interior_1k: bright
 //! windows, a hard case for low-order SH); the measured truncation is printed and bounded.
 
+mod common;
+
 use glam::{Vec2, Vec3};
 use nearfield_reference::{ReferenceAov, ReferenceSettings, irradiance::exact_irradiance_over_pi};
-use nearfield_render::{Aov, GpuContext, RenderSettings, Renderer, TechniqueParams};
+use nearfield_render::{Aov, RenderSettings, Renderer, TechniqueParams};
 use nearfield_scene::{Camera, EnvSource, Material, Mesh, Scene, builtin, sh};
 use rayon::prelude::*;
-
-fn context() -> Option<GpuContext> {
-    match GpuContext::new(None) {
-        Ok(c) => Some(c),
-        Err(e) if std::env::var("REQUIRE_GPU").as_deref() == Ok("1") => {
-            panic!("REQUIRE_GPU=1 but {e}")
-        }
-        Err(_) => None,
-    }
-}
 
 fn sphere() -> Scene {
     let (nu, nv) = (128u32, 64u32);
@@ -54,7 +46,7 @@ fn sphere() -> Scene {
 
 #[test]
 fn none_differs_from_the_reference_by_sh_truncation_only() {
-    let Some(ctx) = context() else { return };
+    let Some(ctx) = common::context() else { return };
     let Some(hdr) = nearfield_eval::shared_asset("env/st_fagans_interior_1k.hdr") else {
         return;
     };

@@ -6,20 +6,11 @@
 //!
 //! README's hbil section lists the full numbers (192×108, 256 spp).
 
-use nearfield_eval::metrics::{self, Mask, MaskSettings};
+mod common;
+
 use nearfield_reference::{ReferenceAov, ReferenceImage, ReferenceSettings};
 use nearfield_render::{Aov, GpuContext, RenderSettings, Renderer, TechniqueParams};
 use nearfield_scene::{Camera, Environment, Scene, builtin};
-
-fn context() -> Option<GpuContext> {
-    match GpuContext::new(None) {
-        Ok(c) => Some(c),
-        Err(e) if std::env::var("REQUIRE_GPU").as_deref() == Ok("1") => {
-            panic!("REQUIRE_GPU=1 but {e}")
-        }
-        Err(_) => None,
-    }
-}
 
 struct Setup {
     scene: Scene,
@@ -81,28 +72,13 @@ impl Setup {
 
     /// Relative error of `aov` of the last frame of `r` against `reference`.
     fn error(&self, r: &mut Renderer, aov: Aov, reference: &ReferenceImage) -> f64 {
-        let img = r.read_aov(aov);
-        let depth: Vec<f32> = r.read_aov(Aov::Depth).pixels.iter().map(|p| p[0]).collect();
-        let alpha: Vec<f32> = img.pixels.iter().map(|p| p[3]).collect();
-        let ref_alpha: Vec<f32> = reference.value.iter().map(|p| p[3]).collect();
-        let mask = Mask::new(
-            self.size,
-            &alpha,
-            &depth,
-            &ref_alpha,
-            &reference.depth,
-            MaskSettings {
-                border: 2,
-                depth_tolerance: 0.01,
-            },
-        );
-        metrics::metrics(&img.pixels, &reference.value, &mask).relative_error
+        common::masked_metrics(r, aov, reference).relative_error
     }
 }
 
 #[test]
 fn near_field_light_after_one_frame_beats_ssdo_bounce() {
-    let Some(ctx) = context() else { return };
+    let Some(ctx) = common::context() else { return };
     let s = Setup::new();
     let radius = 0.5;
     let reference = s.reference(ReferenceAov::IndirectIrradiance, radius, 128);
@@ -125,7 +101,7 @@ fn near_field_light_after_one_frame_beats_ssdo_bounce() {
 
 #[test]
 fn lambertian_converges_towards_the_path_traced_radiance() {
-    let Some(ctx) = context() else { return };
+    let Some(ctx) = common::context() else { return };
     let s = Setup::new();
     let radius = 2.0;
     let reference = s.reference(ReferenceAov::Radiance, radius, 128);

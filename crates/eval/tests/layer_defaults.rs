@@ -5,20 +5,11 @@
 //! at R = 0.5 m and R = 1 m (masked as `compare` masks).
 //! README's layer section lists the table this prints.
 
-use nearfield_eval::metrics::{self, Mask, MaskSettings};
-use nearfield_reference::{ReferenceAov, ReferenceSettings};
-use nearfield_render::{Aov, GpuContext, RenderSettings, Renderer, TechniqueParams};
-use nearfield_scene::{Camera, Scene, SunMode, builtin};
+mod common;
 
-fn context() -> Option<GpuContext> {
-    match GpuContext::new(None) {
-        Ok(c) => Some(c),
-        Err(e) if std::env::var("REQUIRE_GPU").as_deref() == Ok("1") => {
-            panic!("REQUIRE_GPU=1 but {e}")
-        }
-        Err(_) => None,
-    }
-}
+use nearfield_reference::{ReferenceAov, ReferenceSettings};
+use nearfield_render::{Aov, RenderSettings, Renderer, TechniqueParams};
+use nearfield_scene::{Camera, Scene, SunMode, builtin};
 
 /// The scenes: every built-in one with its own camera, and Sponza from the README's view.
 fn scenes() -> Vec<(String, Scene, Camera)> {
@@ -44,7 +35,7 @@ fn scenes() -> Vec<(String, Scene, Camera)> {
 
 #[test]
 fn two_layers_never_raise_the_ao_error() {
-    let Some(ctx) = context() else { return };
+    let Some(ctx) = common::context() else { return };
     let size = (128, 72);
     let mut failures = Vec::new();
     for (name, scene, camera) in scenes() {
@@ -59,7 +50,6 @@ fn two_layers_never_raise_the_ao_error() {
                 ..Default::default()
             };
             let reference = nearfield_reference::render(&scene, &env, &camera, &settings, false);
-            let ref_alpha: Vec<f32> = reference.value.iter().map(|p| p[3]).collect();
             let mut line = format!("{name:<12} R={radius:<4}");
             for method in ["ssao", "ssdo", "s3ho"] {
                 let mut mae = [0.0; 2];
@@ -82,22 +72,7 @@ fn two_layers_never_raise_the_ao_error() {
                     )
                     .unwrap();
                     r.render_frame();
-                    let ao = r.read_aov(Aov::Ao);
-                    let depth: Vec<f32> =
-                        r.read_aov(Aov::Depth).pixels.iter().map(|p| p[0]).collect();
-                    let alpha: Vec<f32> = ao.pixels.iter().map(|p| p[3]).collect();
-                    let mask = Mask::new(
-                        size,
-                        &alpha,
-                        &depth,
-                        &ref_alpha,
-                        &reference.depth,
-                        MaskSettings {
-                            border: 2,
-                            depth_tolerance: 0.01,
-                        },
-                    );
-                    mae[i] = metrics::metrics(&ao.pixels, &reference.value, &mask).mae;
+                    mae[i] = common::masked_metrics(&mut r, Aov::Ao, &reference).mae;
                 }
                 line += &format!("  {method} {:.4} → {:.4}", mae[0], mae[1]);
                 // 2 %: s3ho on `columns` at R = 1 (0.0110 → 0.0112), where the second layer

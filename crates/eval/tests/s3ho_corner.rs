@@ -4,24 +4,16 @@
 //! reference's do; SSBN's bent normals and cones coincide on both faces at the corner line, so
 //! the faces' colours converge there.
 
+mod common;
+
 use glam::Vec3;
 use nearfield_reference::{ReferenceAov, ReferenceSettings};
-use nearfield_render::{Aov, GpuContext, RenderSettings, Renderer, TechniqueParams};
+use nearfield_render::{Aov, RenderSettings, Renderer, TechniqueParams};
 use nearfield_scene::{Camera, Environment, builtin};
-
-fn context() -> Option<GpuContext> {
-    match GpuContext::new(None) {
-        Ok(c) => Some(c),
-        Err(e) if std::env::var("REQUIRE_GPU").as_deref() == Ok("1") => {
-            panic!("REQUIRE_GPU=1 but {e}")
-        }
-        Err(_) => None,
-    }
-}
 
 #[test]
 fn corner_faces_keep_their_colours() {
-    let Some(ctx) = context() else { return };
+    let Some(ctx) = common::context() else { return };
     let scene = builtin::scene("wall").unwrap();
     let env = Environment::from_fn("red-front-blue-top", 256, 128, |d| {
         Vec3::new(d.z.max(0.0), 0.02, d.y.max(0.0))

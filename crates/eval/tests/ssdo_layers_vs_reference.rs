@@ -17,21 +17,13 @@
 //!
 //! README's "Beyond one depth layer" section lists the full numbers and the commands.
 
+mod common;
+
 use nearfield_eval::metrics::{self, Mask, MaskSettings};
 use nearfield_reference::{ReferenceAov, ReferenceSettings};
 use nearfield_render::passes::shadow::ShadowSettings;
 use nearfield_render::{Aov, AovImage, GpuContext, RenderSettings, Renderer, TechniqueParams};
 use nearfield_scene::builtin;
-
-fn context() -> Option<GpuContext> {
-    match GpuContext::new(None) {
-        Ok(c) => Some(c),
-        Err(e) if std::env::var("REQUIRE_GPU").as_deref() == Ok("1") => {
-            panic!("REQUIRE_GPU=1 but {e}")
-        }
-        Err(_) => None,
-    }
-}
 
 fn render(
     ctx: &GpuContext,
@@ -89,7 +81,7 @@ fn render_in(
 
 #[test]
 fn shadow_correction_restores_contact_shadows() {
-    let Some(ctx) = context() else { return };
+    let Some(ctx) = common::context() else { return };
     let size = (320, 180);
     let scene = builtin::scene("contact").unwrap();
     let env = scene.default_env.load().unwrap();
@@ -121,7 +113,7 @@ fn shadow_correction_restores_contact_shadows() {
 
 #[test]
 fn a_second_layer_only_frees_samples() {
-    let Some(ctx) = context() else { return };
+    let Some(ctx) = common::context() else { return };
     let size = (160, 90);
     let (one, _) = render(&ctx, "gap", "ssdo:blur=off", 0.5, size, 2048, Aov::Ao);
     let (two, _) = render(
@@ -154,7 +146,7 @@ fn a_second_layer_only_frees_samples() {
 
 #[test]
 fn layers_cameras_and_environment_lights_render() {
-    let Some(ctx) = context() else { return };
+    let Some(ctx) = common::context() else { return };
     for method in [
         "ssdo:layers=4+cameras=4",
         "ssao:layers=2+cameras=1",
@@ -221,7 +213,7 @@ fn masked_rmse(
 
 #[test]
 fn a_second_layer_lets_marched_rays_pass_behind_thin_posts() {
-    let Some(ctx) = context() else { return };
+    let Some(ctx) = common::context() else { return };
     let size = (160, 90);
     let scene = builtin::scene("gap").unwrap();
     let env = scene.default_env.load().unwrap();
@@ -245,7 +237,7 @@ fn a_second_layer_lets_marched_rays_pass_behind_thin_posts() {
 
 #[test]
 fn environment_lights_with_correction_beat_their_shadow_maps_alone() {
-    let Some(ctx) = context() else { return };
+    let Some(ctx) = common::context() else { return };
     let Some(hdr) = nearfield_eval::shared_asset("env/rooitou_park_1k.hdr") else {
         return;
     };
@@ -286,7 +278,7 @@ fn environment_lights_with_correction_beat_their_shadow_maps_alone() {
 
 #[test]
 fn instant_radiosity_matches_one_bounce_and_the_near_field_helps() {
-    let Some(ctx) = context() else { return };
+    let Some(ctx) = common::context() else { return };
     let size = (160, 90);
     let scene = builtin::scene("closed-box").unwrap();
     let env = nearfield_scene::Environment::constant(glam::Vec3::ZERO);

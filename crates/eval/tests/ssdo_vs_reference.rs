@@ -3,24 +3,15 @@
 //! with the bounce a lower one than without, under the analytic sky and under a real HDR map
 //! (rooitou_park_1k, outdoor with sun). README's results table lists the full numbers.
 
-use nearfield_eval::metrics::{self, Mask, MaskSettings};
-use nearfield_reference::{ReferenceAov, ReferenceSettings};
-use nearfield_render::{Aov, GpuContext, RenderSettings, Renderer, TechniqueParams};
-use nearfield_scene::{EnvSource, builtin};
+mod common;
 
-fn context() -> Option<GpuContext> {
-    match GpuContext::new(None) {
-        Ok(c) => Some(c),
-        Err(e) if std::env::var("REQUIRE_GPU").as_deref() == Ok("1") => {
-            panic!("REQUIRE_GPU=1 but {e}")
-        }
-        Err(_) => None,
-    }
-}
+use nearfield_reference::{ReferenceAov, ReferenceSettings};
+use nearfield_render::{Aov, RenderSettings, Renderer, TechniqueParams};
+use nearfield_scene::{EnvSource, builtin};
 
 #[test]
 fn ssdo_beats_ssao_and_the_bounce_helps() {
-    let Some(ctx) = context() else { return };
+    let Some(ctx) = common::context() else { return };
     let mut envs = vec![("sky", EnvSource::Sky)];
     if let Some(hdr) = nearfield_eval::shared_asset("env/rooitou_park_1k.hdr") {
         envs.push(("rooitou_park_1k", EnvSource::File(hdr)));
@@ -52,22 +43,7 @@ fn ssdo_beats_ssao_and_the_bounce_helps() {
             )
             .unwrap();
             r.render_frame();
-            let img = r.read_aov(aov);
-            let depth: Vec<f32> = r.read_aov(Aov::Depth).pixels.iter().map(|p| p[0]).collect();
-            let alpha: Vec<f32> = img.pixels.iter().map(|p| p[3]).collect();
-            let ref_alpha: Vec<f32> = reference.value.iter().map(|p| p[3]).collect();
-            let mask = Mask::new(
-                size,
-                &alpha,
-                &depth,
-                &ref_alpha,
-                &reference.depth,
-                MaskSettings {
-                    border: 2,
-                    depth_tolerance: 0.01,
-                },
-            );
-            metrics::metrics(&img.pixels, &reference.value, &mask).relative_error
+            common::masked_metrics(&mut r, aov, reference).relative_error
         };
         let reference = |aov| {
             let s = ReferenceSettings {

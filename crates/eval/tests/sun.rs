@@ -5,22 +5,13 @@
 //!   it folded into the SH, for none, ssdo, s3ho and hbil;
 //! - a map without a compact sun (st_fagans_interior) stays whole: the same images as `off`.
 
-use nearfield_eval::metrics::{self, Mask, MaskSettings};
+mod common;
+
 use nearfield_reference::tracer::{Tracer, offset_origin};
-use nearfield_reference::{ReferenceAov, ReferenceImage, ReferenceSettings};
+use nearfield_reference::{ReferenceAov, ReferenceSettings};
 use nearfield_render::{Aov, GpuContext, RenderSettings, Renderer, TechniqueParams};
 use nearfield_scene::{Camera, EnvSource, Environment, LightKind, Scene, SunMode, builtin};
 use std::f32::consts::PI;
-
-fn context() -> Option<GpuContext> {
-    match GpuContext::new(None) {
-        Ok(c) => Some(c),
-        Err(e) if std::env::var("REQUIRE_GPU").as_deref() == Ok("1") => {
-            panic!("REQUIRE_GPU=1 but {e}")
-        }
-        Err(_) => None,
-    }
-}
 
 fn renderer(
     ctx: &GpuContext,
@@ -55,7 +46,7 @@ fn renderer(
 /// half its radius and 16 on its rim.
 #[test]
 fn cornell_sun_shadow_falls_where_the_geometry_says() {
-    let Some(ctx) = context() else { return };
+    let Some(ctx) = common::context() else { return };
     let scene = builtin::scene("cornell").unwrap();
     assert!(scene.lights.is_empty(), "the sun is the only light");
     let (env, _) = scene.default_env.load_split(SunMode::Auto).unwrap();
@@ -139,30 +130,11 @@ fn cornell_sun_shadow_falls_where_the_geometry_says() {
     );
 }
 
-fn relative_error(r: &mut Renderer, reference: &ReferenceImage, size: (u32, u32)) -> f64 {
-    let img = r.read_aov(Aov::Lambertian);
-    let depth: Vec<f32> = r.read_aov(Aov::Depth).pixels.iter().map(|p| p[0]).collect();
-    let alpha: Vec<f32> = img.pixels.iter().map(|p| p[3]).collect();
-    let ref_alpha: Vec<f32> = reference.value.iter().map(|p| p[3]).collect();
-    let mask = Mask::new(
-        size,
-        &alpha,
-        &depth,
-        &ref_alpha,
-        &reference.depth,
-        MaskSettings {
-            border: 2,
-            depth_tolerance: 0.01,
-        },
-    );
-    metrics::metrics(&img.pixels, &reference.value, &mask).relative_error
-}
-
 /// README's sun table (192×108 there; 128×72 here): every technique's image error falls when
 /// the sun casts its shadow.
 #[test]
 fn lambertian_error_falls_with_the_sun_split_out() {
-    let Some(ctx) = context() else { return };
+    let Some(ctx) = common::context() else { return };
     let scene = builtin::scene("cornell").unwrap();
     let camera = scene.default_camera();
     let size = (128, 72);
@@ -184,7 +156,7 @@ fn lambertian_error_falls_with_the_sun_split_out() {
             for _ in 0..frames {
                 r.render_frame();
             }
-            row.push(relative_error(&mut r, &reference, size));
+            row.push(common::masked_metrics(&mut r, Aov::Lambertian, &reference).relative_error);
         }
         table.push(row);
     }
@@ -208,7 +180,7 @@ fn lambertian_error_falls_with_the_sun_split_out() {
 /// and renders exactly what `off` renders.
 #[test]
 fn a_map_without_a_compact_sun_stays_whole() {
-    let Some(ctx) = context() else { return };
+    let Some(ctx) = common::context() else { return };
     let Some(hdr) = nearfield_eval::shared_asset("env/st_fagans_interior_1k.hdr") else {
         return;
     };

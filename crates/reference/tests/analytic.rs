@@ -238,6 +238,40 @@ fn indirect_from_a_uniform_wall() {
     }
 }
 
+/// Two estimates agree within their noise: for every pixel that `coverage` covers and every
+/// channel, `value(i, c)` = (a, b, se) has |a − b| ≤ 5 se + slack(b), and the mean of a − b is
+/// zero within 4 of its standard error (printed).
+fn assert_agree_within_noise(
+    label: &str,
+    coverage: &ReferenceImage,
+    value: impl Fn(usize, usize) -> (f32, f32, f32),
+    slack: impl Fn(f32) -> f32,
+) {
+    let (mut n, mut sum_diff, mut sum_se2) = (0, 0.0f64, 0.0f64);
+    for i in 0..coverage.value.len() {
+        if coverage.value[i][3] == 0.0 {
+            continue;
+        }
+        for c in 0..3 {
+            let (a, b, se) = value(i, c);
+            let d = a - b;
+            assert!(
+                d.abs() <= 5.0 * se + slack(b),
+                "{label}: pixel {i} channel {c}: {a} vs {b} (se {se})"
+            );
+            sum_diff += d as f64;
+            sum_se2 += (se * se) as f64;
+            n += 1;
+        }
+    }
+    let mean = sum_diff / n as f64;
+    let mean_se = sum_se2.sqrt() / n as f64;
+    eprintln!(
+        "{label}: mean difference {mean:.5} (its standard error {mean_se:.5}) over {n} values"
+    );
+    assert!(mean.abs() <= 4.0 * mean_se, "{label}: {mean} vs {mean_se}");
+}
+
 /// Two code paths agree: a path of at most 2 segments sees emission, one bounce of direct
 /// light (lights + environment with full occlusion), so radiance(max_depth 2) equals
 /// ρ (env-irradiance(R = ∞) + light-irradiance) + emission of the primary hit.
@@ -271,33 +305,17 @@ fn radiance_depth_two_equals_direct_diffuse() {
         &settings(ReferenceAov::Albedo, size, f32::INFINITY, 1),
         false,
     );
-    let (mut n, mut sum_diff, mut sum_se2) = (0, 0.0f64, 0.0f64);
-    for i in 0..radiance.value.len() {
-        if radiance.value[i][3] == 0.0 {
-            continue;
-        }
-        for c in 0..3 {
+    assert_agree_within_noise(
+        "radiance (2 segments) vs direct diffuse",
+        &radiance,
+        |i, c| {
             let want = albedo.value[i][c] * (env_irr.value[i][c] + light.value[i][c]);
             let se = (radiance.stderr[i][c].powi(2)
                 + (albedo.value[i][c] * env_irr.stderr[i][c]).powi(2))
             .sqrt();
-            let d = radiance.value[i][c] - want;
-            assert!(
-                d.abs() <= 5.0 * se + 1e-4,
-                "pixel {i} channel {c}: {} vs {want} (se {se})",
-                radiance.value[i][c]
-            );
-            sum_diff += d as f64;
-            sum_se2 += (se * se) as f64;
-            n += 1;
-        }
-    }
-    // The mean difference is zero within its own standard error.
-    let mean_se = sum_se2.sqrt() / n as f64;
-    assert!(
-        (sum_diff / n as f64).abs() <= 4.0 * mean_se,
-        "{} vs {mean_se}",
-        sum_diff / n as f64
+            (radiance.value[i][c], want, se)
+        },
+        |_| 1e-4,
     );
 }
 
@@ -327,34 +345,14 @@ fn diffuse_at_infinite_radius_is_the_three_segment_path_tracer() {
         &settings(ReferenceAov::Diffuse, size, f32::INFINITY, 512),
         false,
     );
-    let (mut n, mut sum_diff, mut sum_se2) = (0, 0.0f64, 0.0f64);
-    for i in 0..radiance.value.len() {
-        if radiance.value[i][3] == 0.0 {
-            continue;
-        }
-        for c in 0..3 {
-            let want = diffuse.value[i][c];
+    assert_agree_within_noise(
+        "3-segment radiance vs diffuse",
+        &radiance,
+        |i, c| {
             let se = (radiance.stderr[i][c].powi(2) + diffuse.stderr[i][c].powi(2)).sqrt();
-            let d = radiance.value[i][c] - want;
-            assert!(
-                d.abs() <= 5.0 * se + 1e-3 * want.abs() + 1e-4,
-                "pixel {i} channel {c}: radiance {} vs diffuse {want} (se {se})",
-                radiance.value[i][c]
-            );
-            sum_diff += d as f64;
-            sum_se2 += (se * se) as f64;
-            n += 1;
-        }
-    }
-    let mean_se = sum_se2.sqrt() / n as f64;
-    eprintln!(
-        "diffuse vs 3-segment radiance: mean difference {:.5} (its standard error {mean_se:.5}) over {n} values",
-        sum_diff / n as f64
-    );
-    assert!(
-        (sum_diff / n as f64).abs() <= 4.0 * mean_se,
-        "{} vs {mean_se}",
-        sum_diff / n as f64
+            (radiance.value[i][c], diffuse.value[i][c], se)
+        },
+        |want| 1e-3 * want.abs() + 1e-4,
     );
 }
 
@@ -374,31 +372,15 @@ fn sun_split_keeps_the_path_traced_image() {
     s.max_depth = 4;
     let whole = render(&scene, &sky.to_environment(), &cam, &s, false);
     let split = render(&scene, &sky.to_split_environment(), &cam, &s, false);
-    let (mut n, mut sum_diff, mut sum_se2) = (0, 0.0f64, 0.0f64);
-    for i in 0..whole.value.len() {
-        if whole.value[i][3] == 0.0 {
-            continue;
-        }
-        for c in 0..3 {
+    assert_agree_within_noise(
+        "split vs whole",
+        &whole,
+        |i, c| {
             let se = (whole.stderr[i][c].powi(2) + split.stderr[i][c].powi(2)).sqrt();
-            let d = split.value[i][c] - whole.value[i][c];
-            assert!(
-                d.abs() <= 5.0 * se + 2e-3 * whole.value[i][c],
-                "pixel {i} channel {c}: split {} vs whole {} (se {se})",
-                split.value[i][c],
-                whole.value[i][c]
-            );
-            sum_diff += d as f64;
-            sum_se2 += (se * se) as f64;
-            n += 1;
-        }
-    }
-    let mean_se = sum_se2.sqrt() / n as f64;
-    eprintln!(
-        "split − whole: mean {:.5} (standard error {mean_se:.5})",
-        sum_diff / n as f64
+            (split.value[i][c], whole.value[i][c], se)
+        },
+        |want| 2e-3 * want,
     );
-    assert!((sum_diff / n as f64).abs() <= 4.0 * mean_se);
 }
 
 /// Error against a 16× spp render falls at least as fast as 1/√spp.

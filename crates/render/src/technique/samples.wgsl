@@ -266,17 +266,18 @@ fn occlusion(p: vec3<f32>, omega: vec3<f32>, lambda: f32, cfg: SampleConfig) -> 
     return best.o;
 }
 
-// The blocker a bounce takes its sender from. The bounce's patch estimator (area πR²/N at the
-// sample's distance, SSDO Sec. 3) assumes the senders of points spread through the hemisphere's
-// volume; a marched ray's first blocker is nearer, and 1/d² over-weights it (ssdo `diffuse` on
-// cornell 0.045 → 0.067 with two layers and 16 steps). With two or four layers (where 16 marched
-// points are the default for visibility) the sender is therefore the paper's single point at λ
-// (s3ho: its 2 marched points, s3ho/sample.wgsl); with one layer the march's, as before.
-fn bounce_occlusion(p: vec3<f32>, omega: vec3<f32>, lambda: f32, steps: u32, cfg: SampleConfig) -> Occlusion {
+// Points per direction of the march a bounce takes its sender from. The bounce's patch estimator
+// (area πR²/N at the sample's distance, SSDO Sec. 3) assumes the senders of points spread
+// through the hemisphere's volume; a marched ray's first blocker is nearer, and 1/d²
+// over-weights it (ssdo `diffuse` on cornell 0.045 → 0.067 with two layers and 16 steps). With
+// two or four layers (where 16 marched points are the default for visibility) the sender
+// therefore comes from at most the technique's paper count (`paper_steps`: ssdo 1, the single
+// point at λ; s3ho 2); with one layer from the march itself, as before.
+fn bounce_steps(steps: u32, paper_steps: u32, cfg: SampleConfig) -> u32 {
     if cfg.layers > 1u {
-        return occlusion(p, omega, lambda, cfg);
+        return min(steps, paper_steps);
     }
-    return march_occlusion(p, omega, lambda, steps, cfg);
+    return steps;
 }
 
 // Where a world point falls on the main view, in pixels.

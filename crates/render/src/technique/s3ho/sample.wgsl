@@ -92,12 +92,13 @@ fn sample_pass(@builtin(global_invocation_id) id: vec3<u32>) {
             }
         }
         if params.indirect == 1u {
-            // The bounce's sender (as samples.wgsl's bounce_occlusion for ssdo): with two or four
-            // layers, where 16 marched points are the default for visibility, the paper's 2.
+            // The bounce's sender (samples.wgsl, bounce_steps): with more layers than one, from
+            // at most the paper's 2 marched points; the visibility's march when that is the same.
             var bo = occ;
             var vb = v;
-            if c.layers > 1u && STEPS > 2u {
-                bo = march_occlusion(here.p, omega, length_j, 2u, c);
+            let bounce_march = bounce_steps(STEPS, 2u, c);
+            if bounce_march != STEPS {
+                bo = march_occlusion(here.p, omega, length_j, bounce_march, c);
                 vb = 1.0 - bo.amount;
                 if bo.amount > 0.0 && params.lambda > 0.0 {
                     vb = max(vb, 1.0 - 1.0 / (1.0 + params.lambda * bo.distance));

@@ -61,7 +61,7 @@ fn screen_bounce(here: Surface, pixel: vec2<u32>) -> vec3<f32> {
     for (var i = 0u; i < n; i++) {
         let s = sample_local(i, pixel, sample_config());
         let omega = normalize(tb.t * s.x + tb.b * s.y + here.n * s.z);
-        let occ = bounce_occlusion(here.p, omega, s.w * params.radius, STEPS, sample_config());
+        let occ = march_occlusion(here.p, omega, s.w * params.radius, bounce_steps(STEPS, 1u, sample_config()), sample_config());
         if occ.amount <= 0.0 {
             continue;
         }
