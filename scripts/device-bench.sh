@@ -74,7 +74,7 @@ fi
 nvidia-smi --query-gpu=name,driver_version,memory.total --format=csv 2>/dev/null || true
 
 # Every registered technique, and the horizon techniques at full resolution too.
-METHODS=none,ssao,ssdo,ssdo-vpl,instant-radiosity,s3ho,ssbn,gtao,gtao:interleaved=off,hbil,hbil:interleaved=off
+METHODS=none,ssao,ssdo,ssdo-vpl,instant-radiosity,s3ho,ssbn,gtao,gtao:interleaved=off,hbil,hbil:interleaved=off,hbil:denoise=svgf,vbgi,vbgi:thickness=adaptive,vbgi:interleaved=off
 start=$(date +%s)
 for size in "${SIZES[@]}"; do
     echo "== $size"

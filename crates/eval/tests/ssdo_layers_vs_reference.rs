@@ -115,12 +115,12 @@ fn shadow_correction_restores_contact_shadows() {
 fn a_second_layer_only_frees_samples() {
     let Some(ctx) = common::context() else { return };
     let size = (160, 90);
-    let (one, _) = render(&ctx, "gap", "ssdo:blur=off", 0.5, size, 2048, Aov::Ao);
+    let (one, _) = render(&ctx, "gap", "ssdo:denoise=off", 0.5, size, 2048, Aov::Ao);
     let (two, _) = render(
         &ctx,
         "gap",
         // At the same single point per direction (two layers march 16 by default).
-        "ssdo:blur=off+layers=2+steps=1",
+        "ssdo:denoise=off+layers=2+steps=1",
         0.5,
         size,
         2048,

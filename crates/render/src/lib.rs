@@ -35,7 +35,7 @@ pub use wgpu;
 /// Every pass's binding declaration (WGSL as compiled, entry point, group-1 slots): what the
 /// reflection test compares with naga's view of the WGSL.
 pub fn pass_layouts() -> Vec<bindings::PassLayout> {
-    use technique::{horizon, s3ho, ssdo};
+    use technique::{horizon, s3ho, ssdo, vbgi};
     let mut v = vec![
         passes::tonemap::pass_layout(),
         passes::composite::pass_layout(),
@@ -55,6 +55,8 @@ pub fn pass_layouts() -> Vec<bindings::PassLayout> {
         horizon::merge::pass_layout(),
         horizon::accumulate::pass_layout(),
         horizon::outputs::pass_layout(),
+        vbgi::bitmask::pass_layout(),
+        vbgi::back::pass_layout(),
     ];
     v.extend(passes::gbuffer::pass_layouts());
     v.extend(passes::shadow::pass_layouts());
@@ -62,6 +64,7 @@ pub fn pass_layouts() -> Vec<bindings::PassLayout> {
     v.extend(passes::layers::pass_layouts());
     v.extend(passes::reproject::pass_layouts());
     v.extend(gpu_env::pass_layouts());
+    v.extend(passes::denoise::pass_layouts());
     v
 }
 

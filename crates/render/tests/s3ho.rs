@@ -166,7 +166,7 @@ fn s3ho_is_less_noisy_than_ssdo_radiance_mode() {
                     seed,
                 };
                 let mut s: Vec<(&str, &str)> =
-                    vec![("samples", n), ("blur", "off"), ("pattern", "chapter")];
+                    vec![("samples", n), ("denoise", "off"), ("pattern", "chapter")];
                 s.extend_from_slice(set);
                 runs.push(run(&ctx, &shot, method, &s, &[Aov::EnvIrradiance]).remove(0));
             }

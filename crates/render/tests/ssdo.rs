@@ -293,7 +293,7 @@ fn blur_hides_the_interleaving_pattern() {
                 seed: 0,
             },
             "ssdo",
-            &[("mode", "radiance"), ("lod", "3"), ("blur", blur)],
+            &[("mode", "radiance"), ("lod", "3"), ("denoise", blur)],
             1.0,
         );
         let e = aov(&mut r, Aov::EnvIrradiance);
@@ -310,7 +310,7 @@ fn blur_hides_the_interleaving_pattern() {
         (means.iter().map(|m| (m - mean).powi(2)).sum::<f64>() / 16.0).sqrt() / mean
     };
     let raw = periodic("off");
-    let blurred = periodic("on");
+    let blurred = periodic("bilateral");
     eprintln!("4x4-periodic component: unblurred {raw:.4}, blurred {blurred:.5}");
     assert!(
         raw > 0.01,

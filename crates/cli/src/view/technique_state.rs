@@ -188,11 +188,11 @@ mod tests {
             radius: Some(1.5),
             set: vec![("quality".into(), "high".into())],
         };
-        let s = TechniqueState::from_command_line("hbil:blur=off", &params).unwrap();
+        let s = TechniqueState::from_command_line("hbil:denoise=off", &params).unwrap();
         assert_eq!(s.value("slices"), Some("4"));
         assert_eq!(s.value("steps"), Some("4"));
         assert_eq!(s.value("radius"), Some("1.5"));
-        assert_eq!(s.value("blur"), Some("off"));
+        assert_eq!(s.value("denoise"), Some("off"));
         let again = TechniqueState::from_command_line(&s.spec(), &Default::default()).unwrap();
         assert_eq!(again, s);
         assert_eq!(TechniqueState::defaults("ssdo").unwrap().spec(), "ssdo");
@@ -210,7 +210,7 @@ mod tests {
             ("radius", "inf"),
             ("radius", "NaN"),
             ("mode", "sideways"),
-            ("blur", "perhaps"),
+            ("denoise", "perhaps"),
             ("nonsense", "1"),
             ("samples", ""),
         ] {

@@ -6,6 +6,7 @@
 pub mod aov;
 pub mod bilateral_blur;
 pub mod composite;
+pub mod denoise;
 pub mod direct_lighting;
 pub mod display;
 pub mod gbuffer;

@@ -1,5 +1,6 @@
 //! Settings of `gtao` and `hbil` (technique/horizon).
 
+use super::denoise::{Denoise, SvgfSettings};
 use super::{Preset, TechniqueParams};
 use crate::{choice, declare_settings};
 
@@ -66,11 +67,12 @@ declare_settings! {
         max_pixels: f32 = "256", log(1, 8192), "pixels", "longest march (full resolution)";
         reject_a: f32 = "-0.1", number(-1, 1), "", "radiance rejection (HBIL Sec. 3.4): lower smoothstep edge on −n′·ω (< `reject_b`)";
         reject_b: f32 = "0.1", number(-1, 1), "", "radiance rejection: upper smoothstep edge";
-        blur: bool = "on", toggle, "", "geometry-aware bilateral blur of the raw results (merges a 4×4 block's directions)";
+        denoise: Denoise = "bilateral", choice, "", "`bilateral` geometry-aware blur of the raw results (merges a 4×4 block's directions) then the running mean; `svgf` the shared spatio-temporal denoiser on the AOVs; `off` raw results (with the running mean)";
         blur_radius: u32 = "4", integer(0, 16), "pixels", "blur half width (Gaussian σ = radius/2; 4 weighs a 4×4 block nearly evenly)";
         reject_depth: f32 = "0.02", log(1e-4, 1), "", "history/reprojection: largest distance from the current tangent plane, relative to view depth";
         reject_normal: f32 = "0.9", number(-1, 1), "", "history/reprojection: smallest cosine between the normals";
     }
+    flatten { svgf: SvgfSettings }
 }
 
 /// `quality` presets: slices and steps.
@@ -105,21 +107,26 @@ impl Settings {
             s.radius = r;
         }
         super::apply(&mut s, params, &[("samples", "steps")])?;
-        if !(s.radius.is_finite() && s.radius > 0.0) {
-            return Err(format!(
-                "radius {}: the horizon search needs a finite radius > 0",
-                s.radius
-            ));
-        }
-        if !(1..=128).contains(&s.steps) {
-            return Err(format!("steps {}: must be in 1..=128", s.steps));
-        }
-        if s.reject_a >= s.reject_b {
-            return Err(format!(
-                "reject_a {} must be below reject_b {}",
-                s.reject_a, s.reject_b
-            ));
-        }
+        check_march(s.radius, s.steps, s.reject_a, s.reject_b)?;
         Ok(s)
     }
+}
+
+/// The checks the slice marches (gtao, hbil, vbgi) share: a finite radius, steps in range, and
+/// the sender rejection's edges in order.
+pub fn check_march(radius: f32, steps: u32, reject_a: f32, reject_b: f32) -> Result<(), String> {
+    if !(radius.is_finite() && radius > 0.0) {
+        return Err(format!(
+            "radius {radius}: the slice march needs a finite radius > 0"
+        ));
+    }
+    if !(1..=128).contains(&steps) {
+        return Err(format!("steps {steps}: must be in 1..=128"));
+    }
+    if reject_a >= reject_b {
+        return Err(format!(
+            "reject_a {reject_a} must be below reject_b {reject_b}"
+        ));
+    }
+    Ok(())
 }

@@ -9,10 +9,12 @@
 //!
 //! This module knows nothing of techniques or GPU resources; `technique/` builds on it.
 
+pub mod denoise;
 pub mod horizon;
 pub mod layers;
 pub mod s3ho;
 pub mod ssdo;
+pub mod vbgi;
 
 /// Generic settings from the command line, interpreted by each technique: `--samples`,
 /// `--radius` and `--set key=value`.
@@ -420,6 +422,7 @@ pub const FAMILIES: &[(&str, &str, &[Setting], &[Preset])] = &[
         horizon::Settings::TABLE,
         horizon::PRESETS,
     ),
+    ("vbgi", "vbgi", vbgi::Settings::TABLE, vbgi::PRESETS),
 ];
 
 /// Replaces every family's table in `readme` (between its markers) by the generated one; an
@@ -513,10 +516,12 @@ mod tests {
         let _ = s3ho::Settings::default();
         let _ = horizon::Settings::default();
         let _ = layers::LayerSettings::default();
+        let _ = vbgi::Settings::default();
         for table in [
             ssdo::Settings::TABLE,
             s3ho::Settings::TABLE,
             horizon::Settings::TABLE,
+            vbgi::Settings::TABLE,
         ] {
             for s in table {
                 s.check(s.default).unwrap();

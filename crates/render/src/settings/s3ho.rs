@@ -1,5 +1,6 @@
 //! Settings of `s3ho` and `ssbn` (technique/s3ho).
 
+use super::denoise::{Denoise, SvgfSettings};
 use super::layers::LayerSettings;
 use super::ssdo::Pattern;
 use super::{Preset, TechniqueParams};
@@ -17,9 +18,9 @@ declare_settings! {
         fade: f32 = "0.75", number(0, 1), "", "the blocker fade starts at `fade`·d_max";
         strength: f32 = "1", number(0, 16), "", "indirect strength";
         distance_clamp: f32 = "0.1", log(0, 1e6), "m", "smallest sender distance in 1/d²";
-        blur: bool = "on", toggle, "", "s3ho: the paper's 8×8 geometry-aware bilateral filter on the coefficients; ssbn: bilateral blur of bent normal, cone and ao";
+        denoise: Denoise = "bilateral", choice, "", "`bilateral` s3ho: the paper's 8×8 geometry-aware bilateral filter on the coefficients, ssbn: bilateral blur of bent normal, cone and ao; `svgf` the shared spatio-temporal denoiser on the AOVs; `off` none";
     }
-    flatten { layers: LayerSettings }
+    flatten { layers: LayerSettings, svgf: SvgfSettings }
 }
 
 /// `quality` presets (shared with ssdo): directions per pixel.

@@ -1,5 +1,6 @@
 //! Settings of `ssao`, `ssdo`, `ssdo-vpl` and `instant-radiosity` (technique/ssdo).
 
+use super::denoise::{Denoise, SvgfSettings};
 use super::layers::LayerSettings;
 use super::{Preset, TechniqueParams};
 use crate::{choice, declare_settings};
@@ -58,12 +59,12 @@ declare_settings! {
         vpl_map: u32 = "512", integer(128, 2048), "", "shadow-map side per virtual point light (ssdo-vpl, instant-radiosity)";
         rsm: u32 = "256", integer(16, 1024), "", "reflective-shadow-map side per light view (instant-radiosity)";
         vpl_clamp: f32 = "0.5", log(0, 1e6), "m", "smallest distance in a virtual point light's 1/d² (instant-radiosity); with `bounce=on` it must be ≤ R, since the screen-space bounce adds back what it removes";
-        blur: bool = "on", toggle, "", "geometry-aware bilateral blur of visibility, direct and indirect radiance";
+        denoise: Denoise = "bilateral", choice, "", "`bilateral` geometry-aware blur of visibility, direct and indirect radiance; `svgf` the shared spatio-temporal denoiser on the AOVs; `off` none";
         blur_radius: u32 = "4", integer(0, 16), "pixels", "blur half width (≥ 4 hides the 4×4 interleaving)";
         blur_depth: f32 = "0.01", log(1e-4, 10), "", "tangent-plane distance, relative to view depth, at which a tap's weight falls by e";
         blur_normal: f32 = "8", number(0, 128), "", "exponent on the normals' cosine in the blur";
     }
-    flatten { layers: LayerSettings }
+    flatten { layers: LayerSettings, svgf: SvgfSettings }
 }
 
 /// `quality` presets: directions per pixel.

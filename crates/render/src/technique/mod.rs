@@ -10,6 +10,7 @@ pub mod none;
 pub mod s3ho;
 pub mod samples;
 pub mod ssdo;
+pub mod vbgi;
 
 use crate::RenderError;
 use crate::gpu_env::GpuEnvironment;
@@ -194,6 +195,7 @@ pub const REGISTRY: &[TechniqueDesc] = &[
     s3ho::SSBN,
     horizon::GTAO,
     horizon::HBIL,
+    vbgi::VBGI,
 ];
 
 /// Names of all registered techniques.

@@ -225,6 +225,9 @@ pub struct LayerResources<'a> {
 /// The peeled layers and additional cameras of one technique, with everything to draw them.
 pub struct LayerStack {
     pub settings: LayerSettings,
+    /// Shade the layers (their direct radiance, for bounces); off where only their depth is
+    /// read (vbgi's thickness). On by default.
+    pub shade: bool,
     peel: LayerImages,
     cams: LayerImages,
     views: wgpu::Buffer,
@@ -334,6 +337,7 @@ impl LayerStack {
         };
         Ok(LayerStack {
             settings,
+            shade: true,
             peel,
             cams,
             views,
@@ -445,7 +449,7 @@ impl LayerStack {
                 CAMERA_VIEW_BASE + c,
             );
         }
-        if n + m == 0 {
+        if n + m == 0 || !self.shade {
             return;
         }
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {

@@ -64,9 +64,12 @@
 //! L ← mix(L, L(x′), smoothstep(a, b, −n′·ω)), ω = normalize(x′ − x). Eq. 19's (1 − F0) is the
 //! receiver's, so it is applied once per pixel in `outputs`.
 //! Slice angles: pixel cell c (its position in a 4×4 block, Bayer order) and slice k of S take
-//! φ = π (k + (c + ξ_frame)/16) / S: the 16 cells × S slices of a block cover [0, π) evenly
+//! φ = π (k + frac(c/16 + ξ_frame)) / S: the 16 cells × S slices of a block cover [0, π) evenly
 //! (32 directions for S = 2, the paper's setting), and ξ_frame (golden-ratio sequence) turns
-//! them from frame to frame for the temporal accumulation.
+//! them from frame to frame through the whole of [0, 1), so that every pixel's running mean
+//! sees every direction. (Turning them by ξ_frame/16 only, within each cell's sixteenth, left
+//! each pixel's mean converged to its own sixteenth of the integral: a fixed 4×4 pattern that
+//! neither the running mean nor an edge-stopping filter removes.)
 
 pub mod accumulate;
 pub mod merge;
@@ -75,9 +78,12 @@ pub mod params;
 pub mod search;
 pub mod split;
 
+use super::vbgi::{self, Bitmask};
 use super::{FrameInfo, Technique, TechniqueContext, TechniqueDesc, TechniqueParams};
 use crate::RenderError;
 use crate::passes::bilateral_blur::{BilateralBlur, BlurChain, BlurSettings};
+use crate::passes::denoise::{self, Denoise, SvgfConfig};
+use crate::passes::layers::{LayerSettings, LayerStack};
 use crate::passes::reproject::{History, ReprojectParams, Reprojection};
 use crate::passes::{ComputeStep, PingPong};
 use crate::profiler::GpuProfiler;
@@ -117,8 +123,44 @@ struct Split {
     layer_size: (u32, u32),
 }
 
+/// Which technique the horizon machinery runs as.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Kind {
+    Gtao,
+    Hbil,
+    Vbgi,
+}
+
+impl Kind {
+    fn name(self) -> &'static str {
+        match self {
+            Kind::Gtao => "gtao",
+            Kind::Hbil => "hbil",
+            Kind::Vbgi => "vbgi",
+        }
+    }
+
+    /// The settings of the machinery (and vbgi's bitmask part).
+    fn parse(self, tp: &TechniqueParams) -> Result<(Settings, Option<Bitmask>), String> {
+        match self {
+            Kind::Vbgi => vbgi::parse(tp),
+            _ => Ok((Settings::from_params(tp)?, None)),
+        }
+    }
+}
+
+/// vbgi's resources: the second depth layer and its deinterleave.
+struct BitmaskParts {
+    bitmask: Bitmask,
+    params: wgpu::Buffer,
+    layers: Option<LayerStack>,
+    /// With `thickness=layer` and interleaving.
+    back: Option<(ComputeStep, wgpu::BindGroup, (u32, u32))>,
+}
+
 struct Horizon {
     name: &'static str,
+    kind: Kind,
     hbil: bool,
     size: (u32, u32),
     source: Source,
@@ -141,20 +183,41 @@ struct Horizon {
     /// `HorizonParams` of [`Self::settings`].
     params: wgpu::Buffer,
     settings: Settings,
+    bitmask: Option<BitmaskParts>,
+}
+
+/// gtao's and hbil's denoiser choice and svgf configuration.
+fn config(tp: &TechniqueParams) -> Result<(Denoise, SvgfConfig), String> {
+    Ok(svgf_config(&Settings::from_params(tp)?))
+}
+
+/// The denoiser choice and svgf's configuration of the machinery's settings: svgf keeps the
+/// running mean under the technique's own `temporal`, `history` and history tests.
+pub fn svgf_config(s: &Settings) -> (Denoise, SvgfConfig) {
+    (
+        s.denoise,
+        SvgfConfig {
+            temporal: s.temporal,
+            history: s.history,
+            reject_depth: s.reject_depth,
+            reject_normal: s.reject_normal,
+            svgf: s.svgf,
+        },
+    )
 }
 
 fn create_gtao(
     ctx: &TechniqueContext,
-    params: &TechniqueParams,
+    tp: &TechniqueParams,
 ) -> Result<Box<dyn Technique>, RenderError> {
-    create(ctx, params, false)
+    denoise::create_denoised(ctx, tp, "gtao", config, |ctx| build(ctx, Kind::Gtao, tp))
 }
 
 fn create_hbil(
     ctx: &TechniqueContext,
-    params: &TechniqueParams,
+    tp: &TechniqueParams,
 ) -> Result<Box<dyn Technique>, RenderError> {
-    create(ctx, params, true)
+    denoise::create_denoised(ctx, tp, "hbil", config, |ctx| build(ctx, Kind::Hbil, tp))
 }
 
 fn array_view(t: &wgpu::Texture) -> wgpu::TextureView {
@@ -164,13 +227,15 @@ fn array_view(t: &wgpu::Texture) -> wgpu::TextureView {
     })
 }
 
-fn create(
+/// Builds gtao, hbil or vbgi (without svgf: `denoise::create_denoised` wraps this).
+pub fn build(
     ctx: &TechniqueContext,
+    kind: Kind,
     tp: &TechniqueParams,
-    hbil: bool,
 ) -> Result<Box<dyn Technique>, RenderError> {
-    let name = if hbil { "hbil" } else { "gtao" };
-    let settings = Settings::from_params(tp).map_err(RenderError::setting(name))?;
+    let name = kind.name();
+    let hbil = kind != Kind::Gtao;
+    let (settings, bitmask) = kind.parse(tp).map_err(RenderError::setting(name))?;
     let device = ctx.device;
     let frame = ctx.frame_group;
     let (i, o) = (ctx.inputs, ctx.outputs);
@@ -227,21 +292,86 @@ fn create(
         .unwrap_or(direct_views[0]);
     let source_views = [direct_views[0], direct_views[1], reprojected_view];
 
-    let search_layout = search::SearchBindings::layout(device);
+    // vbgi: its uniforms, the second depth layer (thickness=layer) and what the march reads of
+    // it (the deinterleaved layer with interleaving, the peeled layer without, else a stand-in).
+    let vbgi_params = bitmask.map(|b| {
+        device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("vbgi params"),
+            contents: bytemuck::bytes_of(&b.params),
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+        })
+    });
+    let layers = match bitmask {
+        Some(b) if b.layer => {
+            let two = LayerSettings {
+                layers: 2,
+                ..Default::default()
+            };
+            let mut stack = LayerStack::new(device, i, ctx.scene, frame, two).map_err(|e| {
+                RenderError::Setting {
+                    technique: name.into(),
+                    msg: format!(
+                        "thickness=layer: {e}; thickness=adaptive or thickness=constant need no second layer"
+                    ),
+                }
+            })?;
+            stack.shade = false;
+            Some(stack)
+        }
+        _ => None,
+    };
+    let split_back = (layers.is_some() && settings.interleaved).then(|| {
+        super::layered_texture(
+            device,
+            (p.layer_width, p.layer_height),
+            16,
+            "split back depth",
+            wgpu::TextureFormat::R32Float,
+        )
+    });
+    let stand_in = super::screen_texture(
+        device,
+        (1, 1),
+        "no back depth",
+        wgpu::TextureFormat::R32Float,
+    );
+    let back_view = match (&split_back, &layers) {
+        (Some(t), _) => array_view(t),
+        (None, Some(l)) => l.resources().peel_depth.clone(),
+        (None, None) => array_view(&stand_in),
+    };
+    let search_layout = match bitmask {
+        Some(_) => vbgi::bitmask::BitmaskBindings::layout(device),
+        None => search::SearchBindings::layout(device),
+    };
     let search_bg = |depth: &wgpu::TextureView,
                      normal: &wgpu::TextureView,
                      radiance: &wgpu::TextureView,
                      out: [&wgpu::TextureView; 3]| {
-        search::SearchBindings {
-            params: &params,
-            in_depth: depth,
-            in_normal: normal,
-            in_radiance: radiance,
-            out_cone: out[0],
-            out_near: out[1],
-            out_far: out[2],
+        match &vbgi_params {
+            Some(vbgi) => vbgi::bitmask::BitmaskBindings {
+                params: &params,
+                vbgi,
+                in_depth: depth,
+                in_normal: normal,
+                in_radiance: radiance,
+                in_back: &back_view,
+                out_cone: out[0],
+                out_near: out[1],
+                out_far: out[2],
+            }
+            .bind_group(device, &search_layout),
+            None => search::SearchBindings {
+                params: &params,
+                in_depth: depth,
+                in_normal: normal,
+                in_radiance: radiance,
+                out_cone: out[0],
+                out_near: out[1],
+                out_far: out[2],
+            }
+            .bind_group(device, &search_layout),
         }
-        .bind_group(device, &search_layout)
     };
     let mut textures = Vec::new();
     let split_layout = split::SplitBindings::layout(device);
@@ -322,7 +452,7 @@ fn create(
         None
     };
 
-    let blur = settings.blur.then(|| {
+    let blur = (settings.denoise == Denoise::Bilateral).then(|| {
         let b = BilateralBlur::new(device, frame, blur_settings(&settings));
         let scratch = full("horizon blur scratch", HDR_FORMAT);
         let cone_out = full("horizon cone blurred", HDR_FORMAT);
@@ -406,21 +536,54 @@ fn create(
         }
         e
     });
-    let counts = [
+    let back_layout = vbgi::back::BackBindings::layout(device);
+    let mut counts = vec![
         ("SLICES", settings.slices as f64),
         ("STEPS", settings.steps as f64),
     ];
+    if let Some(b) = bitmask {
+        counts.push(("SECTORS", b.sectors as f64));
+    }
     let step = |label: &'static str, source: String, entry: &str, layout, constants: &[_]| {
         let module = crate::passes::shader_module(device, label, &source);
         ComputeStep::new(device, label, &module, entry, frame, layout, constants)
     };
+    let back = match (&split_back, &layers) {
+        (Some(t), Some(l)) => {
+            let bg = vbgi::back::BackBindings {
+                params: &params,
+                full_back: l.resources().peel_depth,
+                split_back: &array_view(t),
+            }
+            .bind_group(device, &back_layout);
+            let s = step("vbgi back", vbgi::back::source(), "back", &back_layout, &[]);
+            Some((s, bg, util::groups_8x8((p.layer_width, p.layer_height))))
+        }
+        _ => None,
+    };
+    let (search_source, search_entry) = match bitmask {
+        Some(_) => (vbgi::bitmask::source(), "bitmask"),
+        None => (search::source(), "horizon"),
+    };
+    let bitmask_parts = match (bitmask, vbgi_params) {
+        (Some(bitmask), Some(params)) => Some(BitmaskParts {
+            bitmask,
+            params,
+            layers,
+            back,
+        }),
+        _ => None,
+    };
+    textures.push(stand_in);
+    textures.extend(split_back);
     let technique = Horizon {
         name,
+        kind,
         hbil,
         size,
         source: settings.source,
         split_step: step("split", split::source(), "split", &split_layout, &[]),
-        search_step: step(name, search::source(), "horizon", &search_layout, &counts),
+        search_step: step(name, search_source, search_entry, &search_layout, &counts),
         merge_step: step("merge", merge::source(), "merge", &merge_layout, &[]),
         accumulate_step: step(
             "accumulate",
@@ -457,6 +620,7 @@ fn create(
         },
         params,
         settings,
+        bitmask: bitmask_parts,
     };
     Ok(Box::new(technique))
 }
@@ -487,7 +651,7 @@ fn structure(s: &Settings) -> impl PartialEq + use<> {
         s.interleaved,
         s.reprojection,
         s.source,
-        s.blur,
+        s.denoise,
         s.far == Far::Slices,
     )
 }
@@ -497,6 +661,12 @@ impl Technique for Horizon {
         self.name
     }
 
+    fn prepare(&self, queue: &wgpu::Queue, camera: &nearfield_scene::Camera) {
+        if let Some(l) = self.bitmask.as_ref().and_then(|b| b.layers.as_ref()) {
+            l.prepare(queue, camera);
+        }
+    }
+
     fn encode(
         &self,
         encoder: &mut wgpu::CommandEncoder,
@@ -504,6 +674,9 @@ impl Technique for Horizon {
         frame: FrameInfo,
     ) {
         let side = frame.side();
+        if let Some(l) = self.bitmask.as_ref().and_then(|b| b.layers.as_ref()) {
+            l.encode(encoder, profiler);
+        }
         let reproject = self.hbil && self.source == Source::Previous && frame.history;
         let source = if reproject { 2 } else { side };
         if reproject && let Some(r) = &self.reprojection {
@@ -519,6 +692,11 @@ impl Technique for Horizon {
                     });
                     self.split_step
                         .dispatch(&mut pass, &s.split_bg[source], (gx, gy, 1));
+                    if let Some((step, bg, groups)) =
+                        self.bitmask.as_ref().and_then(|b| b.back.as_ref())
+                    {
+                        step.dispatch(&mut pass, bg, (groups.0, groups.1, 1));
+                    }
                 }
                 {
                     let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
@@ -560,9 +738,19 @@ impl Technique for Horizon {
     }
 
     fn update(&mut self, queue: &wgpu::Queue, tp: &TechniqueParams) -> Result<bool, RenderError> {
-        let settings = Settings::from_params(tp).map_err(RenderError::setting(self.name))?;
-        if structure(&settings) != structure(&self.settings) {
+        let (settings, bitmask) = self
+            .kind
+            .parse(tp)
+            .map_err(RenderError::setting(self.name))?;
+        let shape = |b: Option<Bitmask>| b.map(|b| (b.sectors, b.layer));
+        if structure(&settings) != structure(&self.settings)
+            || shape(bitmask) != shape(self.bitmask.as_ref().map(|b| b.bitmask))
+        {
             return Ok(false);
+        }
+        if let (Some(parts), Some(b)) = (&mut self.bitmask, bitmask) {
+            queue.write_buffer(&parts.params, 0, bytemuck::bytes_of(&b.params));
+            parts.bitmask = b;
         }
         let p = settings.params(self.hbil, self.size);
         queue.write_buffer(&self.params, 0, bytemuck::bytes_of(&p));

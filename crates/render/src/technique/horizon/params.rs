@@ -1,6 +1,7 @@
 //! `HorizonParams`: the GPU constants of every horizon pass, a pure function of the settings.
 
 use super::{Aperture, Far, Settings};
+use crate::passes::denoise::Denoise;
 use bytemuck::{Pod, Zeroable};
 
 impl Settings {
@@ -20,7 +21,8 @@ impl Settings {
             reject_b: self.reject_b,
             layer_width: size.0.div_ceil(scale),
             layer_height: size.1.div_ceil(scale),
-            temporal: self.temporal as u32,
+            // With svgf the denoiser keeps the running mean.
+            temporal: (self.temporal && self.denoise != Denoise::Svgf) as u32,
             max_history: self.history as f32,
             far: match (hbil, self.far) {
                 (false, _) => 0,

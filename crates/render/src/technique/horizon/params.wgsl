@@ -48,6 +48,15 @@ fn cell_index(pixel: vec2<u32>) -> u32 {
     return BAYER4[(pixel.x % 4u) + 4u * (pixel.y % 4u)];
 }
 
+// Angle of slice k of S at a pixel of cell `cell` on a frame with rotation `rotation` ∈ [0, 1):
+// φ = π (k + frac(cell/16 + rotation)) / S. In one frame the 16 cells of a 4×4 block sit 1/16
+// apart (with S slices they cover [0, π) evenly); over frames the rotation moves every cell
+// through all of [0, 1), so each pixel's running mean sees every direction (a cell kept to its
+// 1/16 would converge to its own sixteenth of the integral: a 4×4 pattern no mean removes).
+fn slice_phi(k: u32, slices: u32, cell: u32, rotation: f32) -> f32 {
+    return PI * (f32(k) + fract(f32(cell) / 16.0 + rotation)) / f32(slices);
+}
+
 fn golden(i: u32) -> f32 {
     return fract(f32(i % 4096u) * 0.618034);
 }

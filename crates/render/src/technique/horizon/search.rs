@@ -10,6 +10,7 @@ pub fn source() -> String {
         util::ENV_WGSL,
         include_str!("params.wgsl"),
         include_str!("search.wgsl"),
+        include_str!("slice.wgsl"),
     ])
 }
 

@@ -15,47 +15,6 @@
 @group(1) @binding(5) var out_near: texture_storage_2d_array<rgba16float, write>;
 @group(1) @binding(6) var out_far: texture_storage_2d_array<rgba16float, write>;
 
-// Normal (xyz) and view depth (w) of a layer texel.
-fn geometry(q: vec2<i32>, layer: u32) -> vec4<f32> {
-    let g = textureLoad(in_normal, q, layer, 0);
-    if params.scale == 1u {
-        return vec4<f32>(g.xyz, select(0.0, textureLoad(in_depth, q, layer, 0).r, g.w != 0.0));
-    }
-    return g;
-}
-
-fn layer_pixel(texel: vec2<u32>, layer: u32) -> vec2<u32> {
-    return texel * params.scale + vec2<u32>(layer % params.scale, layer / params.scale);
-}
-
-// The surface point seen through layer position `pos` (continuous texel coordinates), taken on
-// the tangent plane (point `centre`, normal `n`) of the texel it falls in;
-// w = 0 when the ray through `pos` misses that plane (it passes above a horizon line: the texel
-// centre is not what the slice sees there, and the sample is skipped).
-fn on_slice_line(pos: vec2<f32>, layer: u32, centre: vec3<f32>, n: vec3<f32>) -> vec4<f32> {
-    let scale = f32(params.scale);
-    let full = (pos - 0.5) * scale + vec2<f32>(f32(layer % params.scale), f32(layer / params.scale)) + 0.5;
-    let uv = full * frame.inv_size;
-    let ndc = vec2<f32>(2.0 * uv.x - 1.0, 1.0 - 2.0 * uv.y);
-    let t = frame.tan_half_fov;
-    let dir_view = vec3<f32>(ndc.x * t * frame.aspect, ndc.y * t, -1.0);
-    let r = (frame.world_from_view * vec4<f32>(dir_view, 0.0)).xyz;
-    let eye = frame.camera_position.xyz;
-    let denom = dot(n, r);
-    let along = dot(n, centre - eye) / denom;
-    if abs(denom) < 1e-4 * length(r) || along <= 0.0 {
-        return vec4<f32>(centre, 0.0);
-    }
-    return vec4<f32>(eye + r * along, 1.0);
-}
-
-// ½ nx (θ − sin θ cos θ) + ½ ny sin² θ.
-fn slice_g(theta: f32, n: vec2<f32>) -> f32 {
-    let s = sin(theta);
-    let c = cos(theta);
-    return 0.5 * n.x * (theta - s * c) + 0.5 * n.y * s * s;
-}
-
 @compute @workgroup_size(8, 8, 1)
 fn horizon(@builtin(global_invocation_id) id: vec3<u32>) {
     let rows = ((params.layer_height + 7u) / 8u) * 8u;
@@ -77,19 +36,12 @@ fn horizon(@builtin(global_invocation_id) id: vec3<u32>) {
     let far_lod = max(frame.env_radiance_mips - 5.0, 0.0);
     let n = normalize(centre.xyz);
     let x = world_position(pixel, depth);
-    let omega_o = normalize(frame.camera_position.xyz - x);
-    let up = normalize(frame.world_from_view[1].xyz);
-    var omega_x = cross(up, omega_o);
-    if dot(omega_x, omega_x) < 1e-8 {
-        omega_x = normalize(frame.world_from_view[0].xyz);
-    }
-    omega_x = normalize(omega_x);
-    let omega_y = cross(omega_o, omega_x);
+    let lf = local_frame(x);
+    let omega_o = lf.o;
+    let omega_x = lf.x;
+    let omega_y = lf.y;
 
-    // Screen length of R at x, as if the occluder were up to R nearer the camera.
-    let focal = 0.5 * frame.size.y / frame.tan_half_fov;
-    let r_px = min(params.max_pixels, params.radius * focal / max(depth - params.radius, 0.2 * depth));
-    let r_layer = r_px / f32(params.scale);
+    let r_layer = march_reach(depth);
     let cell = cell_index(pixel);
     let frame_jitter = golden(frame.frame_index);
     let step_jitter = fract(noise(pixel) + golden(frame.frame_index + 7u));
@@ -104,18 +56,14 @@ fn horizon(@builtin(global_invocation_id) id: vec3<u32>) {
     var far = vec3<f32>(0.0);
     let slices = SLICES;
     for (var k = 0u; k < slices; k++) {
-        let phi = PI * (f32(k) + (f32(cell) + frame_jitter) / 16.0) / f32(slices);
+        let phi = slice_phi(k, slices, cell, frame_jitter);
         let d = cos(phi) * omega_x + sin(phi) * omega_y;
         let np = vec2<f32>(dot(n, d), dot(n, omega_o));
         // Normal of the slice plane: samples snapped to texel centres are projected back into it.
         let slice_normal = cross(d, omega_o);
         let gamma = atan2(np.x, np.y);
         // Screen direction of the slice (unit, in pixels).
-        var dir = to_screen(frame.clip_from_world, x + d * (0.01 * depth)) - x_screen;
-        if dot(dir, dir) < 1e-12 {
-            dir = vec2<f32>(1.0, 0.0);
-        }
-        dir = normalize(dir);
+        let dir = slice_screen_dir(x, x_screen, d, depth);
         // side 0: front (+dir, θ ≥ 0), side 1: back (−dir, θ ≤ 0).
         var theta_side = array<f32, 2>(min(gamma + 0.5 * PI, PI), max(gamma - 0.5 * PI, -PI));
         unoccluded += slice_g(theta_side[0], np) + slice_g(theta_side[1], np);

@@ -53,6 +53,7 @@ use super::{Technique, TechniqueContext, TechniqueDesc, TechniqueParams};
 use crate::RenderError;
 use crate::passes::ComputeStep;
 use crate::passes::bilateral_blur::{BilateralBlur, BlurChain, BlurSettings};
+use crate::passes::denoise::{self, Denoise, SvgfConfig};
 use crate::passes::layers::LayerStack;
 use crate::passes::shadow::NoLights;
 use crate::profiler::GpuProfiler;
@@ -102,18 +103,24 @@ struct S3ho {
     _textures: Vec<wgpu::Texture>,
 }
 
+/// The denoiser choice and svgf's configuration (the running mean at its defaults).
+fn denoise_config(tp: &TechniqueParams) -> Result<(Denoise, SvgfConfig), String> {
+    let s = Settings::from_params(tp)?;
+    Ok((s.denoise, SvgfConfig::with_defaults(s.svgf)))
+}
+
 fn create_s3ho(
     ctx: &TechniqueContext,
     p: &TechniqueParams,
 ) -> Result<Box<dyn Technique>, RenderError> {
-    create(ctx, p, false)
+    denoise::create_denoised(ctx, p, "s3ho", denoise_config, |ctx| create(ctx, p, false))
 }
 
 fn create_ssbn(
     ctx: &TechniqueContext,
     p: &TechniqueParams,
 ) -> Result<Box<dyn Technique>, RenderError> {
-    create(ctx, p, true)
+    denoise::create_denoised(ctx, p, "ssbn", denoise_config, |ctx| create(ctx, p, true))
 }
 
 fn create(
@@ -202,7 +209,7 @@ fn create(
     }
     .bind_group(device, &filter_layout);
     // With the filter off, shade reads the raw coefficients (and the raw bent cone and ao).
-    let (c0, c1) = if settings.blur {
+    let (c0, c1) = if settings.denoise == Denoise::Bilateral {
         (&v[2], &v[3])
     } else {
         (&v[0], &v[1])
@@ -229,7 +236,7 @@ fn create(
         device,
         frame,
         BlurSettings {
-            enabled: settings.blur,
+            enabled: (settings.denoise == Denoise::Bilateral),
             radius: 4,
             depth_sigma: 0.01,
             normal_power: 8.0,
@@ -250,7 +257,7 @@ fn create(
         size: i.size,
         ssbn,
         indirect: !ssbn && settings.indirect,
-        blur_on: settings.blur,
+        blur_on: (settings.denoise == Denoise::Bilateral),
         sample: (
             step(
                 name,
@@ -286,7 +293,7 @@ fn create(
 
 /// What shapes the passes' pipelines and resources: a change of any of these rebuilds.
 fn structure(s: &Settings) -> impl PartialEq + use<> {
-    (s.samples, s.steps, s.layers, s.blur)
+    (s.samples, s.steps, s.layers, s.denoise)
 }
 
 impl Technique for S3ho {

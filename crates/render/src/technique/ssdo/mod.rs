@@ -46,6 +46,7 @@ use super::{Technique, TechniqueContext, TechniqueDesc, TechniqueParams};
 use crate::RenderError;
 use crate::passes::ComputeStep;
 use crate::passes::bilateral_blur::{BilateralBlur, BlurChain, BlurSettings};
+use crate::passes::denoise::{self, Denoise, SvgfConfig};
 use crate::passes::layers::LayerStack;
 use crate::passes::shadow::NoLights;
 use crate::profiler::GpuProfiler;
@@ -105,28 +106,46 @@ fn create_ssao(
     ctx: &TechniqueContext,
     params: &TechniqueParams,
 ) -> Result<Box<dyn Technique>, RenderError> {
-    create(ctx, params, Variant::Ssao)
+    let name = Variant::Ssao.name();
+    denoise::create_denoised(ctx, params, name, denoise_config, |ctx| {
+        create(ctx, params, Variant::Ssao)
+    })
 }
 
 fn create_ssdo(
     ctx: &TechniqueContext,
     params: &TechniqueParams,
 ) -> Result<Box<dyn Technique>, RenderError> {
-    create(ctx, params, Variant::Ssdo)
+    let name = Variant::Ssdo.name();
+    denoise::create_denoised(ctx, params, name, denoise_config, |ctx| {
+        create(ctx, params, Variant::Ssdo)
+    })
 }
 
 fn create_ssdo_vpl(
     ctx: &TechniqueContext,
     params: &TechniqueParams,
 ) -> Result<Box<dyn Technique>, RenderError> {
-    create(ctx, params, Variant::SsdoVpl)
+    let name = Variant::SsdoVpl.name();
+    denoise::create_denoised(ctx, params, name, denoise_config, |ctx| {
+        create(ctx, params, Variant::SsdoVpl)
+    })
 }
 
 fn create_instant_radiosity(
     ctx: &TechniqueContext,
     params: &TechniqueParams,
 ) -> Result<Box<dyn Technique>, RenderError> {
-    create(ctx, params, Variant::InstantRadiosity)
+    let name = Variant::InstantRadiosity.name();
+    denoise::create_denoised(ctx, params, name, denoise_config, |ctx| {
+        create(ctx, params, Variant::InstantRadiosity)
+    })
+}
+
+/// The denoiser choice and svgf's configuration (the running mean at its defaults).
+fn denoise_config(tp: &TechniqueParams) -> Result<(Denoise, SvgfConfig), String> {
+    let s = Settings::from_params(tp)?;
+    Ok((s.denoise, SvgfConfig::with_defaults(s.svgf)))
 }
 
 /// A created ssao/ssdo/ssdo-vpl/instant-radiosity: its passes with their bind groups, built once.
@@ -363,7 +382,7 @@ impl Variant {
 
 fn blur_settings(settings: &Settings) -> BlurSettings {
     BlurSettings {
-        enabled: settings.blur,
+        enabled: settings.denoise == Denoise::Bilateral,
         radius: settings.blur_radius,
         depth_sigma: settings.blur_depth,
         normal_power: settings.blur_normal,
@@ -372,7 +391,9 @@ fn blur_settings(settings: &Settings) -> BlurSettings {
 
 /// What shapes the passes' pipelines and resources: a change of any of these rebuilds.
 fn structure(s: &Settings) -> impl PartialEq + use<> {
-    (s.samples, s.steps, s.layers, s.vpls, s.vpl_map, s.rsm)
+    (
+        s.samples, s.steps, s.layers, s.vpls, s.vpl_map, s.rsm, s.denoise,
+    )
 }
 
 impl Technique for Ssdo {

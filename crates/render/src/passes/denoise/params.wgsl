@@ -1,0 +1,36 @@
+// params.wgsl — `SvgfParams` and the helpers the svgf passes share (passes/denoise/mod.rs holds
+// the model and its deviations).
+
+struct SvgfParams {
+    // 1: temporal accumulation.
+    temporal: u32,
+    // Frames in the running mean at most.
+    max_history: f32,
+    // History rejection: tangent-plane distance relative to view depth, normal cosine.
+    reject_depth: f32,
+    reject_normal: f32,
+    // Edge stopping: σ_l (value, in standard deviations; 0 = off), σ_z (tangent-plane distance
+    // relative to view depth), σ_n (exponent on the normals' cosine).
+    sigma_l: f32,
+    sigma_z: f32,
+    sigma_n: f32,
+    // This à-trous iteration's tap spacing (pixels).
+    step: i32,
+}
+
+fn svgf_luma(c: vec3<f32>) -> f32 {
+    return dot(c, vec3<f32>(0.2126, 0.7152, 0.0722));
+}
+
+// The geometric part of a tap's weight: the tap's surface point's distance from the centre's
+// tangent plane relative to the centre's view depth, and the normals' cosine. Positions in view
+// space (`view_position`), `n_view` the centre's normal in view space, `n` and `nq` in world space.
+fn svgf_geometry_weight(x_view: vec3<f32>, n_view: vec3<f32>, n: vec3<f32>, depth: f32, xq_view: vec3<f32>, nq: vec3<f32>) -> f32 {
+    let plane = abs(dot(n_view, xq_view - x_view)) / (params.sigma_z * depth);
+    return exp(-plane) * pow(max(dot(n, nq), 0.0), params.sigma_n);
+}
+
+// A world-space direction in view space.
+fn to_view(n: vec3<f32>) -> vec3<f32> {
+    return vec3<f32>(dot(frame.world_from_view[0].xyz, n), dot(frame.world_from_view[1].xyz, n), dot(frame.world_from_view[2].xyz, n));
+}

@@ -1,0 +1,83 @@
+// slice.wgsl — what the slice marches of gtao/hbil (search.wgsl) and vbgi (vbgi/bitmask.wgsl)
+// share: layer texels, the point on the slice line, the slice integral G.
+// Derivations and sources: technique/horizon/mod.rs. The including kernel declares `params`
+// (HorizonParams), `in_depth` and `in_normal`.
+
+// Normal (xyz) and view depth (w) of a layer texel.
+fn geometry(q: vec2<i32>, layer: u32) -> vec4<f32> {
+    let g = textureLoad(in_normal, q, layer, 0);
+    if params.scale == 1u {
+        return vec4<f32>(g.xyz, select(0.0, textureLoad(in_depth, q, layer, 0).r, g.w != 0.0));
+    }
+    return g;
+}
+
+fn layer_pixel(texel: vec2<u32>, layer: u32) -> vec2<u32> {
+    return texel * params.scale + vec2<u32>(layer % params.scale, layer / params.scale);
+}
+
+// The surface point seen through layer position `pos` (continuous texel coordinates), taken on
+// the tangent plane (point `centre`, normal `n`) of the texel it falls in;
+// w = 0 when the ray through `pos` misses that plane (it passes above a horizon line: the texel
+// centre is not what the slice sees there, and the sample is skipped).
+fn on_slice_line(pos: vec2<f32>, layer: u32, centre: vec3<f32>, n: vec3<f32>) -> vec4<f32> {
+    let scale = f32(params.scale);
+    let full = (pos - 0.5) * scale + vec2<f32>(f32(layer % params.scale), f32(layer / params.scale)) + 0.5;
+    let uv = full * frame.inv_size;
+    let ndc = vec2<f32>(2.0 * uv.x - 1.0, 1.0 - 2.0 * uv.y);
+    let t = frame.tan_half_fov;
+    let dir_view = vec3<f32>(ndc.x * t * frame.aspect, ndc.y * t, -1.0);
+    let r = (frame.world_from_view * vec4<f32>(dir_view, 0.0)).xyz;
+    let eye = frame.camera_position.xyz;
+    let denom = dot(n, r);
+    let along = dot(n, centre - eye) / denom;
+    if abs(denom) < 1e-4 * length(r) || along <= 0.0 {
+        return vec4<f32>(centre, 0.0);
+    }
+    return vec4<f32>(eye + r * along, 1.0);
+}
+
+// ½ nx (θ − sin θ cos θ) + ½ ny sin² θ.
+fn slice_g(theta: f32, n: vec2<f32>) -> f32 {
+    let s = sin(theta);
+    let c = cos(theta);
+    return 0.5 * n.x * (theta - s * c) + 0.5 * n.y * s * s;
+}
+
+// The local camera frame at x (technique/horizon/mod.rs): ω_o towards the eye,
+// ω_x = normalize(Y × ω_o) with Y the camera's up vector, ω_y = ω_o × ω_x.
+struct LocalFrame {
+    o: vec3<f32>,
+    x: vec3<f32>,
+    y: vec3<f32>,
+}
+
+fn local_frame(x: vec3<f32>) -> LocalFrame {
+    var f: LocalFrame;
+    f.o = normalize(frame.camera_position.xyz - x);
+    let up = normalize(frame.world_from_view[1].xyz);
+    var ox = cross(up, f.o);
+    if dot(ox, ox) < 1e-8 {
+        ox = normalize(frame.world_from_view[0].xyz);
+    }
+    f.x = normalize(ox);
+    f.y = cross(f.o, f.x);
+    return f;
+}
+
+// Screen length of R at view depth `depth` in layer texels, as if the occluder were up to R
+// nearer the camera (capped by `max_pixels` at full resolution).
+fn march_reach(depth: f32) -> f32 {
+    let focal = 0.5 * frame.size.y / frame.tan_half_fov;
+    let r_px = min(params.max_pixels, params.radius * focal / max(depth - params.radius, 0.2 * depth));
+    return r_px / f32(params.scale);
+}
+
+// Unit screen direction (pixels) of slice direction `d` at x (x_screen: x on screen).
+fn slice_screen_dir(x: vec3<f32>, x_screen: vec2<f32>, d: vec3<f32>, depth: f32) -> vec2<f32> {
+    var dir = to_screen(frame.clip_from_world, x + d * (0.01 * depth)) - x_screen;
+    if dot(dir, dir) < 1e-12 {
+        dir = vec2<f32>(1.0, 0.0);
+    }
+    return normalize(dir);
+}

@@ -1,0 +1,337 @@
+// bitmask.wgsl — vbgi's slice march with a visibility bitmask per slice (the `bitmask` kernel):
+// ao, bent normal, near-field light from the newly occupied sectors, the far field through the
+// unoccupied ones. Derivations and sources: technique/vbgi/mod.rs.
+
+// bitmask: one invocation per pixel of one layer, the 16 layers stacked vertically as in
+// search.wgsl (technique/horizon). Inputs as there, and `in_back`: the view depth of the second
+// depth layer (0 where there is none), split like the geometry with interleaving.
+
+struct VbgiParams {
+    // 0 layer, 1 constant, 2 adaptive.
+    thickness: u32,
+    thickness_m: f32,
+    thickness_ratio: f32,
+    _pad0: u32,
+}
+
+// Sectors of a slice's half circle (8, 16 or 32 bits of the mask).
+override SECTORS: u32 = 32u;
+
+// Two consecutive samples bound one solid when neither lies in front of the other's tangent
+// plane by more than this fraction of the step between them (about 14°).
+const CONTINUITY: f32 = 0.25;
+
+
+@group(1) @binding(0) var<uniform> params: HorizonParams;
+@group(1) @binding(1) var<uniform> vbgi: VbgiParams;
+@group(1) @binding(2) var in_depth: texture_2d_array<f32>;
+@group(1) @binding(3) var in_normal: texture_2d_array<f32>;
+@group(1) @binding(4) var in_radiance: texture_2d_array<f32>;
+@group(1) @binding(5) var in_back: texture_2d_array<f32>;
+@group(1) @binding(6) var out_cone: texture_storage_2d_array<rgba16float, write>;
+@group(1) @binding(7) var out_near: texture_storage_2d_array<rgba16float, write>;
+@group(1) @binding(8) var out_far: texture_storage_2d_array<rgba16float, write>;
+
+// S(θ) = ∫_0^θ (n′·ω(t)) |sin t| dt = sign(θ) G(θ) (G: slice_g).
+fn slice_s(theta: f32, np: vec2<f32>) -> f32 {
+    return sign(theta) * slice_g(theta, np);
+}
+
+// Bits [s, e) of a u32 (0 ≤ s, e ≤ 32); none when e ≤ s.
+fn bit_range(s: u32, e: u32) -> u32 {
+    if e <= s {
+        return 0u;
+    }
+    let count = e - s;
+    let ones = select((1u << count) - 1u, 0xffffffffu, count >= 32u);
+    return ones << s;
+}
+
+// The projected-cosine weight of the set bits of `m`: Σ over its runs [s, e) of
+// cum[e] − cum[s], with cum the slice's prefix weights.
+fn mask_weight(m: u32, cum: ptr<function, array<f32, 33>>) -> f32 {
+    var w = 0.0;
+    var r = m;
+    loop {
+        if r == 0u {
+            break;
+        }
+        let s = firstTrailingBit(r);
+        let rest = ~(r >> s);
+        var count = 32u - s;
+        if rest != 0u {
+            count = min(firstTrailingBit(rest), count);
+        }
+        w += (*cum)[s + count] - (*cum)[s];
+        r &= ~bit_range(s, s + count);
+    }
+    return w;
+}
+
+// The signed slice angle from ω_o of direction `v` (side_sign: + towards D, − away).
+fn slice_angle(v: vec3<f32>, slice_normal: vec3<f32>, omega_o: vec3<f32>, side_sign: f32) -> f32 {
+    let vs = v - dot(v, slice_normal) * slice_normal;
+    return side_sign * fast_acos(dot(vs, omega_o) * inverseSqrt(max(dot(vs, vs), 1e-18)));
+}
+
+// acos to within 7e-5 rad (Abramowitz & Stegun 4.4.45), a fraction of a 32-sector bin (0.098 rad).
+fn fast_acos(x: f32) -> f32 {
+    let a = min(abs(x), 1.0);
+    let r = sqrt(1.0 - a) * (1.5707288 + a * (-0.2121144 + a * (0.0742610 - 0.0187293 * a)));
+    return select(PI - r, r, x >= 0.0);
+}
+
+// The angle range [lo, hi] of the part within R of x of the chord from front point `p` to its
+// back, `tau` behind it along the camera ray (tau < 0: to infinity); w = 0 when no part of the
+// chord is within R (DESIGN.md's V_R: an occluder counts where it is hit within R).
+fn chord(p: vec3<f32>, tau: f32, x: vec3<f32>, eye: vec3<f32>, slice_normal: vec3<f32>, omega_o: vec3<f32>, side_sign: f32) -> vec3<f32> {
+    let v = p - x;
+    let ray = normalize(p - eye);
+    // |v + s ray| = R at s = −b ∓ √(b² − c).
+    let b = dot(v, ray);
+    let disc = b * b - (dot(v, v) - params.radius * params.radius);
+    if disc <= 0.0 {
+        return vec3<f32>(0.0);
+    }
+    let root = sqrt(disc);
+    let s0 = max(-b - root, 0.0);
+    let s1 = select(-b + root, min(-b + root, tau), tau >= 0.0);
+    if s1 <= s0 {
+        return vec3<f32>(0.0);
+    }
+    let front = slice_angle(v + ray * s0, slice_normal, omega_o, side_sign);
+    let back = slice_angle(v + ray * s1, slice_normal, omega_o, side_sign);
+    return vec3<f32>(min(front, back), max(front, back), 1.0);
+}
+
+// The sectors an angle range covers, its ends rounded with `jitter` (stochastic rounding).
+fn range_bits(range: vec2<f32>, base: f32, jitter: f32) -> u32 {
+    let sectors = f32(SECTORS);
+    let lo = floor((range.x - base) / PI * sectors + jitter);
+    let hi = floor((range.y - base) / PI * sectors + jitter);
+    return bit_range(u32(clamp(lo, 0.0, sectors)), u32(clamp(hi, 0.0, sectors)));
+}
+
+@compute @workgroup_size(8, 8, 1)
+fn bitmask(@builtin(global_invocation_id) id: vec3<u32>) {
+    let rows = ((params.layer_height + 7u) / 8u) * 8u;
+    let texel = vec2<u32>(id.x, id.y % rows);
+    let layer = id.y / rows;
+    if texel.x >= params.layer_width || texel.y >= params.layer_height {
+        return;
+    }
+    let pixel = layer_pixel(texel, layer);
+    let centre = geometry(vec2<i32>(texel), layer);
+    let depth = centre.w;
+    if !in_bounds(pixel) || depth <= 0.0 {
+        textureStore(out_cone, texel, layer, vec4<f32>(0.0, 0.0, 0.0, 1.0));
+        textureStore(out_near, texel, layer, vec4<f32>(0.0));
+        textureStore(out_far, texel, layer, vec4<f32>(0.0));
+        return;
+    }
+    let far_lod = max(frame.env_radiance_mips - 5.0, 0.0);
+    let n = normalize(centre.xyz);
+    let x = world_position(pixel, depth);
+    let eye = frame.camera_position.xyz;
+    let forward = -normalize(frame.world_from_view[2].xyz);
+    let lf = local_frame(x);
+    let omega_o = lf.o;
+    let omega_x = lf.x;
+    let omega_y = lf.y;
+
+    let r_layer = march_reach(depth);
+    let cell = cell_index(pixel);
+    let frame_jitter = golden(frame.frame_index);
+    let step_jitter = fract(noise(pixel) + golden(frame.frame_index + 7u));
+    // Stochastic rounding of the sector boundaries: every sample of the pixel rounds with the
+    // same offset, so neighbouring samples' ranges tile without gaps, and over frames a sector's
+    // expected coverage is the exact fraction of it that the range covers.
+    let round_jitter = fract(noise(pixel + vec2<u32>(17u, 29u)) + golden(frame.frame_index + 3u));
+    let x_screen = to_screen(frame.clip_from_world, x);
+    let layer_size = vec2<i32>(i32(params.layer_width), i32(params.layer_height));
+    let all_sectors = bit_range(0u, SECTORS);
+    let groups = min(SECTORS, 16u);
+    let per_group = SECTORS / groups;
+
+    var ao = 0.0;
+    var unoccluded = 0.0;
+    var bent = vec3<f32>(0.0);
+    var near = vec3<f32>(0.0);
+    var far = vec3<f32>(0.0);
+    var cum: array<f32, 33>;
+    for (var k = 0u; k < SLICES; k++) {
+        let phi = slice_phi(k, SLICES, cell, frame_jitter);
+        let d = cos(phi) * omega_x + sin(phi) * omega_y;
+        let np = vec2<f32>(dot(n, d), dot(n, omega_o));
+        let slice_normal = cross(d, omega_o);
+        // The hemisphere about the projected normal: θ ∈ [γ − π/2, γ + π/2].
+        let gamma = clamp(atan2(np.x, np.y), -0.5 * PI, 0.5 * PI);
+        let base = gamma - 0.5 * PI;
+        // cum[b] = S(θ_b) − S(θ_0), θ_b = base + π b/N, with (cos θ_b, sin θ_b) by rotation
+        // (two sin/cos per slice instead of 2(N + 1)).
+        let delta = PI / f32(SECTORS);
+        let rot = vec2<f32>(cos(delta), sin(delta));
+        var cs = vec2<f32>(cos(base), sin(base));
+        var s_base = 0.0;
+        for (var b = 0u; b <= SECTORS; b++) {
+            let theta = base + delta * f32(b);
+            let g = 0.5 * np.x * (theta - cs.y * cs.x) + 0.5 * np.y * cs.y * cs.y;
+            let sv = sign(theta) * g;
+            if b == 0u {
+                s_base = sv;
+            }
+            cum[b] = sv - s_base;
+            cs = vec2<f32>(cs.x * rot.x - cs.y * rot.y, cs.y * rot.x + cs.x * rot.y);
+        }
+        let dir = slice_screen_dir(x, x_screen, d, depth);
+        var occupied = 0u;
+        for (var side = 0u; side < 2u; side++) {
+            let side_sign = select(1.0, -1.0, side == 1u);
+            // The previous sample of this side.
+            var prev_valid = false;
+            var prev_point = vec3<f32>(0.0);
+            var prev_normal = vec3<f32>(0.0);
+            var prev_range = vec2<f32>(0.0);
+            var prev_tau = 0.0;
+            var prev_depth = 0.0;
+            var prev_texel = vec2<i32>(0);
+            var prev_accept = 0.0;
+            for (var j = 0u; j < STEPS; j++) {
+                let t = r_layer * pow((f32(j) + step_jitter) / f32(STEPS), params.step_power);
+                let pos = vec2<f32>(texel) + 0.5 + side_sign * dir * max(t, 1.0);
+                let q = vec2<i32>(floor(pos));
+                if any(q < vec2<i32>(0)) || any(q >= layer_size) {
+                    break;
+                }
+                let qg = geometry(q, layer);
+                let qd = qg.w;
+                if qd <= 0.0 {
+                    prev_valid = false;
+                    continue;
+                }
+                let qn = normalize(qg.xyz);
+                let q_centre = world_position(layer_pixel(vec2<u32>(q), layer), qd);
+                let on_line = on_slice_line(pos, layer, q_centre, qn);
+                if on_line.w == 0.0 {
+                    continue;
+                }
+                let v = on_line.xyz - x;
+                let dist = length(v);
+                if dist < 1e-6 {
+                    continue;
+                }
+                // The sample's back: along the camera ray through it, `tau` behind its front
+                // (tau < 0: no finite thickness, the back is at infinity).
+                var tau = -1.0;
+                switch vbgi.thickness {
+                    case 0u: {
+                        let back = textureLoad(in_back, q, layer, 0).r;
+                        if back > qd {
+                            tau = (back - qd) / max(dot(normalize(on_line.xyz - eye), forward), 0.05);
+                        }
+                    }
+                    case 1u: {
+                        tau = vbgi.thickness_m;
+                    }
+                    default: {
+                        tau = vbgi.thickness_ratio * qd;
+                    }
+                }
+                let clipped = chord(on_line.xyz, tau, x, eye, slice_normal, omega_o, side_sign);
+                if clipped.z == 0.0 {
+                    prev_valid = false;
+                    continue;
+                }
+                let own = clipped.xy;
+                var range = own;
+                // The sender's radiance, read only where it lights a newly occupied sector.
+                let accept = smoothstep(params.reject_a, params.reject_b, -dot(qn, v / dist));
+                if prev_valid {
+                    let step_v = on_line.xyz - prev_point;
+                    let reach = CONTINUITY * length(step_v);
+                    if dot(prev_normal, step_v) <= reach && dot(qn, -step_v) <= reach {
+                        // One solid: each sample lies on or behind the other's tangent plane
+                        // (one surface, or a convex corner of a solid), so the region between
+                        // the two chords is occupied too.
+                        range = vec2<f32>(min(range.x, prev_range.x), max(range.y, prev_range.y));
+                    } else {
+                        // A silhouette lies in the unsampled gap between the two: the nearer
+                        // surface is extended across the gap on its tangent plane (the farther
+                        // sample projected onto it), by no more than its own thickness (a thin
+                        // object is about as wide as it is deep).
+                        let this_near = qd <= prev_depth;
+                        let p_near = select(prev_point, on_line.xyz, this_near);
+                        let n_near = select(prev_normal, qn, this_near);
+                        let p_far = select(on_line.xyz, prev_point, this_near);
+                        let tau_near = select(prev_tau, tau, this_near);
+                        var reach_v = p_far - n_near * dot(n_near, p_far - p_near) - p_near;
+                        let len = length(reach_v);
+                        if tau_near >= 0.0 && len > tau_near {
+                            reach_v *= tau_near / len;
+                        }
+                        let m = p_near + reach_v - x;
+                        if dot(m, m) < params.radius * params.radius {
+                            // The extension's front and back (its chord, not clipped to R).
+                            let ray_m = normalize(m + x - eye);
+                            let m_back = select(ray_m, m + ray_m * tau_near, tau_near >= 0.0);
+                            let theta_m = slice_angle(m, slice_normal, omega_o, side_sign);
+                            let theta_b = slice_angle(m_back, slice_normal, omega_o, side_sign);
+                            let near_range = select(prev_range, own, this_near);
+                            let ext = vec2<f32>(min(near_range.x, min(theta_m, theta_b)), max(near_range.y, max(theta_m, theta_b)));
+                            if this_near {
+                                range = vec2<f32>(min(range.x, ext.x), max(range.y, ext.y));
+                            } else {
+                                let extra = range_bits(ext, base, round_jitter);
+                                let fresh = extra & ~occupied;
+                                if params.indirect == 1u && fresh != 0u && prev_accept > 0.0 {
+                                    let l = textureLoad(in_radiance, prev_texel, layer, 0).rgb;
+                                    near += prev_accept * l * mask_weight(fresh, &cum);
+                                }
+                                occupied |= extra;
+                            }
+                        }
+                    }
+                }
+                prev_valid = true;
+                prev_point = on_line.xyz;
+                prev_normal = qn;
+                prev_range = own;
+                prev_tau = tau;
+                prev_depth = qd;
+                prev_texel = q;
+                prev_accept = accept;
+                let bits = range_bits(range, base, round_jitter);
+                let fresh = bits & ~occupied;
+                if params.indirect == 1u && fresh != 0u && accept > 0.0 {
+                    let l = textureLoad(in_radiance, q, layer, 0).rgb;
+                    near += accept * l * mask_weight(fresh, &cum);
+                }
+                occupied |= bits;
+            }
+        }
+        let visible = all_sectors & ~occupied;
+        ao += mask_weight(visible, &cum);
+        unoccluded += cum[SECTORS];
+        // Far field and bent normal: each group of sectors' visible weight at the group's middle
+        // direction.
+        for (var g = 0u; g < groups; g++) {
+            let m = visible & bit_range(g * per_group, (g + 1u) * per_group);
+            if m == 0u {
+                continue;
+            }
+            let w = mask_weight(m, &cum);
+            let theta = base + PI * (f32(g) + 0.5) / f32(groups);
+            let omega = sin(theta) * d + cos(theta) * omega_o;
+            bent += omega * w;
+            if params.far == 3u {
+                far += env_radiance_at(omega, far_lod) * w;
+            }
+        }
+    }
+    let norm = max(unoccluded, 1e-6);
+    ao = clamp(ao / norm, 0.0, 1.0);
+    let b = select(n, normalize(bent), dot(bent, bent) > 1e-12);
+    textureStore(out_cone, texel, layer, vec4<f32>(b, ao));
+    textureStore(out_near, texel, layer, vec4<f32>(near / norm, 1.0));
+    textureStore(out_far, texel, layer, vec4<f32>(far / norm, 1.0));
+}
