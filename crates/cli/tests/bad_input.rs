@@ -229,3 +229,159 @@ fn every_bad_input_exits_2_with_one_line() {
         );
     }
 }
+
+/// The one-triangle glTF of [`gltf`] as JSON, changed by `edit`.
+fn gltf_with(edit: impl FnOnce(&mut serde_json::Value)) -> Vec<u8> {
+    let mut v: serde_json::Value = serde_json::from_str(&gltf(&triangle_data_uri(), "")).unwrap();
+    edit(&mut v);
+    serde_json::to_vec(&v).unwrap()
+}
+
+/// A PNG data URI whose header claims `w`×`h` pixels and holds none.
+fn png_header_uri(w: u32, h: u32) -> String {
+    let mut png = b"\x89PNG\r\n\x1a\n\0\0\0\x0dIHDR".to_vec();
+    png.extend(w.to_be_bytes());
+    png.extend(h.to_be_bytes());
+    png.extend([8, 6, 0, 0, 0]);
+    let crc = png[12..].iter().fold(!0u32, |mut c, &b| {
+        c ^= b as u32;
+        for _ in 0..8 {
+            c = if c & 1 != 0 {
+                (c >> 1) ^ 0xEDB8_8320
+            } else {
+                c >> 1
+            };
+        }
+        c
+    });
+    png.extend((!crc).to_be_bytes());
+    // An empty IDAT chunk (CRC of "IDAT") so that the header can be read through.
+    png.extend(b"\0\0\0\0IDAT\x35\xaf\x06\x1e");
+    const A: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    let mut s = String::new();
+    for c in png.chunks(3) {
+        let n = (c[0] as u32) << 16
+            | (*c.get(1).unwrap_or(&0) as u32) << 8
+            | *c.get(2).unwrap_or(&0) as u32;
+        for i in 0..4 {
+            s.push(if i <= c.len() {
+                A[(n >> (18 - 6 * i) & 63) as usize] as char
+            } else {
+                '='
+            });
+        }
+    }
+    format!("data:image/png;base64,{s}")
+}
+
+/// Files whose structure is hostile (a node graph that is not a tree, accessors past their
+/// buffers, image headers beyond the limits, absurd numbers, devices instead of files): every
+/// command that loads a scene exits 2 with one line naming the problem, within a second.
+#[test]
+fn structurally_bad_files_exit_2_with_one_line_within_a_second() {
+    use serde_json::json;
+    let d = scratch().join("structure");
+    std::fs::create_dir_all(&d).unwrap();
+    let cycle = write(
+        &d,
+        "cycle.gltf",
+        &gltf_with(|v| {
+            v["nodes"] = json!([{"mesh":0,"children":[1]},{"children":[0]}]);
+        }),
+    );
+    let mut cases: Vec<(Vec<String>, &str)> = Vec::new();
+    // The non-tree glTF, for every command that loads a scene.
+    for cmd in ["render", "reference", "compare", "bench", "view"] {
+        let mut args = vec![
+            cmd.to_string(),
+            cycle.clone(),
+            "--size".into(),
+            "16x16".into(),
+        ];
+        if cmd == "compare" {
+            args.extend(["--out".into(), d.join("cmp").to_str().unwrap().into()]);
+        }
+        cases.push((args, "not a tree"));
+    }
+    let scene = |name: &str, bytes: Vec<u8>| {
+        vec![
+            "render".to_string(),
+            write(&d, name, &bytes),
+            "--size".into(),
+            "16x16".into(),
+        ]
+    };
+    cases.extend([
+        (scene("self.gltf", gltf_with(|v| v["nodes"] = json!([{"mesh":0,"children":[0]}]))), "its own child"),
+        (scene("twoparents.gltf", gltf_with(|v| {
+            v["nodes"] = json!([{"children":[2]},{"children":[2]},{"mesh":0}]);
+            v["scenes"] = json!([{"nodes":[0,1]}]);
+        })), "node 2 has two parents"),
+        (scene("rootchild.gltf", gltf_with(|v| {
+            v["nodes"] = json!([{"children":[1]},{"mesh":0}]);
+            v["scenes"] = json!([{"nodes":[0,1]}]);
+        })), "lists node 1 as a root"),
+        (scene("count.gltf", gltf_with(|v| v["accessors"][0]["count"] = json!(1000))), "do not fit in buffer view 0"),
+        (scene("offset.gltf", gltf_with(|v| v["accessors"][0]["byteOffset"] = json!(4294967290u64))), "do not fit"),
+        (scene("stride.gltf", gltf_with(|v| v["bufferViews"][0]["byteStride"] = json!(4))), "stride"),
+        (scene("view.gltf", gltf_with(|v| v["bufferViews"][0]["byteLength"] = json!(360))), "outside buffer 0"),
+        (scene("sparse.gltf", gltf_with(|v| {
+            v["bufferViews"] = json!([{"buffer":0,"byteLength":36},{"buffer":0,"byteLength":4}]);
+            v["accessors"][0]["sparse"] = json!({"count":2,"indices":{"bufferView":1,"componentType":5125},"values":{"bufferView":1}});
+        })), "sparse"),
+        (scene("index.gltf", gltf_with(|v| {
+            v["buffers"][0]["byteLength"] = json!(36);
+            v["bufferViews"] = json!([{"buffer":0,"byteLength":36},{"buffer":0,"byteOffset":12,"byteLength":12}]);
+            v["accessors"] = json!([v["accessors"][0].clone(),{"bufferView":1,"componentType":5125,"count":3,"type":"SCALAR"}]);
+            v["meshes"][0]["primitives"][0]["indices"] = json!(1);
+        })), "references vertex"),
+        (scene("bigimage.gltf", gltf_with(|v| {
+            v["images"] = json!([{"uri": png_header_uri(100_000, 100_000)}]);
+            v["textures"] = json!([{"source":0}]);
+            v["materials"] = json!([{"pbrMetallicRoughness":{"baseColorTexture":{"index":0}}}]);
+        })), "100000×100000"),
+        (scene("translate.gltf", gltf_with(|v| v["nodes"][0]["translation"] = json!([1e30, 0, 0]))), "absurd transform"),
+        (scene("overflow.gltf", gltf_with(|v| {
+            v["nodes"] = json!([{"scale":[1e19,1e19,1e19],"children":[1]},{"scale":[1e19,1e19,1e19],"mesh":0}]);
+        })), "world transform overflows"),
+        (scene("zeroscale.gltf", gltf_with(|v| v["nodes"][0]["scale"] = json!([1, 0, 1]))), "zero-scale"),
+        (scene("camera.gltf", gltf_with(|v| {
+            v["cameras"] = json!([{"type":"perspective","perspective":{"yfov":4.0,"znear":0.1}}]);
+            v["nodes"] = json!([{"mesh":0},{"camera":0,"translation":[0,0,3]}]);
+            v["scenes"] = json!([{"nodes":[0,1]}]);
+        })), "camera 0 at node 1: field of view"),
+        (scene("light.gltf", gltf_with(|v| {
+            v["extensionsUsed"] = json!(["KHR_lights_punctual"]);
+            v["extensions"] = json!({"KHR_lights_punctual":{"lights":[{"type":"point","intensity":-5}]}});
+            v["nodes"] = json!([{"mesh":0},{"extensions":{"KHR_lights_punctual":{"light":0}}}]);
+            v["scenes"] = json!([{"nodes":[0,1]}]);
+        })), "light intensity -5"),
+        (scene("device.gltf", gltf_with(|v| v["buffers"][0]["uri"] = json!("/dev/zero"))), "not a regular file"),
+        (scene("percent.gltf", gltf_with(|v| v["buffers"][0]["uri"] = json!("%ff%fe.bin"))), "not valid UTF-8"),
+        (scene("position.obj", b"v 0 0 0\nv 1e30 0 0\nv 0 1 0\nf 1 2 3\n".to_vec()), "absurd vertex position"),
+        (scene("huge.ply", b"ply\nformat binary_little_endian 1.0\nelement vertex 1000000000000\nproperty float x\nproperty float y\nproperty float z\nend_header\n".to_vec()), "beyond the limit"),
+        (scene("lying.ply", b"ply\nformat ascii 1.0\nelement vertex 1000000\nproperty float x\nproperty float y\nproperty float z\nend_header\n0 0 0\n".to_vec()), "more than a"),
+        (vec!["render".into(), "--env".into(), write(&d, "huge.hdr", b"#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 100000 +X 200000\n")], "beyond the limit"),
+        (vec!["render".into(), "--camera".into(), "/dev/zero".into()], "not a regular file"),
+        (vec!["render".into(), "/dev/zero.obj".into()], "no such file"),
+        (vec!["view".into(), "--script".into(), "/dev/zero".into()], "not a regular file"),
+    ]);
+    for (args, needle) in cases {
+        let args: Vec<&str> = args.iter().map(String::as_str).collect();
+        let start = std::time::Instant::now();
+        let (code, stderr) = nearfield(&args);
+        let secs = start.elapsed().as_secs_f64();
+        let lines: Vec<&str> = stderr.lines().filter(|l| !l.trim().is_empty()).collect();
+        assert_eq!(code, 2, "{args:?}: exit {code}, stderr:\n{stderr}");
+        assert_eq!(
+            lines.len(),
+            1,
+            "{args:?}: expected one line, got:\n{stderr}"
+        );
+        assert!(
+            stderr.contains(needle),
+            "{args:?}: '{needle}' not in:\n{stderr}"
+        );
+        assert!(secs < 1.0, "{args:?}: took {secs:.2} s");
+    }
+}

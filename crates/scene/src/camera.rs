@@ -159,6 +159,12 @@ fn default_up() -> [f32; 3] {
 impl CameraFile {
     /// Reads and validates a camera JSON file.
     pub fn load(path: &Path) -> Result<Camera, SceneError> {
+        if crate::limits::check_regular_file(path)? > 1 << 20 {
+            return Err(SceneError::CameraFile {
+                path: path.to_path_buf(),
+                msg: "larger than 1 MiB; a camera file is a few lines of JSON".into(),
+            });
+        }
         let text = std::fs::read_to_string(path).map_err(|e| {
             if e.kind() == std::io::ErrorKind::NotFound {
                 SceneError::Missing {

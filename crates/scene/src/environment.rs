@@ -173,9 +173,30 @@ impl Environment {
                 path: path.to_path_buf(),
             });
         }
-        let img = image::ImageReader::open(path)
-            .and_then(|r| r.with_guessed_format())
-            .map_err(|e| err(e.to_string()))?
+        crate::limits::check_regular_file(path)?;
+        let open = || {
+            image::ImageReader::open(path)
+                .and_then(|r| r.with_guessed_format())
+                .map_err(|e| err(e.to_string()))
+        };
+        // The header's size is checked before anything the size implies is allocated.
+        let (w, h) = open()?.into_dimensions().map_err(|e| err(e.to_string()))?;
+        use crate::limits::{MAX_ENVIRONMENT_PIXELS, MAX_ENVIRONMENT_SIDE};
+        crate::limits::check_image_size(
+            w,
+            h,
+            MAX_ENVIRONMENT_SIDE,
+            MAX_ENVIRONMENT_PIXELS,
+            "environment map",
+        )
+        .map_err(err)?;
+        let mut reader = open()?;
+        reader.limits(crate::limits::decoder_limits(
+            MAX_ENVIRONMENT_SIDE,
+            MAX_ENVIRONMENT_PIXELS,
+            16,
+        ));
+        let img = reader
             .decode()
             .map_err(|e| err(e.to_string()))?
             .into_rgb32f();

@@ -15,6 +15,7 @@ pub mod camera;
 pub mod environment;
 pub mod error;
 pub mod light;
+pub mod limits;
 pub mod load;
 pub mod material;
 pub mod mesh;
@@ -117,11 +118,38 @@ impl Scene {
             if m.indices.iter().flatten().any(|&v| v >= n) {
                 return Err(bad(format!("mesh {i} has a vertex index out of range")));
             }
-            if m.positions.iter().any(|p| !p.is_finite()) {
-                return Err(bad(format!("mesh {i} has a non-finite vertex position")));
+            if let Some(p) = m
+                .positions
+                .iter()
+                .find(|p| !p.to_array().into_iter().all(limits::sane))
+            {
+                return Err(bad(format!(
+                    "mesh {i} ('{}') has a non-finite or absurd vertex position {p} (beyond ±{:e})",
+                    m.name,
+                    limits::MAX_COORDINATE
+                )));
             }
         }
+        let vertices: usize = self.meshes.iter().map(|m| m.positions.len()).sum();
+        if self.triangle_count() > limits::MAX_TRIANGLES || vertices > limits::MAX_VERTICES {
+            return Err(bad(format!(
+                "{} triangles and {vertices} vertices, beyond the limit of {} each",
+                self.triangle_count(),
+                limits::MAX_TRIANGLES
+            )));
+        }
         for (i, mat) in self.materials.iter().enumerate() {
+            let factors = [mat.metallic, mat.roughness];
+            if !(mat.base_color.is_finite()
+                && mat.emissive.is_finite()
+                && mat.emissive.min_element() >= 0.0
+                && factors.iter().all(|f| f.is_finite()))
+            {
+                return Err(bad(format!(
+                    "material {i} ('{}') has a non-finite or negative factor",
+                    mat.name
+                )));
+            }
             for t in [
                 mat.base_color_texture,
                 mat.metallic_roughness_texture,

@@ -59,6 +59,13 @@ pub fn run(args: ViewArgs) -> Result<()> {
     }
     let script = match &args.script {
         Some(path) => {
+            let size = nearfield_scene::limits::check_regular_file(path)
+                .map_err(|e| BadInput(format!("--script: {e}")))?;
+            if size > 1 << 20 {
+                return Err(
+                    BadInput(format!("--script {}: larger than 1 MiB", path.display())).into(),
+                );
+            }
             let text = std::fs::read_to_string(path)
                 .map_err(|e| BadInput(format!("--script {}: {e}", path.display())))?;
             script::parse(&text)

@@ -7,8 +7,16 @@
 //! (point, spot, directional) and perspective cameras. A *required* extension outside this list is
 //! an error; an optional one is ignored with one warning. `KHR_materials_transmission` materials
 //! render opaque with a warning. Normal maps and texture transforms are ignored.
+//!
+//! Before anything is built, the file's structure is checked ([`check`]): the node graph is a
+//! tree, every accessor lies inside its buffer view and every view inside its buffer, URIs name
+//! regular files, image headers are within [`crate::limits`]; while it is built, transforms,
+//! cameras, lights and counts are.
+
+mod check;
 
 use super::{finish_mesh, io_error};
+use crate::limits;
 use crate::{
     AlphaMode, Camera, Light, LightKind, Material, Mesh, Scene, SceneError, Texture,
     TextureColorSpace,
@@ -29,6 +37,7 @@ pub fn load(path: &Path) -> Result<Scene, SceneError> {
         path: path.to_path_buf(),
         msg,
     };
+    limits::check_regular_file(path)?;
     let bytes = std::fs::read(path).map_err(|e| io_error(path, e))?;
     let unvalidated =
         ::gltf::Gltf::from_slice_without_validation(&bytes).map_err(|e| err(e.to_string()))?;
@@ -47,12 +56,12 @@ pub fn load(path: &Path) -> Result<Scene, SceneError> {
     }
     drop(unvalidated);
     let gltf = ::gltf::Gltf::from_slice(&bytes).map_err(|e| err(e.to_string()))?;
-    let base = path.parent();
-    let buffers = ::gltf::import_buffers(&gltf.document, base, gltf.blob.clone())
-        .map_err(|e| err(format!("buffer: {e}")))?;
-    let images = ::gltf::import_images(&gltf.document, base, &buffers)
-        .map_err(|e| err(format!("image: {e}")))?;
+    drop(bytes);
     let doc = &gltf.document;
+    check::node_tree(doc).map_err(err)?;
+    let base = path.parent().unwrap_or(Path::new("."));
+    let buffers = check::import_buffers(doc, base, gltf.blob.as_deref()).map_err(err)?;
+    check::accessors(doc, &buffers).map_err(err)?;
 
     let mut scene = Scene {
         name: path
@@ -70,16 +79,23 @@ pub fn load(path: &Path) -> Result<Scene, SceneError> {
             if let Some(&i) = texture_of.get(&(image, srgb)) {
                 return Ok(i);
             }
-            let data = &images[image];
-            let rgba8 = to_rgba8(data).ok_or_else(|| {
-                err(format!(
-                    "image {image} has an unsupported pixel format {:?}",
-                    data.format
-                ))
-            })?;
+            let source = doc.images().nth(image).expect("validated index");
+            let rgba = check::image_bytes(&source, base, &buffers)
+                .and_then(|b| {
+                    limits::decode_image(
+                        &b,
+                        limits::MAX_TEXTURE_SIDE,
+                        limits::MAX_TEXTURE_PIXELS,
+                        &format!("image {image}"),
+                    )
+                })
+                .map_err(|e| err(format!("image {image}: {e}")))?
+                .into_rgba8();
+            let (width, height) = rgba.dimensions();
+            let rgba8 = rgba.into_raw();
             scene.textures.push(Texture {
-                width: data.width,
-                height: data.height,
+                width,
+                height,
                 rgba8,
                 color_space: if srgb {
                     TextureColorSpace::Srgb
@@ -148,8 +164,12 @@ pub fn load(path: &Path) -> Result<Scene, SceneError> {
     let mut stack: Vec<(::gltf::Node, Mat4)> =
         gscene.nodes().map(|n| (n, Mat4::IDENTITY)).collect();
     let mut warned_mode = false;
+    let (mut triangles, mut vertices) = (0usize, 0usize);
     while let Some((node, parent)) = stack.pop() {
-        let world = parent * Mat4::from_cols_array_2d(&node.transform().matrix());
+        let local = Mat4::from_cols_array_2d(&node.transform().matrix());
+        let world = parent * local;
+        let carries = node.mesh().is_some() || node.camera().is_some() || node.light().is_some();
+        check::transform(&node, &local, &world, carries).map_err(err)?;
         for child in node.children() {
             stack.push((child, world));
         }
@@ -162,7 +182,7 @@ pub fn load(path: &Path) -> Result<Scene, SceneError> {
                     }
                     continue;
                 }
-                let reader = prim.reader(|b| buffers.get(b.index()).map(|d| &d.0[..]));
+                let reader = prim.reader(|b| buffers.get(b.index()).map(|d| &d[..]));
                 let positions: Vec<Vec3> = reader
                     .read_positions()
                     .ok_or_else(|| {
@@ -198,8 +218,20 @@ pub fn load(path: &Path) -> Result<Scene, SceneError> {
                         .unwrap_or(default_material),
                 };
                 let n = m.positions.len() as u32;
-                if m.indices.iter().flatten().any(|&i| i >= n) {
-                    return Err(err(format!("mesh '{}' has an index out of range", m.name)));
+                if let Some(bad) = m.indices.iter().flatten().find(|&&i| i >= n) {
+                    return Err(err(format!(
+                        "mesh {} ('{}') references vertex {bad} of {n}",
+                        mesh.index(),
+                        m.name
+                    )));
+                }
+                triangles += m.indices.len();
+                vertices += m.positions.len();
+                if triangles > limits::MAX_TRIANGLES || vertices > limits::MAX_VERTICES {
+                    return Err(err(format!(
+                        "more than {} triangles or vertices (instances included), the limit",
+                        limits::MAX_TRIANGLES
+                    )));
                 }
                 if m.indices.is_empty() {
                     continue;
@@ -231,12 +263,14 @@ pub fn load(path: &Path) -> Result<Scene, SceneError> {
                     outer_cone: outer_cone_angle,
                 },
             };
-            scene.lights.push(Light {
+            let light = Light {
                 kind,
                 color: Vec3::from(light.color()),
                 intensity: light.intensity(),
                 range: light.range(),
-            });
+            };
+            check::light(&light).map_err(|e| err(format!("{}: {e}", check::node_name(&node))))?;
+            scene.lights.push(light);
         }
         if let Some(cam) = node.camera() {
             match cam.projection() {
@@ -244,16 +278,21 @@ pub fn load(path: &Path) -> Result<Scene, SceneError> {
                     let eye = world.transform_point3(Vec3::ZERO);
                     let fwd = world.transform_vector3(Vec3::NEG_Z).normalize();
                     let up = world.transform_vector3(Vec3::Y).normalize();
-                    if !cameras.iter().any(|(i, _)| *i == cam.index()) {
-                        cameras.push((
+                    let camera = Camera {
+                        eye,
+                        target: eye + fwd,
+                        up,
+                        yfov: p.yfov(),
+                    };
+                    camera.validate().map_err(|e| {
+                        err(format!(
+                            "camera {} at {}: {e}",
                             cam.index(),
-                            Camera {
-                                eye,
-                                target: eye + fwd,
-                                up,
-                                yfov: p.yfov(),
-                            },
-                        ));
+                            check::node_name(&node)
+                        ))
+                    })?;
+                    if !cameras.iter().any(|(i, _)| *i == cam.index()) {
+                        cameras.push((cam.index(), camera));
                     }
                 }
                 ::gltf::camera::Projection::Orthographic(_) => {
@@ -269,37 +308,4 @@ pub fn load(path: &Path) -> Result<Scene, SceneError> {
     cameras.sort_by_key(|(i, _)| *i);
     scene.cameras = cameras.into_iter().map(|(_, c)| c).collect();
     Ok(scene)
-}
-
-fn to_rgba8(data: &::gltf::image::Data) -> Option<Vec<u8>> {
-    use ::gltf::image::Format as F;
-    let p = &data.pixels;
-    let n = (data.width * data.height) as usize;
-    let out: Vec<u8> = match data.format {
-        F::R8G8B8A8 => p.clone(),
-        F::R8G8B8 => p
-            .chunks_exact(3)
-            .flat_map(|c| [c[0], c[1], c[2], 255])
-            .collect(),
-        F::R8G8 => p
-            .chunks_exact(2)
-            .flat_map(|c| [c[0], c[1], 0, 255])
-            .collect(),
-        F::R8 => p.iter().flat_map(|&c| [c, c, c, 255]).collect(),
-        F::R16G16B16A16 => p.chunks_exact(2).map(|c| c[1]).collect(),
-        F::R16G16B16 => p
-            .chunks_exact(6)
-            .flat_map(|c| [c[1], c[3], c[5], 255])
-            .collect(),
-        F::R16G16 => p
-            .chunks_exact(4)
-            .flat_map(|c| [c[1], c[3], 0, 255])
-            .collect(),
-        F::R16 => p
-            .chunks_exact(2)
-            .flat_map(|c| [c[1], c[1], c[1], 255])
-            .collect(),
-        _ => return None,
-    };
-    (out.len() == 4 * n).then_some(out)
 }

@@ -14,16 +14,25 @@ pub fn load(path: &Path) -> Result<Scene, SceneError> {
         ignore_points: true,
         ignore_lines: true,
     };
-    let (models, materials) = tobj::load_obj(path, &opts).map_err(|e| match e {
-        tobj::LoadError::OpenFileFailed => io_error(
-            path,
-            std::io::Error::new(std::io::ErrorKind::NotFound, "open failed"),
-        ),
-        e => SceneError::Obj {
-            path: path.to_path_buf(),
-            msg: e.to_string(),
-        },
-    })?;
+    crate::limits::check_regular_file(path)?;
+    let file = std::fs::File::open(path).map_err(|e| io_error(path, e))?;
+    let base = path.parent().unwrap_or(Path::new("."));
+    // Material libraries are read only when they are regular files within the size limit (a
+    // `mtllib /dev/zero` would never end).
+    let mtl_loader = |mtl: &Path| {
+        let full = base.join(mtl);
+        if crate::limits::check_regular_file(&full).is_err() {
+            return Err(tobj::LoadError::OpenFileFailed);
+        }
+        tobj::load_mtl(full)
+    };
+    let (models, materials) =
+        tobj::load_obj_buf(&mut std::io::BufReader::new(file), &opts, mtl_loader).map_err(|e| {
+            SceneError::Obj {
+                path: path.to_path_buf(),
+                msg: e.to_string(),
+            }
+        })?;
     let mtl = materials.unwrap_or_else(|e| {
         log::warn!(
             "{}: material library not loaded ({e}); using the default material",

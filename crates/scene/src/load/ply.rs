@@ -40,6 +40,8 @@ pub fn load(path: &Path) -> Result<Scene, SceneError> {
         path: path.to_path_buf(),
         msg,
     };
+    let size = crate::limits::check_regular_file(path)?;
+    check_header(path, size).map_err(err)?;
     let file = std::fs::File::open(path).map_err(|e| io_error(path, e))?;
     let mut reader = std::io::BufReader::new(file);
     let ply = Parser::<DefaultElement>::new()
@@ -104,5 +106,81 @@ pub fn load(path: &Path) -> Result<Scene, SceneError> {
         meshes: vec![mesh],
         materials: vec![Material::default()],
         ..Default::default()
+    })
+}
+
+/// Reads the header alone and checks its element counts against [`crate::limits`] and against
+/// what the file's size can hold (every element takes at least one byte per property in binary
+/// and two characters in ascii), so that a header claiming billions of elements is refused
+/// before the parser allocates for them.
+fn check_header(path: &Path, file_size: u64) -> Result<(), String> {
+    use std::io::Read;
+    let mut head = Vec::new();
+    std::fs::File::open(path)
+        .map_err(|e| e.to_string())?
+        .take(1 << 16)
+        .read_to_end(&mut head)
+        .map_err(|e| e.to_string())?;
+    let text = String::from_utf8_lossy(&head);
+    let Some(end) = text.find("end_header") else {
+        return Err("no end_header in the first 64 KiB".into());
+    };
+    let binary = text[..end].contains("binary_");
+    let mut elements: Vec<(String, u64, u64, u64)> = Vec::new();
+    for line in text[..end].lines() {
+        let words: Vec<&str> = line.split_whitespace().collect();
+        match words.as_slice() {
+            ["element", name, count] => {
+                let n: u64 = count
+                    .parse()
+                    .map_err(|_| format!("element {name}: count '{count}' is not a number"))?;
+                elements.push((name.to_string(), n, 0, 0));
+            }
+            ["property", "list", count_ty, _, _] => {
+                let b = scalar_bytes(count_ty).unwrap_or(1);
+                if let Some(e) = elements.last_mut() {
+                    e.2 += b;
+                    e.3 += 1;
+                }
+            }
+            ["property", ty, _] => {
+                let b = scalar_bytes(ty).unwrap_or(1);
+                if let Some(e) = elements.last_mut() {
+                    e.2 += b;
+                    e.3 += 1;
+                }
+            }
+            _ => {}
+        }
+    }
+    let mut least = 0u64;
+    for (name, n, bytes, props) in &elements {
+        let limit = match name.as_str() {
+            "vertex" => crate::limits::MAX_VERTICES as u64,
+            "face" => crate::limits::MAX_TRIANGLES as u64,
+            _ => (crate::limits::MAX_VERTICES as u64) * 4,
+        };
+        if *n > limit {
+            return Err(format!("{n} {name} elements, beyond the limit of {limit}"));
+        }
+        let per = if binary { *bytes } else { 2 * props };
+        least = least.saturating_add(n.saturating_mul(per));
+    }
+    if least > file_size {
+        return Err(format!(
+            "the header declares {} elements, more than a {file_size}-byte file can hold",
+            elements.iter().map(|e| e.1).sum::<u64>()
+        ));
+    }
+    Ok(())
+}
+
+fn scalar_bytes(ty: &str) -> Option<u64> {
+    Some(match ty {
+        "char" | "uchar" | "int8" | "uint8" => 1,
+        "short" | "ushort" | "int16" | "uint16" => 2,
+        "int" | "uint" | "float" | "int32" | "uint32" | "float32" => 4,
+        "double" | "float64" => 8,
+        _ => return None,
     })
 }
