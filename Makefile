@@ -2,7 +2,7 @@
 CARGO ?= $(shell command -v cargo 2>/dev/null || echo $(HOME)/.cargo/bin/cargo)
 export XDG_RUNTIME_DIR ?= $(shell d=$${TMPDIR:-/tmp}/nearfield-xdg-$$(id -u); mkdir -p -m 700 $$d; echo $$d)
 
-.PHONY: setup demo test lint
+.PHONY: setup demo test lint fuzz
 
 setup:
 	@./scripts/setup.sh
@@ -19,3 +19,8 @@ test: setup
 lint:
 	$(CARGO) fmt --all -- --check
 	$(CARGO) clippy --workspace --all-targets -- -D warnings
+
+# The fuzzing harness of every input format (crates/fuzz) for FUZZ_SECONDS per format (default
+# 60), from FUZZ_SEED (default 1). CI runs the same for 8 s per format in `make test`.
+fuzz:
+	FUZZ_SECONDS=$${FUZZ_SECONDS:-60} $(CARGO) test --release -p nearfield-fuzz -- --nocapture

@@ -14,11 +14,18 @@ pub enum RenderError {
         height: u32,
         why: String,
     },
-    #[error("{0}")]
+    #[error("{}", nearfield_scene::one_line(.0))]
     Scene(String),
-    #[error("unknown technique '{name}' (known: {known})")]
+    #[error(
+        "unknown technique '{}' (known: {known})",
+        nearfield_scene::one_line(name)
+    )]
     UnknownTechnique { name: String, known: String },
-    #[error("technique '{technique}': {msg}")]
+    #[error(
+        "technique '{}': {}",
+        nearfield_scene::one_line(technique),
+        nearfield_scene::one_line(msg)
+    )]
     Setting { technique: String, msg: String },
     #[error("GPU error: {0}")]
     Gpu(String),

@@ -3,6 +3,23 @@
 
 use std::path::PathBuf;
 
+/// `s` on one line: line breaks written as `\n`, other control characters escaped. Messages
+/// that echo what a user typed or a file held go through it, so that an error is always one
+/// line.
+pub fn one_line(s: &str) -> String {
+    let mut out = String::with_capacity(s.len());
+    for c in s.chars() {
+        match c {
+            '\n' => out.push_str("\\n"),
+            '\r' => out.push_str("\\r"),
+            '\t' => out.push(' '),
+            c if c.is_control() => out.extend(c.escape_default()),
+            c => out.push(c),
+        }
+    }
+    out
+}
+
 #[derive(Debug, thiserror::Error)]
 pub enum SceneError {
     #[error("{path}: no such file")]
@@ -14,22 +31,22 @@ pub enum SceneError {
         path: PathBuf,
         source: std::io::Error,
     },
-    #[error("{path}: invalid glTF: {msg}")]
+    #[error("{}: invalid glTF: {}", one_line(&path.display().to_string()), one_line(msg))]
     Gltf { path: PathBuf, msg: String },
     #[error("{path}: requires glTF extension {extension}, which nearfield does not support")]
     UnsupportedExtension { path: PathBuf, extension: String },
-    #[error("{path}: invalid OBJ: {msg}")]
+    #[error("{}: invalid OBJ: {}", one_line(&path.display().to_string()), one_line(msg))]
     Obj { path: PathBuf, msg: String },
-    #[error("{path}: invalid PLY: {msg}")]
+    #[error("{}: invalid PLY: {}", one_line(&path.display().to_string()), one_line(msg))]
     Ply { path: PathBuf, msg: String },
-    #[error("{path}: {what}")]
+    #[error("{}: {}", one_line(&path.display().to_string()), one_line(what))]
     Invalid { path: PathBuf, what: String },
-    #[error("{path}: invalid environment map: {msg}")]
+    #[error("{}: invalid environment map: {}", one_line(&path.display().to_string()), one_line(msg))]
     Environment { path: PathBuf, msg: String },
-    #[error("{path}: invalid camera file: {msg}")]
+    #[error("{}: invalid camera file: {}", one_line(&path.display().to_string()), one_line(msg))]
     CameraFile { path: PathBuf, msg: String },
-    #[error("unknown built-in scene '{name}' (known: {known})")]
+    #[error("unknown built-in scene '{}' (known: {known})", one_line(name))]
     UnknownBuiltin { name: String, known: String },
-    #[error("{0}")]
+    #[error("{}", one_line(.0))]
     Argument(String),
 }

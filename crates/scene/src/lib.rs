@@ -25,7 +25,7 @@ pub mod sun;
 
 pub use camera::{Camera, CameraFile};
 pub use environment::{EnvSource, Environment};
-pub use error::SceneError;
+pub use error::{SceneError, one_line};
 pub use light::{Light, LightKind};
 pub use material::{AlphaMode, Material, Texture, TextureColorSpace};
 pub use mesh::{Aabb, Mesh};

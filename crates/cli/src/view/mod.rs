@@ -4,8 +4,8 @@
 
 mod camera_control;
 mod panel;
-mod script;
-mod session;
+pub mod script;
+pub mod session;
 mod technique_state;
 mod window;
 

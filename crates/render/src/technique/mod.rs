@@ -121,12 +121,18 @@ pub trait Technique {
 pub type CreateFn =
     fn(&TechniqueContext, &TechniqueParams) -> Result<Box<dyn Technique>, RenderError>;
 
+/// Parses a technique's settings without building anything.
+pub type CheckFn = fn(&TechniqueParams) -> Result<(), String>;
+
 /// A registry entry.
 pub struct TechniqueDesc {
     pub name: &'static str,
     /// One line for `--help` and the README.
     pub summary: &'static str,
     pub create: CreateFn,
+    /// Parses the settings as `create` does, without a device: what a command checks before it
+    /// loads anything. `create` may still refuse a combination that depends on the image size.
+    pub check: CheckFn,
     /// Every `--set` key with its documented range and default (what the viewer shows as
     /// sliders, checkboxes and lists; a test checks that the parser agrees with it).
     pub settings: &'static [Setting],
@@ -231,6 +237,13 @@ pub fn resolve_params(
     params.set.extend(split_spec(spec).1);
     let params = expand_presets(desc, &params)?;
     Ok((desc, params))
+}
+
+/// Resolves a spec against the command line's parameters and parses its settings without a
+/// device: the error `create` would give for a refused setting, before anything is loaded.
+pub fn check_spec(spec: &str, params: &TechniqueParams) -> Result<(), RenderError> {
+    let (desc, resolved) = resolve_params(spec, params)?;
+    (desc.check)(&resolved).map_err(RenderError::setting(desc.name))
 }
 
 /// Looks a technique up by name (or by a `name:key=value` spec).

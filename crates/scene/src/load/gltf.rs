@@ -39,6 +39,7 @@ pub fn load(path: &Path) -> Result<Scene, SceneError> {
     };
     limits::check_regular_file(path)?;
     let bytes = std::fs::read(path).map_err(|e| io_error(path, e))?;
+    check::glb_header(&bytes).map_err(err)?;
     let unvalidated =
         ::gltf::Gltf::from_slice_without_validation(&bytes).map_err(|e| err(e.to_string()))?;
     for ext in unvalidated.document.extensions_required() {
@@ -54,8 +55,16 @@ pub fn load(path: &Path) -> Result<Scene, SceneError> {
             log::warn!("{}: ignoring optional glTF extension {ext}", path.display());
         }
     }
+    // The crate's own validation indexes some arrays before checking the indices.
+    check::before_validation(unvalidated.document.as_json()).map_err(err)?;
     drop(unvalidated);
-    let gltf = ::gltf::Gltf::from_slice(&bytes).map_err(|e| err(e.to_string()))?;
+    let gltf = ::gltf::Gltf::from_slice(&bytes).map_err(|e| {
+        let msg = e.to_string();
+        err(msg
+            .strip_prefix("invalid glTF: ")
+            .unwrap_or(&msg)
+            .to_string())
+    })?;
     drop(bytes);
     let doc = &gltf.document;
     check::node_tree(doc).map_err(err)?;
@@ -182,6 +191,13 @@ pub fn load(path: &Path) -> Result<Scene, SceneError> {
                     }
                     continue;
                 }
+                check::attribute_types(&prim).map_err(|e| {
+                    err(format!(
+                        "mesh {} primitive {}: {e}",
+                        mesh.index(),
+                        prim.index()
+                    ))
+                })?;
                 let reader = prim.reader(|b| buffers.get(b.index()).map(|d| &d[..]));
                 let positions: Vec<Vec3> = reader
                     .read_positions()

@@ -15,7 +15,11 @@ pub fn load(path: &Path) -> Result<Scene, SceneError> {
         ignore_lines: true,
     };
     crate::limits::check_regular_file(path)?;
-    let file = std::fs::File::open(path).map_err(|e| io_error(path, e))?;
+    let text = std::fs::read(path).map_err(|e| io_error(path, e))?;
+    check_indices(&text).map_err(|msg| SceneError::Obj {
+        path: path.to_path_buf(),
+        msg,
+    })?;
     let base = path.parent().unwrap_or(Path::new("."));
     // Material libraries are read only when they are regular files within the size limit (a
     // `mtllib /dev/zero` would never end).
@@ -24,14 +28,14 @@ pub fn load(path: &Path) -> Result<Scene, SceneError> {
         if crate::limits::check_regular_file(&full).is_err() {
             return Err(tobj::LoadError::OpenFileFailed);
         }
-        tobj::load_mtl(full)
+        let text = std::fs::read(&full).map_err(|_| tobj::LoadError::OpenFileFailed)?;
+        check_mtl(&text)?;
+        tobj::load_mtl_buf(&mut &text[..])
     };
     let (models, materials) =
-        tobj::load_obj_buf(&mut std::io::BufReader::new(file), &opts, mtl_loader).map_err(|e| {
-            SceneError::Obj {
-                path: path.to_path_buf(),
-                msg: e.to_string(),
-            }
+        tobj::load_obj_buf(&mut &text[..], &opts, mtl_loader).map_err(|e| SceneError::Obj {
+            path: path.to_path_buf(),
+            msg: e.to_string(),
         })?;
     let mtl = materials.unwrap_or_else(|e| {
         log::warn!(
@@ -111,4 +115,59 @@ pub fn load(path: &Path) -> Result<Scene, SceneError> {
         scene.meshes.push(mesh);
     }
     Ok(scene)
+}
+
+/// Refuses colour lines (`Ka`, `Kd`, `Ks`, `Ke`) with fewer than three values, which `tobj`
+/// would not survive.
+fn check_mtl(text: &[u8]) -> Result<(), tobj::LoadError> {
+    for line in String::from_utf8_lossy(text).lines() {
+        let mut words = line.split_whitespace();
+        if matches!(words.next(), Some("Ka" | "Kd" | "Ks" | "Ke")) && words.count() < 3 {
+            return Err(tobj::LoadError::MaterialParseError);
+        }
+    }
+    Ok(())
+}
+
+/// Every index of a face, line or point names an existing `v`, `vt` or `vn` (counted over the
+/// whole file, negative indices from the end), so that `tobj` never computes with one that
+/// does not exist.
+fn check_indices(text: &[u8]) -> Result<(), String> {
+    let text = String::from_utf8_lossy(text);
+    let (mut v, mut vt, mut vn) = (0i64, 0i64, 0i64);
+    for line in text.lines() {
+        match line.split_whitespace().next() {
+            Some("v") => v += 1,
+            Some("vt") => vt += 1,
+            Some("vn") => vn += 1,
+            _ => {}
+        }
+    }
+    for (n, line) in text.lines().enumerate() {
+        let mut words = line.split_whitespace();
+        if !matches!(words.next(), Some("f" | "l" | "p")) {
+            continue;
+        }
+        for vertex in words {
+            for (part, count, what) in vertex
+                .split('/')
+                .zip([(v, "v"), (vt, "vt"), (vn, "vn")])
+                .map(|(p, (c, w))| (p, c, w))
+            {
+                if part.is_empty() {
+                    continue;
+                }
+                let i: i64 = part
+                    .parse()
+                    .map_err(|_| format!("line {}: '{part}' is not an index", n + 1))?;
+                if i == 0 || i.unsigned_abs() > count as u64 {
+                    return Err(format!(
+                        "line {}: index {i} names no {what} (the file has {count})",
+                        n + 1
+                    ));
+                }
+            }
+        }
+    }
+    Ok(())
 }

@@ -46,7 +46,16 @@ pub fn load(path: &Path) -> Result<Scene, SceneError> {
     let mut reader = std::io::BufReader::new(file);
     let ply = Parser::<DefaultElement>::new()
         .read_ply(&mut reader)
-        .map_err(|e| err(e.to_string()))?;
+        // The parser's message continues with the offending line and a debug dump.
+        .map_err(|e| {
+            err(e
+                .to_string()
+                .lines()
+                .next()
+                .unwrap_or("")
+                .trim()
+                .to_string())
+        })?;
     let vertices = ply
         .payload
         .get("vertex")

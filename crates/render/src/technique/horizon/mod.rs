@@ -102,6 +102,7 @@ pub const GTAO: TechniqueDesc = TechniqueDesc {
     name: "gtao",
     summary: "ground-truth AO: horizon search in slices, cosine-weighted AO, bent normal; ao × SH irradiance",
     create: create_gtao,
+    check,
     settings: <Settings as Declared>::TABLE,
     presets: PRESETS,
 };
@@ -110,6 +111,7 @@ pub const HBIL: TechniqueDesc = TechniqueDesc {
     name: "hbil",
     summary: "horizon-based indirect lighting: bent cones, far field through the cone, near-field bounces from reprojected radiance",
     create: create_hbil,
+    check,
     settings: <Settings as Declared>::TABLE,
     presets: PRESETS,
 };
@@ -184,6 +186,11 @@ struct Horizon {
     params: wgpu::Buffer,
     settings: Settings,
     bitmask: Option<BitmaskParts>,
+}
+
+/// The settings parsed without a device (`TechniqueDesc::check`).
+fn check(tp: &TechniqueParams) -> Result<(), String> {
+    config(tp).map(|_| ())
 }
 
 /// gtao's and hbil's denoiser choice and svgf configuration.

@@ -43,6 +43,7 @@ pub const DESC: TechniqueDesc = TechniqueDesc {
     name: "none",
     summary: "no occlusion: ao = 1, unoccluded SH environment irradiance, no indirect light",
     create,
+    check,
     settings: &[],
     presets: &[],
 };
@@ -50,6 +51,14 @@ pub const DESC: TechniqueDesc = TechniqueDesc {
 struct NoneTechnique {
     pass: ScreenPass,
     size: (u32, u32),
+}
+
+/// `none` has no settings.
+fn check(params: &TechniqueParams) -> Result<(), String> {
+    super::reject_unknown_keys("none", params, &[]).map_err(|e| match e {
+        RenderError::Setting { msg, .. } => msg,
+        e => e.to_string(),
+    })
 }
 
 fn create(

@@ -71,6 +71,7 @@ pub const S3HO: TechniqueDesc = TechniqueDesc {
     name: "s3ho",
     summary: "screen-space SH occlusion (16 coefficients), SH lighting of environment and lights, indirect extension",
     create: create_s3ho,
+    check,
     settings: <Settings as Declared>::TABLE,
     presets: super::ssdo::PRESETS,
 };
@@ -79,6 +80,7 @@ pub const SSBN: TechniqueDesc = TechniqueDesc {
     name: "ssbn",
     summary: "screen-space bent normals and cones: environment through the cone around the bent normal",
     create: create_ssbn,
+    check,
     settings: <Settings as Declared>::TABLE,
     presets: super::ssdo::PRESETS,
 };
@@ -101,6 +103,11 @@ struct S3ho {
     blur_indirect: BlurChain,
     layers: LayerStack,
     _textures: Vec<wgpu::Texture>,
+}
+
+/// The settings parsed without a device (`TechniqueDesc::check`).
+fn check(tp: &TechniqueParams) -> Result<(), String> {
+    denoise_config(tp).map(|_| ())
 }
 
 /// The denoiser choice and svgf's configuration (the running mean at its defaults).

@@ -63,6 +63,7 @@ pub const SSAO: TechniqueDesc = TechniqueDesc {
     name: "ssao",
     summary: "normal-oriented hemisphere SSAO (same samples and visibility test as ssdo): ao × SH irradiance",
     create: create_ssao,
+    check,
     settings: <Settings as Declared>::TABLE,
     presets: PRESETS,
 };
@@ -71,6 +72,7 @@ pub const SSDO: TechniqueDesc = TechniqueDesc {
     name: "ssdo",
     summary: "screen-space directional occlusion of environment and lights, plus one indirect bounce",
     create: create_ssdo,
+    check,
     settings: <Settings as Declared>::TABLE,
     presets: PRESETS,
 };
@@ -79,6 +81,7 @@ pub const SSDO_VPL: TechniqueDesc = TechniqueDesc {
     name: "ssdo-vpl",
     summary: "the environment as shadow-mapped virtual point lights, their lost small-scale shadows restored in screen space (ssdo Sec. 5)",
     create: create_ssdo_vpl,
+    check,
     settings: <Settings as Declared>::TABLE,
     presets: PRESETS,
 };
@@ -87,6 +90,7 @@ pub const INSTANT_RADIOSITY: TechniqueDesc = TechniqueDesc {
     name: "instant-radiosity",
     summary: "one bounce of the lights from virtual point lights drawn from reflective shadow maps (shadow-mapped, clamped), plus the screen-space near-field bounce the clamp removes and screen-space shadow correction (ssdo Sec. 5)",
     create: create_instant_radiosity,
+    check,
     settings: <Settings as Declared>::TABLE,
     presets: PRESETS,
 };
@@ -140,6 +144,11 @@ fn create_instant_radiosity(
     denoise::create_denoised(ctx, params, name, denoise_config, |ctx| {
         create(ctx, params, Variant::InstantRadiosity)
     })
+}
+
+/// The settings parsed without a device (`TechniqueDesc::check`).
+fn check(tp: &TechniqueParams) -> Result<(), String> {
+    denoise_config(tp).map(|_| ())
 }
 
 /// The denoiser choice and svgf's configuration (the running mean at its defaults).

@@ -70,6 +70,7 @@ pub const VBGI: TechniqueDesc = TechniqueDesc {
     name: "vbgi",
     summary: "visibility-bitmask GI: sectors occupied between each sample's front and back (thickness from the second depth layer), cosine-weighted; light passes behind thin objects",
     create,
+    check,
     settings: <Settings as Declared>::TABLE,
     presets: PRESETS,
 };
@@ -145,6 +146,11 @@ impl Settings {
 pub fn parse(tp: &TechniqueParams) -> Result<(horizon::Settings, Option<Bitmask>), String> {
     let (h, b) = Settings::from_params(tp)?.split();
     Ok((h, Some(b)))
+}
+
+/// The settings parsed without a device (`TechniqueDesc::check`).
+fn check(tp: &TechniqueParams) -> Result<(), String> {
+    config(tp).map(|_| ())
 }
 
 fn config(tp: &TechniqueParams) -> Result<(Denoise, SvgfConfig), String> {

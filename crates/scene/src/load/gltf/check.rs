@@ -16,6 +16,93 @@ pub fn node_name(node: &::gltf::Node) -> String {
     }
 }
 
+/// A GLB's declared length covers at least its header and lies within the file (the `gltf`
+/// crate subtracts before it checks).
+pub fn glb_header(bytes: &[u8]) -> Result<(), String> {
+    if bytes.len() < 12 || &bytes[..4] != b"glTF" {
+        return Ok(());
+    }
+    let length = u32::from_le_bytes(bytes[8..12].try_into().unwrap()) as usize;
+    if length < 12 || length > bytes.len() {
+        return Err(format!(
+            "the GLB header declares {length} bytes; the file has {}",
+            bytes.len()
+        ));
+    }
+    Ok(())
+}
+
+/// What the `gltf` crate's validation assumes before it checks it (it would panic otherwise):
+/// primitives' accessors exist; an image has a URI or a buffer view, and a buffer view with a
+/// MIME type.
+pub fn before_validation(root: &::gltf::json::Root) -> Result<(), String> {
+    let accessors = root.accessors.len();
+    for (m, mesh) in root.meshes.iter().enumerate() {
+        for (p, prim) in mesh.primitives.iter().enumerate() {
+            let indices = prim.attributes.values().chain(prim.indices.as_ref());
+            for a in indices {
+                if a.value() >= accessors {
+                    return Err(format!(
+                        "mesh {m} primitive {p} refers to accessor {}, of {accessors}",
+                        a.value()
+                    ));
+                }
+            }
+        }
+    }
+    for (i, image) in root.images.iter().enumerate() {
+        match (&image.uri, &image.buffer_view) {
+            (Some(_), None) => {}
+            (None, Some(_)) if image.mime_type.is_some() => {}
+            (None, Some(_)) => {
+                return Err(format!("image {i}: a buffer view without a mimeType"));
+            }
+            _ => {
+                return Err(format!(
+                    "image {i}: needs exactly one of uri and bufferView"
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// The types of the attributes nearfield reads: POSITION and NORMAL are float VEC3, TEXCOORD_0
+/// a VEC2, indices unsigned SCALAR.
+pub fn attribute_types(prim: &::gltf::Primitive) -> Result<(), String> {
+    use ::gltf::accessor::{DataType as T, Dimensions as D};
+    use ::gltf::mesh::Semantic as S;
+    for (semantic, a) in prim.attributes() {
+        let ok = match semantic {
+            S::Positions | S::Normals => a.data_type() == T::F32 && a.dimensions() == D::Vec3,
+            S::TexCoords(_) => {
+                matches!(a.data_type(), T::F32 | T::U8 | T::U16) && a.dimensions() == D::Vec2
+            }
+            _ => true,
+        };
+        if !ok {
+            return Err(format!(
+                "accessor {} ({:?}) is {:?} {:?}, not a type that attribute takes",
+                a.index(),
+                semantic,
+                a.dimensions(),
+                a.data_type()
+            ));
+        }
+    }
+    if let Some(a) = prim.indices()
+        && !(matches!(a.data_type(), T::U8 | T::U16 | T::U32) && a.dimensions() == D::Scalar)
+    {
+        return Err(format!(
+            "index accessor {} is {:?} {:?}, not an unsigned SCALAR",
+            a.index(),
+            a.dimensions(),
+            a.data_type()
+        ));
+    }
+    Ok(())
+}
+
 /// The node graph must be a forest: no node is its own ancestor, none has two parents, and a
 /// scene's roots are roots (listed once). Checked before the hierarchy is walked.
 pub fn node_tree(doc: &::gltf::Document) -> Result<(), String> {
@@ -313,7 +400,8 @@ pub fn transform(
     if carries {
         let m = Mat3::from_mat4(*world).as_dmat3();
         let scale = m.x_axis.length() * m.y_axis.length() * m.z_axis.length();
-        if !(m.determinant().abs() > 1e-12 * scale) || scale == 0.0 {
+        let det = m.determinant().abs();
+        if det.is_nan() || det <= 1e-12 * scale || scale == 0.0 {
             return Err(format!(
                 "{} has a degenerate (zero-scale) transform",
                 node_name(node)
