@@ -165,6 +165,9 @@ pub fn run(args: BenchArgs) -> Result<()> {
             }
             t.totals.push(total);
         }
+        if let Some(t) = timed.first() {
+            t.renderer.check_device()?;
+        }
     }
     let mut results = BTreeMap::new();
     for (method, mut t) in methods.iter().zip(timed) {

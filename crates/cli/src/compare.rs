@@ -161,7 +161,16 @@ pub fn run(args: CompareArgs) -> Result<()> {
         }
     };
     let (w, h) = size;
-    image_ops::tonemap(&reference.value, w, h).save(args.out.join("reference.png"))?;
+    let png = |img: image::RgbImage, path: std::path::PathBuf| {
+        crate::render::save_atomically(&path, |tmp| {
+            img.save_with_format(tmp, image::ImageFormat::Png)
+                .map_err(anyhow::Error::from)
+        })
+    };
+    png(
+        image_ops::tonemap(&reference.value, w, h),
+        args.out.join("reference.png"),
+    )?;
     let ref_srgb = image_ops::tonemap(&reference.value, w, h);
     let ref_alpha: Vec<f32> = reference.value.iter().map(|p| p[3]).collect();
     let mask_settings = MaskSettings {
@@ -208,6 +217,7 @@ pub fn run(args: CompareArgs) -> Result<()> {
             }
         }
         let value = r.read_aov(gpu_aov);
+        r.check_device()?;
         let mask = match mask {
             Some(m) => m,
             None => gpu_mask(
@@ -226,8 +236,11 @@ pub fn run(args: CompareArgs) -> Result<()> {
         let range = image_ops::error_range(&errors, &mask.valid);
         let image = format!("{method}.png");
         let heat = format!("{method}-error.png");
-        srgb.save(args.out.join(&image))?;
-        image_ops::heatmap(&errors, &mask.valid, w, h, range).save(args.out.join(&heat))?;
+        png(srgb, args.out.join(&image))?;
+        png(
+            image_ops::heatmap(&errors, &mask.valid, w, h, range),
+            args.out.join(&heat),
+        )?;
         println!(
             "{method:<10} pixels {:>8}  bias {:+.5}  MAE {:.5}  RMSE {:.5}  rel {:.4}  FLIP {:.4}",
             m.pixels,

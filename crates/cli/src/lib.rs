@@ -68,7 +68,7 @@ pub fn exit_status(e: &anyhow::Error) -> u8 {
         }
         if let Some(r) = cause.downcast_ref::<R>() {
             return match r {
-                R::Gpu(_) | R::Device { .. } => 1,
+                R::Gpu(_) | R::Device { .. } | R::Lost(_) => 1,
                 _ => 2,
             };
         }

@@ -81,14 +81,10 @@ pub fn write_exr(img: &nearfield_render::AovImage, path: &Path) -> Result<()> {
 }
 
 /// Writes via a temporary file in the same directory, then renames: a failed write never leaves
-/// a truncated file behind.
+/// a truncated file behind ([`nearfield_scene::atomic`]).
 pub fn save_atomically(path: &Path, write: impl FnOnce(&Path) -> Result<()>) -> Result<()> {
-    let mut tmp = path.as_os_str().to_owned();
-    tmp.push(".partial");
-    let tmp = PathBuf::from(tmp);
-    write(&tmp).with_context(|| format!("cannot write {}", path.display()))?;
-    std::fs::rename(&tmp, path).with_context(|| format!("cannot write {}", path.display()))?;
-    Ok(())
+    nearfield_scene::atomic::write_atomically(path, |tmp| write(tmp).map_err(|e| format!("{e:#}")))
+        .map_err(anyhow::Error::msg)
 }
 
 pub fn run(args: RenderArgs) -> Result<()> {
@@ -140,6 +136,7 @@ pub fn run(args: RenderArgs) -> Result<()> {
         let img = renderer
             .read_extra(&args.aov)
             .expect("the name was checked above");
+        renderer.check_device()?;
         write_exr(&img, &output)?;
         eprintln!(
             "nearfield: wrote {} ({} {})",
@@ -151,12 +148,14 @@ pub fn run(args: RenderArgs) -> Result<()> {
     };
     if aov == Aov::Final {
         let img = renderer.read_final();
+        renderer.check_device()?;
         save_atomically(&output, |tmp| {
             img.save_with_format(tmp, image::ImageFormat::Png)
                 .map_err(anyhow::Error::from)
         })?;
     } else {
         let img = renderer.read_aov(aov);
+        renderer.check_device()?;
         write_exr(&img, &output)?;
     }
     eprintln!(

@@ -366,6 +366,25 @@ fn structurally_bad_files_exit_2_with_one_line_within_a_second() {
         (vec!["render".into(), "/dev/zero.obj".into()], "no such file"),
         (vec!["view".into(), "--script".into(), "/dev/zero".into()], "not a regular file"),
     ]);
+    // More memory than a CPU adapter has (the system's): refused before anything is made. The
+    // side is chosen from this machine's available memory; beyond 8192 (the size limit) a
+    // machine with that much memory has no such case.
+    let available = std::fs::read_to_string("/proc/meminfo")
+        .ok()
+        .and_then(|t| {
+            t.lines()
+                .find(|l| l.starts_with("MemAvailable:"))
+                .and_then(|l| l.split_whitespace().nth(1)?.parse::<u64>().ok())
+        })
+        .unwrap_or(0)
+        * 1024;
+    let side = ((available as f64 / 512.0).sqrt() * 1.2).ceil() as u64;
+    if available > 0 && side <= 8192 {
+        cases.push((
+            vec!["render".into(), "--size".into(), format!("{side}x{side}")],
+            "MiB of GPU memory",
+        ));
+    }
     for (args, needle) in cases {
         let args: Vec<&str> = args.iter().map(String::as_str).collect();
         let start = std::time::Instant::now();

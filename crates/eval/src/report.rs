@@ -149,10 +149,9 @@ fn escape(s: &str) -> String {
 
 /// Writes `dir/metrics.json` and `dir/report.html` (the PNGs are written by the caller).
 pub fn write(dir: &Path, report: &Report) -> std::io::Result<()> {
-    std::fs::write(
-        dir.join("metrics.json"),
-        serde_json::to_string_pretty(report).map_err(std::io::Error::other)?,
-    )?;
+    let json = serde_json::to_string_pretty(report).map_err(std::io::Error::other)?;
+    nearfield_scene::atomic::write_bytes(&dir.join("metrics.json"), json.as_bytes())
+        .map_err(std::io::Error::other)?;
     let stops: Vec<String> = (0..=10)
         .map(|i| {
             let t = -1.0 + 0.2 * i as f32;
@@ -252,5 +251,6 @@ The reference's own noise (RMS standard error over these pixels) is {noise:.5}.<
         );
     }
     h.push_str("</body></html>\n");
-    std::fs::write(dir.join("report.html"), h)
+    nearfield_scene::atomic::write_bytes(&dir.join("report.html"), h.as_bytes())
+        .map_err(std::io::Error::other)
 }

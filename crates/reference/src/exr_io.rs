@@ -40,13 +40,14 @@ pub fn write(img: &ReferenceImage, path: &Path) -> std::result::Result<(), ExrEr
         Encoding::FAST_LOSSLESS,
         channels,
     );
-    Image::from_layer(layer)
-        .write()
-        .to_file(path)
-        .map_err(|e| ExrError::Write {
-            path: path.display().to_string(),
-            msg: e.to_string(),
-        })
+    // Atomically: the reference cache is read by other processes.
+    nearfield_scene::atomic::write_atomically(path, |tmp| {
+        Image::from_layer(layer).write().to_file(tmp)
+    })
+    .map_err(|msg| ExrError::Write {
+        path: path.display().to_string(),
+        msg,
+    })
 }
 
 /// Reads an EXR written by [`write`], or any EXR with R, G, B channels (A defaults to 1,

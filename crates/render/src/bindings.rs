@@ -265,10 +265,7 @@ pub fn layout(
         .enumerate()
         .map(|(i, (_, slot))| slot.entry(i as u32, stages))
         .collect();
-    device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-        label: Some(label),
-        entries: &entries,
-    })
+    crate::pipeline_cache::bind_group_layout(device, label, &entries)
 }
 
 /// A bind group of resources numbered in order.

@@ -13,7 +13,12 @@ pub struct GpuContext {
     /// Whether shaders may use `pack2x16float`/`unpack2x16float` (`DownlevelFlags::SHADER_F16_IN_F32`;
     /// on Mesa's Vulkan drivers this needs `Features::SHADER_F16`, requested when offered).
     pub pack_half: bool,
+    /// Why the device was lost, once it is ([`Self::lost`]).
+    lost: LostFlag,
 }
+
+/// Set by the device-lost callback; shared with every [`crate::Renderer`] on the device.
+pub type LostFlag = std::sync::Arc<std::sync::Mutex<Option<String>>>;
 
 /// Human-readable adapter description: "NAME (Backend, DeviceType)".
 pub fn describe(info: &wgpu::AdapterInfo) -> String {
@@ -107,6 +112,33 @@ impl GpuContext {
             adapter: describe(&info),
             msg: e.to_string(),
         })?;
+        let lost: LostFlag = Default::default();
+        let on_lost = lost.clone();
+        device.set_device_lost_callback(move |reason, msg| {
+            let why = if msg.is_empty() {
+                format!("{reason:?}")
+            } else {
+                format!("{reason:?}: {msg}")
+            };
+            *on_lost.lock().unwrap_or_else(|e| e.into_inner()) = Some(why);
+        });
+        // Errors nobody captured are bugs (a panic, as wgpu's default), except once the device
+        // is lost: then every call fails, and the commands report the loss instead.
+        let after_loss = lost.clone();
+        device.on_uncaptured_error(std::sync::Arc::new(move |e: wgpu::Error| {
+            let lost = after_loss
+                .lock()
+                .unwrap_or_else(|e| e.into_inner())
+                .is_some();
+            // A lost device makes objects invalid without an error of its own; using them
+            // reports an invalid resource, sometimes before the loss callback has run.
+            let cascade = format!("{e:?}").contains("InvalidResource");
+            if lost || cascade || matches!(e, wgpu::Error::OutOfMemory { .. }) {
+                log::debug!("after the device was lost: {e}");
+            } else {
+                panic!("wgpu error: {e}");
+            }
+        }));
         Ok(GpuContext {
             instance,
             adapter,
@@ -114,7 +146,20 @@ impl GpuContext {
             queue,
             timestamps,
             pack_half,
+            lost,
         })
+    }
+
+    /// Why the device was lost, if it was (a driver reset, a GPU removed, `destroy`). After a
+    /// loss every frame renders nothing and every read gives zeros: check this before writing
+    /// what was read.
+    pub fn lost(&self) -> Option<String> {
+        self.lost.lock().unwrap_or_else(|e| e.into_inner()).clone()
+    }
+
+    /// The flag [`Self::lost`] reads, for objects that outlive a borrow of the context.
+    pub fn lost_flag(&self) -> LostFlag {
+        self.lost.clone()
     }
 
     pub fn adapter_info(&self) -> wgpu::AdapterInfo {
@@ -124,6 +169,13 @@ impl GpuContext {
     /// Waits until all submitted work has finished.
     pub fn wait(&self) {
         let _ = self.device.poll(wgpu::PollType::wait_indefinitely());
+    }
+}
+
+impl Drop for GpuContext {
+    /// The device's cached pipelines go with it.
+    fn drop(&mut self) {
+        crate::pipeline_cache::forget(&self.device);
     }
 }
 

@@ -29,6 +29,11 @@ pub enum RenderError {
     Setting { technique: String, msg: String },
     #[error("GPU error: {0}")]
     Gpu(String),
+    #[error("the GPU device was lost ({0}); outputs not yet written were not written")]
+    Lost(String),
+    /// More memory than the adapter has (exit status 2: a smaller size fits).
+    #[error("{0}")]
+    Memory(String),
 }
 
 impl RenderError {

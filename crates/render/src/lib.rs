@@ -15,6 +15,7 @@ pub mod gpu_env;
 pub mod gpu_scene;
 pub mod inputs;
 pub mod passes;
+pub mod pipeline_cache;
 pub mod profiler;
 pub mod renderer;
 pub mod settings;

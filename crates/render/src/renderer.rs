@@ -76,6 +76,10 @@ pub struct Renderer {
     settings: RenderSettings,
     /// Rebuilds by [`Self::set_technique`].
     rebuilds: u32,
+    /// The device's lost flag ([`GpuContext::lost`]).
+    lost: crate::context::LostFlag,
+    /// The adapter's kind (what [`targets::check_memory`] budgets against).
+    device_type: wgpu::DeviceType,
 }
 
 impl Renderer {
@@ -91,6 +95,7 @@ impl Renderer {
     ) -> Result<Self, RenderError> {
         technique::find(technique_name)?;
         targets::check_size(settings.size, ctx.device.limits().max_texture_dimension_2d)?;
+        targets::check_memory(settings.size, ctx.adapter_info().device_type)?;
         camera.validate().map_err(RenderError::Scene)?;
         let device = ctx.device.clone();
         let queue = ctx.queue.clone();
@@ -156,6 +161,8 @@ impl Renderer {
             frame_index: 0,
             settings,
             rebuilds: 0,
+            lost: ctx.lost_flag(),
+            device_type: ctx.adapter_info().device_type,
         })
     }
 
@@ -187,6 +194,7 @@ impl Renderer {
         spec: &str,
         params: &TechniqueParams,
     ) -> Result<(), RenderError> {
+        self.check_device()?;
         let (desc, resolved) = technique::resolve_params(spec, params)?;
         let in_place = desc.name == self.passes.technique.name()
             && self.passes.technique.update(&self.queue, &resolved)?;
@@ -201,6 +209,21 @@ impl Renderer {
         Ok(())
     }
 
+    /// Why the device was lost, if it was: what was rendered or read since is not valid.
+    pub fn lost(&self) -> Option<String> {
+        self.lost.lock().unwrap_or_else(|e| e.into_inner()).clone()
+    }
+
+    /// An error when the device was lost: commands call it before they write an output.
+    pub fn check_device(&self) -> Result<(), RenderError> {
+        // Lets the device run its callbacks (the loss is reported through one).
+        let _ = self.device.poll(wgpu::PollType::Poll);
+        match self.lost() {
+            Some(why) => Err(RenderError::Lost(why)),
+            None => Ok(()),
+        }
+    }
+
     /// How often [`Self::set_technique`] rebuilt the technique (a change it could not apply in
     /// place: another technique, a count, a resource).
     pub fn rebuilds(&self) -> u32 {
@@ -213,7 +236,9 @@ impl Renderer {
         if size == self.settings.size {
             return Ok(());
         }
+        self.check_device()?;
         targets::check_size(size, self.device.limits().max_texture_dimension_2d)?;
+        targets::check_memory(size, self.device_type)?;
         let old = std::mem::replace(&mut self.targets, FrameTargets::new(&self.device, size));
         let (spec, params) = (self.technique_spec.clone(), self.technique_params.clone());
         if let Err(e) = self.rebuild_passes(&spec, &params) {
@@ -227,6 +252,7 @@ impl Renderer {
 
     /// Replaces the environment (map, intensity and rotation, its sun); passes are rebuilt.
     pub fn set_environment(&mut self, env: &Environment) -> Result<(), RenderError> {
+        self.check_device()?;
         let scene_count =
             self.scene.scene_lights.len() - usize::from(self.env.source().sun.is_some());
         let mut lights = self.scene.scene_lights[..scene_count].to_vec();
@@ -400,6 +426,9 @@ impl Renderer {
     /// Renders one frame and submits it. Per-pass timings of it are then available from
     /// [`Self::timings`].
     pub fn render_frame(&mut self) {
+        if self.lost().is_some() {
+            return;
+        }
         if !self.history_valid() {
             self.frames_since_cut = 0;
         }
@@ -638,7 +667,10 @@ impl ErrorScopes {
             return Err(RenderError::Gpu(e.to_string()));
         }
         if let Some(e) = pollster::block_on(self.oom.pop()) {
-            return Err(RenderError::Gpu(format!("out of GPU memory: {e}")));
+            return Err(RenderError::Memory(format!(
+                "the adapter ran out of memory making the frame's targets and passes ({e}); \
+                 a smaller --size fits"
+            )));
         }
         Ok(())
     }

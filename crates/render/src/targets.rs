@@ -84,6 +84,42 @@ pub struct FrameTargets {
     pub aov: Target,
 }
 
+/// GPU memory per pixel a frame may take: the frame targets (≈ 116 bytes) and the most a
+/// technique adds (history, layers, denoiser: up to ≈ 400 bytes), rounded up.
+pub const BYTES_PER_PIXEL: u64 = 512;
+
+/// Memory the system offers a CPU adapter (lavapipe allocates from it): `MemAvailable` of
+/// /proc/meminfo, where there is one.
+fn available_system_memory() -> Option<u64> {
+    let text = std::fs::read_to_string("/proc/meminfo").ok()?;
+    let line = text.lines().find(|l| l.starts_with("MemAvailable:"))?;
+    let kib: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    Some(kib * 1024)
+}
+
+/// Checks that an image of `size` fits the memory of a CPU adapter (whose textures live in
+/// system memory, where running out ends the process rather than failing an allocation).
+/// Other adapters report running out as an error when the targets are made.
+pub fn check_memory(size: (u32, u32), device_type: wgpu::DeviceType) -> Result<(), RenderError> {
+    if device_type != wgpu::DeviceType::Cpu {
+        return Ok(());
+    }
+    let need = size.0 as u64 * size.1 as u64 * BYTES_PER_PIXEL;
+    if let Some(available) = available_system_memory()
+        && need > available / 10 * 8
+    {
+        return Err(RenderError::Memory(format!(
+            "image size {}×{}: needs about {} MiB of GPU memory, more than the {} MiB this CPU \
+             adapter can take (80 % of the available system memory)",
+            size.0,
+            size.1,
+            need >> 20,
+            (available / 10 * 8) >> 20
+        )));
+    }
+    Ok(())
+}
+
 /// Checks an image size before anything is allocated.
 pub fn check_size(size: (u32, u32), device_max: u32) -> Result<(), RenderError> {
     let (width, height) = size;

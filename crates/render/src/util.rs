@@ -41,8 +41,25 @@ pub struct RasterPipeline<'a> {
     pub depth_bias: wgpu::DepthBiasState,
 }
 
-/// Creates the pipeline `p` describes.
+/// The pipeline `p` describes (made once per device: [`crate::pipeline_cache`]).
 pub fn raster_pipeline(device: &wgpu::Device, p: &RasterPipeline) -> wgpu::RenderPipeline {
+    let key = crate::pipeline_cache::RasterKey {
+        module: p.module.clone(),
+        vertex: p.vertex.to_string(),
+        fragment: p.fragment.to_string(),
+        groups: [p.frame.cloned(), Some(p.layout.clone())],
+        color_formats: p.color_formats.to_vec(),
+        cull: p.cull,
+        depth_bias: (
+            p.depth_bias.constant,
+            p.depth_bias.slope_scale.to_bits(),
+            p.depth_bias.clamp.to_bits(),
+        ),
+    };
+    crate::pipeline_cache::raster_pipeline(device, key, || make_raster_pipeline(device, p))
+}
+
+fn make_raster_pipeline(device: &wgpu::Device, p: &RasterPipeline) -> wgpu::RenderPipeline {
     let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
         label: Some(p.label),
         bind_group_layouts: &[p.frame, Some(p.layout)],
@@ -135,9 +152,20 @@ pub fn read_texture(
     );
     queue.submit([encoder.finish()]);
     let slice = buffer.slice(..);
-    slice.map_async(wgpu::MapMode::Read, |_| {});
+    let mapped = std::sync::Arc::new(std::sync::atomic::AtomicBool::new(false));
+    let flag = mapped.clone();
+    slice.map_async(wgpu::MapMode::Read, move |r| {
+        flag.store(r.is_ok(), std::sync::atomic::Ordering::SeqCst)
+    });
     let _ = device.poll(wgpu::PollType::wait_indefinitely());
-    let data = slice.get_mapped_range().expect("mapped");
+    // A lost device maps nothing: the texels read as zeros, and the context says it was lost
+    // (`GpuContext::lost`), which every command checks before it writes an output.
+    if !mapped.load(std::sync::atomic::Ordering::SeqCst) {
+        return vec![0; (row * h) as usize];
+    }
+    let Ok(data) = slice.get_mapped_range() else {
+        return vec![0; (row * h) as usize];
+    };
     let mut out = Vec::with_capacity((row * h) as usize);
     for y in 0..h as usize {
         let start = y * padded as usize;

@@ -4,36 +4,8 @@
 
 mod common;
 
-use nearfield_render::{GpuContext, RenderSettings, Renderer, TechniqueParams, technique};
-
-/// Live objects per kind, from wgpu-core's registries.
-fn live_objects(ctx: &GpuContext) -> Vec<(&'static str, usize)> {
-    let _ = ctx.device.poll(wgpu::PollType::wait_indefinitely());
-    let report = ctx
-        .instance
-        .generate_report()
-        .expect("wgpu-core backend reports its registries");
-    let hub = report.hub_report();
-    vec![
-        ("buffers", hub.buffers.num_kept_from_user),
-        ("textures", hub.textures.num_kept_from_user),
-        ("texture views", hub.texture_views.num_kept_from_user),
-        ("samplers", hub.samplers.num_kept_from_user),
-        ("bind groups", hub.bind_groups.num_kept_from_user),
-        (
-            "bind group layouts",
-            hub.bind_group_layouts.num_kept_from_user,
-        ),
-        ("pipeline layouts", hub.pipeline_layouts.num_kept_from_user),
-        ("shader modules", hub.shader_modules.num_kept_from_user),
-        (
-            "compute pipelines",
-            hub.compute_pipelines.num_kept_from_user,
-        ),
-        ("render pipelines", hub.render_pipelines.num_kept_from_user),
-        ("query sets", hub.query_sets.num_kept_from_user),
-    ]
-}
+use common::live_objects;
+use nearfield_render::{RenderSettings, Renderer, TechniqueParams, technique};
 
 #[test]
 fn two_hundred_frames_of_every_technique_keep_the_live_object_counts() {

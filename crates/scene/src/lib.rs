@@ -10,6 +10,7 @@
 //! Loading: [`load_scene`] reads `.gltf`/`.glb`/`.obj`/`.ply`; [`builtin::scene`] builds the
 //! built-in test scenes; [`SceneSource::parse`] understands both spellings used on the command line.
 
+pub mod atomic;
 pub mod builtin;
 pub mod camera;
 pub mod environment;

@@ -495,6 +495,9 @@ impl Session {
     pub fn screenshot(&self, path: &Path) -> Result<()> {
         crate::render::check_parent_dir(path)?;
         let encoder = self.ctx.device.create_command_encoder(&Default::default());
+        if let Some(why) = self.ctx.lost() {
+            return Err(nearfield_render::RenderError::Lost(why).into());
+        }
         let bytes = nearfield_render::util::read_texture(
             &self.ctx.device,
             &self.ctx.queue,

@@ -75,13 +75,10 @@ impl<T> PingPong<T> {
     }
 }
 
-/// A compute shader module: compiled once, its entry points made into pipelines with group 0
-/// (the frame) and the pass's own group 1.
+/// A compute shader module: compiled once per device ([`crate::pipeline_cache`]), its entry
+/// points made into pipelines with group 0 (the frame) and the pass's own group 1.
 pub fn shader_module(device: &wgpu::Device, label: &str, source: &str) -> wgpu::ShaderModule {
-    device.create_shader_module(wgpu::ShaderModuleDescriptor {
-        label: Some(label),
-        source: wgpu::ShaderSource::Wgsl(source.into()),
-    })
+    crate::pipeline_cache::shader_module(device, label, source)
 }
 
 /// A compute pipeline outside the frame (environment prefiltering, the viewer's display): group
@@ -113,22 +110,7 @@ fn compute_pipeline(
     groups: [Option<&wgpu::BindGroupLayout>; 2],
     constants: &[(&str, f64)],
 ) -> wgpu::ComputePipeline {
-    let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-        label: Some(label),
-        bind_group_layouts: &groups,
-        immediate_size: 0,
-    });
-    device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-        label: Some(label),
-        layout: Some(&pipeline_layout),
-        module,
-        entry_point: Some(entry_point),
-        compilation_options: wgpu::PipelineCompilationOptions {
-            constants,
-            ..Default::default()
-        },
-        cache: None,
-    })
+    crate::pipeline_cache::compute_pipeline(device, label, module, entry_point, groups, constants)
 }
 
 /// One compute kernel of a pass: its pipeline (group 0 = frame, group 1 = `layout`), built once;

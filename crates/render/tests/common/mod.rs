@@ -179,3 +179,32 @@ pub fn render_shot(
     r.render_frame();
     r
 }
+
+/// Live objects per kind, from wgpu-core's registries.
+pub fn live_objects(ctx: &GpuContext) -> Vec<(&'static str, usize)> {
+    let _ = ctx.device.poll(wgpu::PollType::wait_indefinitely());
+    let report = ctx
+        .instance
+        .generate_report()
+        .expect("wgpu-core backend reports its registries");
+    let hub = report.hub_report();
+    vec![
+        ("buffers", hub.buffers.num_kept_from_user),
+        ("textures", hub.textures.num_kept_from_user),
+        ("texture views", hub.texture_views.num_kept_from_user),
+        ("samplers", hub.samplers.num_kept_from_user),
+        ("bind groups", hub.bind_groups.num_kept_from_user),
+        (
+            "bind group layouts",
+            hub.bind_group_layouts.num_kept_from_user,
+        ),
+        ("pipeline layouts", hub.pipeline_layouts.num_kept_from_user),
+        ("shader modules", hub.shader_modules.num_kept_from_user),
+        (
+            "compute pipelines",
+            hub.compute_pipelines.num_kept_from_user,
+        ),
+        ("render pipelines", hub.render_pipelines.num_kept_from_user),
+        ("query sets", hub.query_sets.num_kept_from_user),
+    ]
+}

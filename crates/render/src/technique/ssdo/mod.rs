@@ -59,11 +59,14 @@ pub use crate::settings::check_sampling;
 pub use crate::settings::ssdo::{LightSegment, Mode, PRESETS, Pattern, Settings};
 pub use params::SsdoParams;
 
+/// Most memory the virtual point lights' shadow maps may take.
+pub const VPL_SHADOW_BUDGET: u64 = 1 << 30;
+
 pub const SSAO: TechniqueDesc = TechniqueDesc {
     name: "ssao",
     summary: "normal-oriented hemisphere SSAO (same samples and visibility test as ssdo): ao × SH irradiance",
     create: create_ssao,
-    check,
+    check: |tp| Variant::Ssao.check(tp),
     settings: <Settings as Declared>::TABLE,
     presets: PRESETS,
 };
@@ -72,7 +75,7 @@ pub const SSDO: TechniqueDesc = TechniqueDesc {
     name: "ssdo",
     summary: "screen-space directional occlusion of environment and lights, plus one indirect bounce",
     create: create_ssdo,
-    check,
+    check: |tp| Variant::Ssdo.check(tp),
     settings: <Settings as Declared>::TABLE,
     presets: PRESETS,
 };
@@ -81,7 +84,7 @@ pub const SSDO_VPL: TechniqueDesc = TechniqueDesc {
     name: "ssdo-vpl",
     summary: "the environment as shadow-mapped virtual point lights, their lost small-scale shadows restored in screen space (ssdo Sec. 5)",
     create: create_ssdo_vpl,
-    check,
+    check: |tp| Variant::SsdoVpl.check(tp),
     settings: <Settings as Declared>::TABLE,
     presets: PRESETS,
 };
@@ -90,7 +93,7 @@ pub const INSTANT_RADIOSITY: TechniqueDesc = TechniqueDesc {
     name: "instant-radiosity",
     summary: "one bounce of the lights from virtual point lights drawn from reflective shadow maps (shadow-mapped, clamped), plus the screen-space near-field bounce the clamp removes and screen-space shadow correction (ssdo Sec. 5)",
     create: create_instant_radiosity,
-    check,
+    check: |tp| Variant::InstantRadiosity.check(tp),
     settings: <Settings as Declared>::TABLE,
     presets: PRESETS,
 };
@@ -144,11 +147,6 @@ fn create_instant_radiosity(
     denoise::create_denoised(ctx, params, name, denoise_config, |ctx| {
         create(ctx, params, Variant::InstantRadiosity)
     })
-}
-
-/// The settings parsed without a device (`TechniqueDesc::check`).
-fn check(tp: &TechniqueParams) -> Result<(), String> {
-    denoise_config(tp).map(|_| ())
 }
 
 /// The denoiser choice and svgf's configuration (the running mean at its defaults).
@@ -353,6 +351,15 @@ impl Variant {
         }
     }
 
+    /// [`Self::settings`] as `TechniqueDesc::check` wants it.
+    fn check(self, tp: &TechniqueParams) -> Result<(), String> {
+        match self.settings(tp) {
+            Ok(_) => Ok(()),
+            Err(RenderError::Setting { msg, .. }) => Err(msg),
+            Err(e) => Err(e.to_string()),
+        }
+    }
+
     /// The settings of `tp`, checked (instant-radiosity's clamp against R too).
     fn settings(self, tp: &TechniqueParams) -> Result<Settings, RenderError> {
         let error = RenderError::setting(self.name());
@@ -365,6 +372,20 @@ impl Variant {
                 "vpl_clamp {} > radius {}: the screen-space bounce cannot add back what the clamp removes beyond R; set vpl_clamp ≤ radius or bounce=off",
                 settings.vpl_clamp, settings.radius
             )));
+        }
+        if matches!(self, Variant::SsdoVpl | Variant::InstantRadiosity) {
+            // One depth layer of vpl_map² per light.
+            let bytes = settings.vpls as u64 * (settings.vpl_map as u64).pow(2) * 4;
+            if bytes > VPL_SHADOW_BUDGET {
+                return Err(error(format!(
+                    "vpls={} with vpl_map={} needs {} MiB of shadow maps, beyond the {} MiB \
+                     budget; lower vpls or vpl_map",
+                    settings.vpls,
+                    settings.vpl_map,
+                    bytes >> 20,
+                    VPL_SHADOW_BUDGET >> 20
+                )));
+            }
         }
         Ok(settings)
     }

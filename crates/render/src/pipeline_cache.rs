@@ -1,0 +1,227 @@
+//! Reuse of compiled GPU objects across rebuilds: shader modules by source, bind group layouts
+//! by entries, compute pipelines by (module, entry point, layouts, override constants).
+//!
+//! A technique is rebuilt whenever a count changes (the viewer's sliders, `compare` over several
+//! settings of one technique, a resize); its shaders rarely do. Compiling a pipeline is the
+//! expensive part on every driver (on lavapipe, LLVM runs per pipeline), so identical requests
+//! return the object made the first time. Keys are exact: the WGSL source text (hashed, then
+//! compared), the layout entries, the constants' bits. Each device holds at most [`CAPACITY`]
+//! pipelines (least recently used dropped first), and [`forget`] drops a device's entries.
+
+use std::collections::HashMap;
+use std::hash::{Hash, Hasher};
+use std::sync::{LazyLock, Mutex};
+
+/// Pipelines kept per device.
+pub const CAPACITY: usize = 256;
+
+#[derive(Clone, PartialEq, Eq, Hash)]
+struct PipelineKey {
+    module: wgpu::ShaderModule,
+    entry: String,
+    groups: [Option<wgpu::BindGroupLayout>; 2],
+    constants: Vec<(String, u64)>,
+}
+
+/// What makes a raster pipeline (`util::RasterPipeline`), the label aside.
+#[derive(Clone, PartialEq, Eq, Hash)]
+pub struct RasterKey {
+    pub module: wgpu::ShaderModule,
+    pub vertex: String,
+    pub fragment: String,
+    pub groups: [Option<wgpu::BindGroupLayout>; 2],
+    pub color_formats: Vec<wgpu::TextureFormat>,
+    pub cull: Option<wgpu::Face>,
+    /// Depth bias: constant, slope scale and clamp (bits).
+    pub depth_bias: (i32, u32, u32),
+}
+
+#[derive(Default)]
+struct DeviceCache {
+    raster: HashMap<RasterKey, (wgpu::RenderPipeline, u64)>,
+    modules: HashMap<u64, Vec<(String, wgpu::ShaderModule)>>,
+    layouts: HashMap<Vec<wgpu::BindGroupLayoutEntry>, wgpu::BindGroupLayout>,
+    pipelines: HashMap<PipelineKey, (wgpu::ComputePipeline, u64)>,
+    clock: u64,
+    hits: u64,
+    misses: u64,
+}
+
+static CACHE: LazyLock<Mutex<HashMap<wgpu::Device, DeviceCache>>> =
+    LazyLock::new(|| Mutex::new(HashMap::new()));
+
+fn with<R>(device: &wgpu::Device, f: impl FnOnce(&mut DeviceCache) -> R) -> R {
+    let mut all = CACHE.lock().unwrap_or_else(|e| e.into_inner());
+    f(all.entry(device.clone()).or_default())
+}
+
+/// The shader module of `source`, compiled once per device.
+pub fn shader_module(device: &wgpu::Device, label: &str, source: &str) -> wgpu::ShaderModule {
+    let mut h = std::collections::hash_map::DefaultHasher::new();
+    source.hash(&mut h);
+    let key = h.finish();
+    if let Some(m) = with(device, |c| {
+        c.modules
+            .get(&key)
+            .and_then(|v| v.iter().find(|(s, _)| s == source).map(|(_, m)| m.clone()))
+    }) {
+        return m;
+    }
+    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+        label: Some(label),
+        source: wgpu::ShaderSource::Wgsl(source.into()),
+    });
+    with(device, |c| {
+        c.modules
+            .entry(key)
+            .or_default()
+            .push((source.to_string(), module.clone()))
+    });
+    module
+}
+
+/// The bind group layout of `entries`, made once per device.
+pub fn bind_group_layout(
+    device: &wgpu::Device,
+    label: &str,
+    entries: &[wgpu::BindGroupLayoutEntry],
+) -> wgpu::BindGroupLayout {
+    if let Some(l) = with(device, |c| c.layouts.get(entries).cloned()) {
+        return l;
+    }
+    let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        label: Some(label),
+        entries,
+    });
+    with(device, |c| {
+        c.layouts.insert(entries.to_vec(), layout.clone())
+    });
+    layout
+}
+
+/// The compute pipeline of `module`'s `entry_point` over `groups`, specialised by `constants`:
+/// compiled once per device while it stays among the [`CAPACITY`] most recently used.
+pub fn compute_pipeline(
+    device: &wgpu::Device,
+    label: &str,
+    module: &wgpu::ShaderModule,
+    entry_point: &str,
+    groups: [Option<&wgpu::BindGroupLayout>; 2],
+    constants: &[(&str, f64)],
+) -> wgpu::ComputePipeline {
+    let key = PipelineKey {
+        module: module.clone(),
+        entry: entry_point.to_string(),
+        groups: groups.map(|g| g.cloned()),
+        constants: constants
+            .iter()
+            .map(|(k, v)| (k.to_string(), v.to_bits()))
+            .collect(),
+    };
+    let hit = with(device, |c| {
+        c.clock += 1;
+        let now = c.clock;
+        match c.pipelines.get_mut(&key) {
+            Some((p, used)) => {
+                *used = now;
+                c.hits += 1;
+                Some(p.clone())
+            }
+            None => {
+                c.misses += 1;
+                None
+            }
+        }
+    });
+    if let Some(p) = hit {
+        return p;
+    }
+    let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+        label: Some(label),
+        bind_group_layouts: &groups,
+        immediate_size: 0,
+    });
+    let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+        label: Some(label),
+        layout: Some(&pipeline_layout),
+        module,
+        entry_point: Some(entry_point),
+        compilation_options: wgpu::PipelineCompilationOptions {
+            constants,
+            ..Default::default()
+        },
+        cache: None,
+    });
+    with(device, |c| {
+        if c.pipelines.len() >= CAPACITY
+            && let Some(oldest) = c
+                .pipelines
+                .iter()
+                .min_by_key(|(_, (_, used))| *used)
+                .map(|(k, _)| k.clone())
+        {
+            c.pipelines.remove(&oldest);
+        }
+        let now = c.clock;
+        c.pipelines.insert(key, (pipeline.clone(), now));
+    });
+    pipeline
+}
+
+/// The raster pipeline of `key`, made by `make` the first time (raster pipelines are compiled
+/// per draw state by some drivers, and memory of pipelines rebuilt over and over is not always
+/// returned: lavapipe keeps some per pipeline it has drawn with).
+pub fn raster_pipeline(
+    device: &wgpu::Device,
+    key: RasterKey,
+    make: impl FnOnce() -> wgpu::RenderPipeline,
+) -> wgpu::RenderPipeline {
+    let hit = with(device, |c| {
+        c.clock += 1;
+        let now = c.clock;
+        match c.raster.get_mut(&key) {
+            Some((p, used)) => {
+                *used = now;
+                c.hits += 1;
+                Some(p.clone())
+            }
+            None => {
+                c.misses += 1;
+                None
+            }
+        }
+    });
+    if let Some(p) = hit {
+        return p;
+    }
+    let pipeline = make();
+    with(device, |c| {
+        if c.raster.len() >= CAPACITY
+            && let Some(oldest) = c
+                .raster
+                .iter()
+                .min_by_key(|(_, (_, used))| *used)
+                .map(|(k, _)| k.clone())
+        {
+            c.raster.remove(&oldest);
+        }
+        let now = c.clock;
+        c.raster.insert(key, (pipeline.clone(), now));
+    });
+    pipeline
+}
+
+/// (hits, misses, pipelines held) of `device`'s pipeline cache.
+pub fn stats(device: &wgpu::Device) -> (u64, u64, usize) {
+    with(device, |c| {
+        (c.hits, c.misses, c.pipelines.len() + c.raster.len())
+    })
+}
+
+/// Drops everything cached for `device` (when it is no longer used).
+pub fn forget(device: &wgpu::Device) {
+    CACHE
+        .lock()
+        .unwrap_or_else(|e| e.into_inner())
+        .remove(device);
+}
