@@ -85,7 +85,7 @@ fn main() {
             for (name, bytes) in images(&ctx, scene_name, method) {
                 let path = dir.join(&name);
                 if mode == "write" {
-                    std::fs::write(&path, &bytes).expect("write golden");
+                    nearfield_scene::atomic::write_bytes(&path, &bytes).expect("write golden");
                     continue;
                 }
                 let aov = name.split('.').nth(3).unwrap();

@@ -23,7 +23,8 @@ fn main() {
                 std::process::exit(2)
             });
             match rewrite_readme(&text) {
-                Ok(new) => std::fs::write(path, new).expect("write README"),
+                Ok(new) => nearfield_scene::atomic::write_bytes(path.as_ref(), new.as_bytes())
+                    .expect("write README"),
                 Err(e) => {
                     eprintln!("{e}");
                     std::process::exit(2)

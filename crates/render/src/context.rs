@@ -139,6 +139,7 @@ impl GpuContext {
                 panic!("wgpu error: {e}");
             }
         }));
+        crate::pipeline_cache::register(&device);
         Ok(GpuContext {
             instance,
             adapter,

@@ -7,6 +7,10 @@
 //! return the object made the first time. Keys are exact: the WGSL source text (hashed, then
 //! compared), the layout entries, the constants' bits. Each device holds at most [`CAPACITY`]
 //! pipelines (least recently used dropped first), and [`forget`] drops a device's entries.
+//! Only devices of a [`crate::GpuContext`] are cached (it [`register`]s them). wgpu compares
+//! devices by their id within their instance: an engine that makes its own device while a
+//! `GpuContext` of another instance is alive in the same process should drop the context
+//! first, or its device may be taken for the context's.
 
 use std::collections::HashMap;
 use std::hash::{Hash, Hasher};
@@ -47,12 +51,37 @@ struct DeviceCache {
     misses: u64,
 }
 
-static CACHE: LazyLock<Mutex<HashMap<wgpu::Device, DeviceCache>>> =
+/// Per device: how many live [`crate::GpuContext`]s have a device that compares equal to it,
+/// and its cache. wgpu compares devices by their id within an instance, so devices of two
+/// instances alive at once may compare equal: such a device is not cached at all (nor is a
+/// device no context registered, such as an engine's own).
+#[derive(Default)]
+struct Entry {
+    contexts: usize,
+    cache: DeviceCache,
+}
+
+static CACHE: LazyLock<Mutex<HashMap<wgpu::Device, Entry>>> =
     LazyLock::new(|| Mutex::new(HashMap::new()));
 
-fn with<R>(device: &wgpu::Device, f: impl FnOnce(&mut DeviceCache) -> R) -> R {
+/// Runs `f` on `device`'s cache, or not at all (None) when the device is not cached.
+fn with<R>(device: &wgpu::Device, f: impl FnOnce(&mut DeviceCache) -> R) -> Option<R> {
     let mut all = CACHE.lock().unwrap_or_else(|e| e.into_inner());
-    f(all.entry(device.clone()).or_default())
+    match all.get_mut(device) {
+        Some(e) if e.contexts == 1 => Some(f(&mut e.cache)),
+        _ => None,
+    }
+}
+
+/// Registers a device made by a [`crate::GpuContext`] (which calls [`forget`] when dropped).
+pub fn register(device: &wgpu::Device) {
+    let mut all = CACHE.lock().unwrap_or_else(|e| e.into_inner());
+    let e = all.entry(device.clone()).or_default();
+    e.contexts += 1;
+    if e.contexts > 1 {
+        // Another instance's device with the same id: what is cached may be its objects.
+        e.cache = DeviceCache::default();
+    }
 }
 
 /// The shader module of `source`, compiled once per device.
@@ -64,7 +93,9 @@ pub fn shader_module(device: &wgpu::Device, label: &str, source: &str) -> wgpu::
         c.modules
             .get(&key)
             .and_then(|v| v.iter().find(|(s, _)| s == source).map(|(_, m)| m.clone()))
-    }) {
+    })
+    .flatten()
+    {
         return m;
     }
     let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
@@ -86,7 +117,7 @@ pub fn bind_group_layout(
     label: &str,
     entries: &[wgpu::BindGroupLayoutEntry],
 ) -> wgpu::BindGroupLayout {
-    if let Some(l) = with(device, |c| c.layouts.get(entries).cloned()) {
+    if let Some(l) = with(device, |c| c.layouts.get(entries).cloned()).flatten() {
         return l;
     }
     let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
@@ -133,7 +164,7 @@ pub fn compute_pipeline(
             }
         }
     });
-    if let Some(p) = hit {
+    if let Some(p) = hit.flatten() {
         return p;
     }
     let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
@@ -191,7 +222,7 @@ pub fn raster_pipeline(
             }
         }
     });
-    if let Some(p) = hit {
+    if let Some(p) = hit.flatten() {
         return p;
     }
     let pipeline = make();
@@ -216,12 +247,17 @@ pub fn stats(device: &wgpu::Device) -> (u64, u64, usize) {
     with(device, |c| {
         (c.hits, c.misses, c.pipelines.len() + c.raster.len())
     })
+    .unwrap_or_default()
 }
 
-/// Drops everything cached for `device` (when it is no longer used).
+/// Ends a registration of `device`: its cache goes with the last one.
 pub fn forget(device: &wgpu::Device) {
-    CACHE
-        .lock()
-        .unwrap_or_else(|e| e.into_inner())
-        .remove(device);
+    let mut all = CACHE.lock().unwrap_or_else(|e| e.into_inner());
+    if let Some(e) = all.get_mut(device) {
+        e.contexts = e.contexts.saturating_sub(1);
+        e.cache = DeviceCache::default();
+        if e.contexts == 0 {
+            all.remove(device);
+        }
+    }
 }
