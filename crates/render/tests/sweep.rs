@@ -6,7 +6,7 @@
 //! values: refused with one line naming the setting, and the renderer keeps working.
 //!
 //! `SWEEP_COMBOS` sets the number of valid combinations over all techniques (default below, what
-//! CI runs); `SWEEP_SEED` the seed. `cargo test --release -p nearfield-render --test sweep --
+//! CI runs); `SWEEP_SEED` the seed; `SWEEP_TECHNIQUES` a comma-separated subset. `cargo test --release -p nearfield-render --test sweep --
 //! --nocapture` with `SWEEP_COMBOS=10000` is the full sweep.
 
 mod common;
@@ -142,7 +142,17 @@ fn random_valid_settings_render_finite_aovs_and_invalid_ones_are_refused() {
     let mut report = Vec::new();
     let (mut total_rendered, mut total_refused, mut total_invalid) = (0, 0, 0);
     let mut failures = Vec::new();
+    // `SWEEP_TECHNIQUES=a,b` sweeps only those (each with its share of SWEEP_COMBOS).
+    let only: Option<Vec<String>> = std::env::var("SWEEP_TECHNIQUES")
+        .ok()
+        .map(|v| v.split(',').map(str::to_string).collect());
     for (t, desc) in REGISTRY.iter().enumerate() {
+        if only
+            .as_ref()
+            .is_some_and(|o| !o.iter().any(|n| n == desc.name))
+        {
+            continue;
+        }
         let start = std::time::Instant::now();
         let mut rng = fastrand::Rng::with_seed(seed ^ (t as u64) << 32);
         let mut r = Renderer::new(
