@@ -149,54 +149,29 @@ pub fn compute_pipeline(
             .map(|(k, v)| (k.to_string(), v.to_bits()))
             .collect(),
     };
-    let hit = with(device, |c| {
-        c.clock += 1;
-        let now = c.clock;
-        match c.pipelines.get_mut(&key) {
-            Some((p, used)) => {
-                *used = now;
-                c.hits += 1;
-                Some(p.clone())
-            }
-            None => {
-                c.misses += 1;
-                None
-            }
-        }
-    });
-    if let Some(p) = hit.flatten() {
-        return p;
-    }
-    let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-        label: Some(label),
-        bind_group_layouts: &groups,
-        immediate_size: 0,
-    });
-    let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-        label: Some(label),
-        layout: Some(&pipeline_layout),
-        module,
-        entry_point: Some(entry_point),
-        compilation_options: wgpu::PipelineCompilationOptions {
-            constants,
-            ..Default::default()
+    cached(
+        device,
+        |c| &mut c.pipelines,
+        key,
+        || {
+            let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+                label: Some(label),
+                bind_group_layouts: &groups,
+                immediate_size: 0,
+            });
+            device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                label: Some(label),
+                layout: Some(&pipeline_layout),
+                module,
+                entry_point: Some(entry_point),
+                compilation_options: wgpu::PipelineCompilationOptions {
+                    constants,
+                    ..Default::default()
+                },
+                cache: None,
+            })
         },
-        cache: None,
-    });
-    with(device, |c| {
-        if c.pipelines.len() >= CAPACITY
-            && let Some(oldest) = c
-                .pipelines
-                .iter()
-                .min_by_key(|(_, (_, used))| *used)
-                .map(|(k, _)| k.clone())
-        {
-            c.pipelines.remove(&oldest);
-        }
-        let now = c.clock;
-        c.pipelines.insert(key, (pipeline.clone(), now));
-    });
-    pipeline
+    )
 }
 
 /// The raster pipeline of `key`, made by `make` the first time (raster pipelines are compiled
@@ -207,39 +182,50 @@ pub fn raster_pipeline(
     key: RasterKey,
     make: impl FnOnce() -> wgpu::RenderPipeline,
 ) -> wgpu::RenderPipeline {
+    cached(device, |c| &mut c.raster, key, make)
+}
+
+/// The value of `key` in the map `map` picks from `device`'s cache, made by `make` on a miss
+/// (the least recently used entry dropped when the map holds [`CAPACITY`]); made every time for
+/// a device that is not cached.
+fn cached<K: Clone + Eq + Hash, V: Clone>(
+    device: &wgpu::Device,
+    map: impl Fn(&mut DeviceCache) -> &mut HashMap<K, (V, u64)>,
+    key: K,
+    make: impl FnOnce() -> V,
+) -> V {
     let hit = with(device, |c| {
         c.clock += 1;
         let now = c.clock;
-        match c.raster.get_mut(&key) {
-            Some((p, used)) => {
-                *used = now;
-                c.hits += 1;
-                Some(p.clone())
-            }
-            None => {
-                c.misses += 1;
-                None
-            }
+        let found = map(c).get_mut(&key).map(|(v, used)| {
+            *used = now;
+            v.clone()
+        });
+        if found.is_some() {
+            c.hits += 1;
+        } else {
+            c.misses += 1;
         }
+        found
     });
-    if let Some(p) = hit.flatten() {
-        return p;
+    if let Some(v) = hit.flatten() {
+        return v;
     }
-    let pipeline = make();
+    let value = make();
     with(device, |c| {
-        if c.raster.len() >= CAPACITY
-            && let Some(oldest) = c
-                .raster
+        let now = c.clock;
+        let m = map(c);
+        if m.len() >= CAPACITY
+            && let Some(oldest) = m
                 .iter()
                 .min_by_key(|(_, (_, used))| *used)
                 .map(|(k, _)| k.clone())
         {
-            c.raster.remove(&oldest);
+            m.remove(&oldest);
         }
-        let now = c.clock;
-        c.raster.insert(key, (pipeline.clone(), now));
+        m.insert(key, (value.clone(), now));
     });
-    pipeline
+    value
 }
 
 /// (hits, misses, pipelines held) of `device`'s pipeline cache.
