@@ -2,6 +2,8 @@
 # Installs what a fresh Debian/Ubuntu machine lacks to build and run nearfield:
 # - a Vulkan driver: Mesa's lavapipe (software rasterizer) when no Vulkan ICD is installed;
 # - a virtual X server (xvfb, xauth) for the viewer's window tests when xvfb-run is missing;
+# - xwd (x11-apps) and ImageMagick's convert, with which the viewer test grabs the X screen;
+# - Chromium, in which the report test loads report.html headless;
 # - a C++ compiler (nv-flip, the FLIP metric, builds its C++ core) when none is installed;
 # - a Rust toolchain through rustup when cargo is missing.
 # Idempotent: does nothing when all are present.
@@ -29,6 +31,17 @@ if ! command -v xvfb-run >/dev/null 2>&1; then
     export DEBIAN_FRONTEND=noninteractive
     as_root apt-get update -qq
     as_root apt-get install -y -qq --no-install-recommends xvfb xauth >/dev/null
+fi
+
+missing=()
+command -v xwd >/dev/null 2>&1 || missing+=(x11-apps)
+[ -x /usr/bin/convert ] || missing+=(imagemagick)
+command -v chromium >/dev/null 2>&1 || missing+=(chromium)
+if [ ${#missing[@]} -gt 0 ]; then
+    echo "setup: installing ${missing[*]} (screen grabs of the viewer, the report in a browser)"
+    export DEBIAN_FRONTEND=noninteractive
+    as_root apt-get update -qq
+    as_root apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 fi
 
 if ! command -v c++ >/dev/null 2>&1; then

@@ -315,3 +315,129 @@ fn values_outside_their_ranges_are_refused_without_harm() {
         "state changed by refused values: FLIP {flip}"
     );
 }
+
+/// `xwd` (x11-apps) and Debian's ImageMagick `convert` take the screenshot of the X screen; with
+/// REQUIRE_GPU=1 their absence is a failure (scripts/setup.sh installs them).
+fn have_screen_grab() -> bool {
+    let ok =
+        Command::new("xwd").arg("-help").output().is_ok() && Path::new("/usr/bin/convert").exists();
+    if !ok {
+        assert!(
+            std::env::var("REQUIRE_GPU").as_deref() != Ok("1"),
+            "REQUIRE_GPU=1 but xwd or /usr/bin/convert is missing (apt: x11-apps imagemagick; \
+             scripts/setup.sh)"
+        );
+        eprintln!("skipping: xwd or /usr/bin/convert not installed");
+    }
+    ok
+}
+
+/// The position in `screen` where `view` appears with the smallest largest channel difference,
+/// and that difference. Candidates are first tested on a sparse grid of the view's pixels.
+fn locate(screen: &image::RgbImage, view: &image::RgbImage) -> Option<((u32, u32), u8)> {
+    let (sw, sh) = screen.dimensions();
+    let (vw, vh) = view.dimensions();
+    if vw > sw || vh > sh {
+        return None;
+    }
+    let largest_difference = |x0: u32, y0: u32, step: u32, stop_above: u8| -> u8 {
+        let mut worst = 0u8;
+        for y in (0..vh).step_by(step as usize) {
+            for x in (0..vw).step_by(step as usize) {
+                let a = screen.get_pixel(x0 + x, y0 + y).0;
+                let b = view.get_pixel(x, y).0;
+                for c in 0..3 {
+                    worst = worst.max(a[c].abs_diff(b[c]));
+                }
+                if worst > stop_above {
+                    return worst;
+                }
+            }
+        }
+        worst
+    };
+    let mut best: Option<((u32, u32), u8)> = None;
+    for y0 in 0..=sh - vh {
+        for x0 in 0..=sw - vw {
+            if largest_difference(x0, y0, 23, 8) > 8 {
+                continue;
+            }
+            let d = largest_difference(x0, y0, 1, u8::MAX);
+            if best.is_none_or(|(_, b)| d < b) {
+                best = Some(((x0, y0), d));
+            }
+        }
+    }
+    best
+}
+
+/// Largest difference allowed between a presented pixel and `render`'s PNG, in levels of 255
+/// (egui dithers its output by less than one level).
+const PRESENTED_BOUND: u8 = 2;
+
+#[test]
+fn the_window_presents_the_pixels_render_writes() {
+    if !have_xvfb() || !have_screen_grab() {
+        return;
+    }
+    let dir = scratch("presented");
+    let ready = dir.join("ready.png");
+    let script = dir.join("session.txt");
+    // The screenshot marks that frames have been presented; the window stays open meanwhile.
+    std::fs::write(
+        &script,
+        format!("wait 10\nscreenshot {}\nwait 100000\n", ready.display()),
+    )
+    .unwrap();
+    let shot = dir.join("screen.png");
+    let args = [SCENE, &["--method", "none"]].concat();
+    let viewer = format!(
+        "{} view {} --script {}",
+        env!("CARGO_BIN_EXE_nearfield"),
+        args.join(" "),
+        script.display()
+    );
+    let grab = format!(
+        "{viewer} & pid=$!; for i in $(seq 600); do [ -s {ready} ] && break; sleep 0.2; done; \
+         sleep 2; xwd -root -silent | /usr/bin/convert xwd:- {shot}; status=$?; kill $pid; \
+         wait $pid; exit $status",
+        ready = ready.display(),
+        shot = shot.display()
+    );
+    let out = Command::new("xvfb-run")
+        .args(["-a", "-s", "-screen 0 1280x720x24", "bash", "-c", &grab])
+        .output()
+        .expect("run xvfb-run");
+    assert!(
+        out.status.success() && shot.exists(),
+        "screen grab failed: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let reference = dir.join("render.png");
+    render(&args, &reference);
+    let (screen, view) = (rgb(&shot), rgb(&reference));
+    let ((x, y), worst) = locate(&screen, &view).unwrap_or_else(|| {
+        panic!(
+            "the 3D view is not on the screen (within 8 levels anywhere): {}",
+            shot.display()
+        )
+    });
+    let mean = {
+        let mut sum = 0u64;
+        for (px, py, p) in view.enumerate_pixels() {
+            let s = screen.get_pixel(x + px, y + py).0;
+            sum += (0..3)
+                .map(|c| u64::from(s[c].abs_diff(p.0[c])))
+                .sum::<u64>();
+        }
+        sum as f64 / (3 * view.width() * view.height()) as f64
+    };
+    eprintln!(
+        "presented view at ({x}, {y}): largest difference {worst}/255, mean {mean:.4}/255 \
+         from render's PNG"
+    );
+    assert!(
+        worst <= PRESENTED_BOUND,
+        "presented pixels differ by {worst} levels (> {PRESENTED_BOUND})"
+    );
+}

@@ -462,7 +462,9 @@ impl Panel {
         let native = egui::vec2(w as f32, h as f32) / ppp;
         let scale = (avail.x / native.x).min(avail.y / native.y).min(1.0);
         let size = native * scale;
-        let rect = egui::Rect::from_center_size(ui.max_rect().center(), size);
+        // Its corner on the physical pixel grid, so that texels land on pixels unfiltered.
+        let corner = ((ui.max_rect().center() - size / 2.0) * ppp).round() / ppp;
+        let rect = egui::Rect::from_min_size(corner, size);
         let response = ui.put(
             rect,
             egui::Image::new((view, size)).sense(egui::Sense::click_and_drag()),

@@ -133,8 +133,10 @@ impl Running {
         let (w, h) = plan.start.settings.size;
         let attributes = Window::default_attributes()
             .with_title(format!("nearfield — {}", plan.start.scene_name))
+            // Room for the control panel (its content makes it up to ~440 pixels wide) beside
+            // the image at one texel per pixel.
             .with_inner_size(winit::dpi::PhysicalSize::new(
-                (w + 340).clamp(640, 2400),
+                (w + 480).clamp(640, 2400),
                 h.clamp(480, 1400),
             ));
         let window = Arc::new(
@@ -188,7 +190,7 @@ impl Running {
             egui_wgpu::Renderer::new(&session.ctx.device, format, Default::default());
         let view_texture = egui_renderer.register_native_texture(
             &session.ctx.device,
-            &session.display.srgb_view,
+            &session.display.encoded_view,
             wgpu::FilterMode::Linear,
         );
         let panel = Panel::new(&session, plan.vsync);
@@ -317,7 +319,7 @@ impl Running {
             self.view_size = self.session.display.size();
             self.egui_renderer.update_egui_texture_from_wgpu_texture(
                 &self.session.ctx.device,
-                &self.session.display.srgb_view,
+                &self.session.display.encoded_view,
                 wgpu::FilterMode::Linear,
                 self.view_texture,
             );

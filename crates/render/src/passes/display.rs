@@ -15,8 +15,9 @@ pub fn source() -> String {
     util::compose(&[util::TONEMAP_OPS_WGSL, SHADER])
 }
 
-/// The output's format: sRGB-encoded bytes in a unorm texture (storage textures cannot be sRGB);
-/// sample it through [`DisplayPass::srgb_view`] to get linear values back.
+/// The output's format: sRGB-encoded bytes in a unorm texture (storage textures cannot be sRGB).
+/// [`DisplayPass::encoded_view`] samples those bytes as they are (what egui expects of a user
+/// texture: gamma-encoded colour).
 pub const DISPLAY_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
 
 /// How one side's image becomes display bytes (display.wgsl's modes).
@@ -125,8 +126,10 @@ pub struct DisplayPass {
     params: wgpu::Buffer,
     /// Display bytes (rgba8unorm, sRGB-encoded), COPY_SRC for screenshots.
     pub output: wgpu::Texture,
-    /// [`Self::output`] seen as `Rgba8UnormSrgb`: sampling it gives linear colour.
-    pub srgb_view: wgpu::TextureView,
+    /// [`Self::output`] for sampling: gives the encoded bytes (no sRGB decode), which a UI that
+    /// blends in gamma space (egui) shows unchanged on a non-sRGB surface and decodes itself
+    /// for an sRGB one.
+    pub encoded_view: wgpu::TextureView,
     storage_view: wgpu::TextureView,
     size: (u32, u32),
 }
@@ -142,13 +145,13 @@ impl DisplayPass {
             usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
-        let (output, srgb_view, storage_view) = output_texture(device, size);
+        let (output, encoded_view, storage_view) = output_texture(device, size);
         DisplayPass {
             pipeline,
             layout,
             params,
             output,
-            srgb_view,
+            encoded_view,
             storage_view,
             size,
         }
@@ -161,7 +164,7 @@ impl DisplayPass {
     /// Makes a new output of `size` (the old one is released when no longer referenced).
     pub fn resize(&mut self, device: &wgpu::Device, size: (u32, u32)) {
         if size != self.size {
-            (self.output, self.srgb_view, self.storage_view) = output_texture(device, size);
+            (self.output, self.encoded_view, self.storage_view) = output_texture(device, size);
             self.size = size;
         }
     }
@@ -233,13 +236,12 @@ fn output_texture(
         usage: wgpu::TextureUsages::STORAGE_BINDING
             | wgpu::TextureUsages::TEXTURE_BINDING
             | wgpu::TextureUsages::COPY_SRC,
-        view_formats: &[wgpu::TextureFormat::Rgba8UnormSrgb],
+        view_formats: &[],
     });
-    let srgb = texture.create_view(&wgpu::TextureViewDescriptor {
-        format: Some(wgpu::TextureFormat::Rgba8UnormSrgb),
+    let encoded = texture.create_view(&wgpu::TextureViewDescriptor {
         usage: Some(wgpu::TextureUsages::TEXTURE_BINDING),
         ..Default::default()
     });
     let storage = texture.create_view(&Default::default());
-    (texture, srgb, storage)
+    (texture, encoded, storage)
 }
