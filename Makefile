@@ -2,14 +2,38 @@
 CARGO ?= $(shell command -v cargo 2>/dev/null || echo $(HOME)/.cargo/bin/cargo)
 export XDG_RUNTIME_DIR ?= $(shell d=$${TMPDIR:-/tmp}/nearfield-xdg-$$(id -u); mkdir -p -m 700 $$d; echo $$d)
 
-.PHONY: setup demo test lint fuzz
+.PHONY: setup demo test lint fuzz docs figures
 
 setup:
 	@./scripts/setup.sh
 
-# Renders the built-in default scene (open-top Cornell box under the analytic sky) to cornell.png.
+# Renders the built-in default scene (open-top Cornell box under the analytic sky) with the most
+# accurate technique at interactive cost (hbil, 16 temporal frames) to cornell.png, and the strip
+# none | ssao | ssdo | s3ho | hbil | vbgi | reference, each labelled with its relative error against
+# the path-traced reference, to cornell-compare.png (report in cornell-compare/).
+NEARFIELD = target/release/nearfield
+DEMO_SCENE = builtin:cornell --radius 1
 demo: setup
-	$(CARGO) run --release -p nearfield-cli -- render builtin:cornell -o cornell.png
+	$(CARGO) build --release -p nearfield-cli
+	$(NEARFIELD) render $(DEMO_SCENE) --method hbil --frames 16 -o cornell.png
+	$(NEARFIELD) compare $(DEMO_SCENE) --size 384x288 --aov lambertian --frames 16 --spp 256 \
+		--max-depth 8 --methods none,ssao,ssdo,s3ho,hbil,vbgi --out cornell-compare \
+		--strip cornell-compare.png
+	@echo
+	@echo "  $(CURDIR)/cornell.png           hbil, 16 frames, 1280x720"
+	@echo "  $(CURDIR)/cornell-compare.png   each technique beside the reference, with its error"
+	@echo "  $(CURDIR)/cornell-compare/report.html"
+	@echo "  the same scene in the viewer:  $(NEARFIELD) view $(DEMO_SCENE) --method hbil"
+
+# The book (docs/, mdBook) into target/book/; installs mdbook with cargo when it is missing.
+docs:
+	@command -v mdbook >/dev/null 2>&1 || [ -x $(HOME)/.cargo/bin/mdbook ] || $(CARGO) install mdbook --locked --version 0.5.4
+	PATH="$(HOME)/.cargo/bin:$$PATH" mdbook build docs
+	@echo "  $(CURDIR)/target/book/index.html"
+
+# Regenerates every table and figure of the book (minutes; runs renders and references).
+figures:
+	./scripts/figures.sh
 
 # Every test: unit, naga shader validation, GPU tests (lavapipe without a GPU), real assets from
 # ../shared/assets, bad-input handling. REQUIRE_GPU=1 makes a missing adapter a failure.

@@ -126,7 +126,14 @@ pub fn run(args: BenchArgs) -> Result<()> {
         walls: Vec<f64>,
     }
     let mut timed = Vec::with_capacity(methods.len());
+    let progress = nearfield_scene::progress::Progress::new(
+        "bench",
+        (methods.len() as u64) * u64::from(args.warmup + args.frames),
+        "frames",
+        true,
+    );
     for method in &methods {
+        progress.set_message(&format!("{method}, warm-up"));
         let mut r = Renderer::new(
             &ctx,
             &loaded.scene,
@@ -139,6 +146,7 @@ pub fn run(args: BenchArgs) -> Result<()> {
         loaded.report_sun();
         for i in 0..args.warmup {
             crate::options::orbit_frame(&mut r, i, args.orbit);
+            progress.inc(1);
         }
         r.wait();
         timed.push(Timed {
@@ -149,8 +157,10 @@ pub fn run(args: BenchArgs) -> Result<()> {
             walls: Vec::new(),
         });
     }
+    progress.set_message("timed frames");
     for i in 0..args.frames {
         for t in &mut timed {
+            progress.inc(1);
             let t0 = Instant::now();
             crate::options::orbit_frame(&mut t.renderer, args.warmup + i, args.orbit);
             t.renderer.wait();
@@ -169,6 +179,7 @@ pub fn run(args: BenchArgs) -> Result<()> {
             t.renderer.check_device()?;
         }
     }
+    progress.finish();
     let mut results = BTreeMap::new();
     for (method, mut t) in methods.iter().zip(timed) {
         let passes: BTreeMap<String, Stat> = t

@@ -9,6 +9,7 @@ use clap::Args;
 use nearfield_eval::image_ops;
 use nearfield_eval::metrics::{self, Mask, MaskSettings};
 use nearfield_eval::report::{ConvergencePoint, MethodReport, ReferenceInfo, Report};
+use nearfield_eval::strip::{Panel, strip};
 use nearfield_reference::{ReferenceImage, exr_io};
 use nearfield_render::{Aov, GpuContext, Renderer};
 use std::path::PathBuf;
@@ -52,6 +53,10 @@ pub struct CompareArgs {
     /// Output folder.
     #[arg(long, default_value = "compare")]
     pub out: PathBuf,
+    /// Also write one PNG strip of the methods' images and the reference side by side, each
+    /// labelled with its name and its relative error.
+    #[arg(long)]
+    pub strip: Option<PathBuf>,
 }
 
 /// `--region X0,Y0,X1,Y1` inside an image of `size`.
@@ -127,6 +132,12 @@ pub fn run(args: CompareArgs) -> Result<()> {
         }
         None => None,
     };
+    if let Some(p) = &args.strip {
+        if p.extension().and_then(|e| e.to_str()) != Some("png") {
+            return Err(BadInput(format!("--strip {}: must be a .png file", p.display())).into());
+        }
+        crate::render::check_parent_dir(p)?;
+    }
     std::fs::create_dir_all(&args.out)
         .with_context(|| format!("cannot create {}", args.out.display()))?;
     let mut loaded = args.scene.load()?;
@@ -138,7 +149,7 @@ pub fn run(args: CompareArgs) -> Result<()> {
         Some((img, p)) => (
             img,
             ReferenceInfo {
-                path: p.display().to_string(),
+                path: format!("file {}", file_name(&p)),
                 spp: None,
                 seed: None,
                 image: "reference.png".into(),
@@ -151,7 +162,7 @@ pub fn run(args: CompareArgs) -> Result<()> {
                 img,
                 ReferenceInfo {
                     path: cached
-                        .map(|p| p.display().to_string())
+                        .map(|p| format!("reference cache entry {}", file_name(&p)))
                         .unwrap_or_else(|| "computed, not cached".into()),
                     spp: Some(ref_settings.spp),
                     seed: Some(ref_settings.seed),
@@ -178,8 +189,16 @@ pub fn run(args: CompareArgs) -> Result<()> {
         depth_tolerance: 0.01,
     };
     let mut reports = Vec::new();
+    let mut panels = Vec::new();
     let mut last_mask = None;
+    let progress = nearfield_scene::progress::Progress::new(
+        "compare",
+        methods.len() as u64 * u64::from(args.frames),
+        "frames",
+        true,
+    );
     for method in &methods {
+        progress.set_message(method);
         let mut r = Renderer::new(
             &ctx,
             &loaded.scene,
@@ -195,6 +214,10 @@ pub fn run(args: CompareArgs) -> Result<()> {
         let mut mask = None;
         for i in 0..args.frames {
             crate::options::orbit_frame(&mut r, i, args.orbit);
+            if i % 8 == 7 {
+                r.wait();
+            }
+            progress.inc(1);
             let n = i + 1;
             if still && (args.frames <= 64 || n.is_power_of_two() || n == args.frames) {
                 let value = r.read_aov(gpu_aov);
@@ -232,6 +255,13 @@ pub fn run(args: CompareArgs) -> Result<()> {
         let mut m = metrics::metrics(&value.pixels, &reference.value, &mask);
         let srgb = image_ops::tonemap(&value.pixels, w, h);
         m.flip = Some(metrics::flip_mean(&srgb, &ref_srgb, &mask));
+        if args.strip.is_some() {
+            panels.push(Panel {
+                image: srgb.clone(),
+                title: method.clone(),
+                subtitle: format!("relative error {:.3}", m.relative_error),
+            });
+        }
         let errors = metrics::signed_errors(&value.pixels, &reference.value, &mask);
         let range = image_ops::error_range(&errors, &mask.valid);
         let image = format!("{method}.png");
@@ -241,7 +271,7 @@ pub fn run(args: CompareArgs) -> Result<()> {
             image_ops::heatmap(&errors, &mask.valid, w, h, range),
             args.out.join(&heat),
         )?;
-        println!(
+        progress.suspend(|| println!(
             "{method:<10} pixels {:>8}  bias {:+.5}  MAE {:.5}  RMSE {:.5}  rel {:.4}  FLIP {:.4}",
             m.pixels,
             m.bias,
@@ -249,7 +279,7 @@ pub fn run(args: CompareArgs) -> Result<()> {
             m.rmse,
             m.relative_error,
             m.flip.unwrap_or(0.0)
-        );
+        ));
         reports.push(MethodReport {
             name: method.clone(),
             metrics: m,
@@ -259,6 +289,19 @@ pub fn run(args: CompareArgs) -> Result<()> {
             convergence,
         });
         last_mask = Some(mask);
+    }
+    progress.finish();
+    if let Some(path) = &args.strip {
+        panels.push(Panel {
+            image: ref_srgb.clone(),
+            title: "reference".into(),
+            subtitle: match ref_info.spp {
+                Some(spp) => format!("ray traced, {spp} spp"),
+                None => "ray traced".into(),
+            },
+        });
+        png(strip(&panels), path.clone())?;
+        eprintln!("nearfield: wrote {}", path.display());
     }
     let mask = last_mask.expect("at least one method");
     let report = Report {
@@ -287,6 +330,13 @@ pub fn run(args: CompareArgs) -> Result<()> {
         mask.silhouette_pixels
     );
     Ok(())
+}
+
+/// The last component of `p` (reports name no directories).
+fn file_name(p: &std::path::Path) -> String {
+    p.file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_else(|| p.display().to_string())
 }
 
 /// The comparison mask: GPU and reference coverage and depth (silhouettes excluded), within

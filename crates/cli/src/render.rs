@@ -129,9 +129,21 @@ pub fn run(args: RenderArgs) -> Result<()> {
         .into());
     }
     loaded.report_sun();
+    let progress = nearfield_scene::progress::Progress::new(
+        &format!("render {}", args.method),
+        u64::from(args.frames),
+        "frames",
+        args.frames > 1,
+    );
     for i in 0..args.frames {
         crate::options::orbit_frame(&mut renderer, i, args.orbit);
+        // Progress counts finished frames, not queued ones.
+        if i % 8 == 7 {
+            renderer.wait();
+        }
+        progress.inc(1);
     }
+    progress.finish();
     let Some(aov) = aov else {
         let img = renderer
             .read_extra(&args.aov)

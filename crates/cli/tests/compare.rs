@@ -106,3 +106,152 @@ fn reference_is_cached_and_compare_reports_exact_zero_error() {
     // No network: nothing in the report points off the machine.
     assert!(!html.contains("http://") && !html.contains("https://"));
 }
+
+/// Chromium, headless, as this machine's network allows it (no background connections).
+fn chromium(profile: &std::path::Path, args: &[&str]) -> std::process::Output {
+    Command::new("chromium")
+        .args([
+            "--headless",
+            "--no-sandbox",
+            "--disable-gpu",
+            "--disable-quic",
+            "--no-first-run",
+            "--disable-background-networking",
+            "--disable-component-update",
+            "--disable-sync",
+            "--allow-file-access-from-files",
+            "--enable-logging=stderr",
+            "--v=0",
+        ])
+        .arg(format!("--user-data-dir={}", profile.display()))
+        .args(args)
+        .output()
+        .expect("run chromium")
+}
+
+fn have_chromium() -> bool {
+    let ok = Command::new("chromium")
+        .arg("--version")
+        .output()
+        .is_ok_and(|o| o.status.success());
+    if !ok {
+        assert!(
+            std::env::var("REQUIRE_GPU").as_deref() != Ok("1"),
+            "REQUIRE_GPU=1 but chromium is missing (apt: chromium; scripts/setup.sh)"
+        );
+        eprintln!("skipping: chromium not installed");
+    }
+    ok
+}
+
+/// The report, moved to another folder, opened from disk in headless Chromium: it loads without
+/// a script error or console error, shows the metrics table with a row per method, and its own
+/// self-test (`#selftest`: sort by a column both ways, flip each image with a key and the
+/// slider, zoom ×4 on a click and back, every image loads) passes in the real browser.
+#[test]
+fn report_works_in_a_browser_from_any_folder() {
+    if !have_chromium() {
+        return;
+    }
+    let dir = std::env::temp_dir().join(format!("nearfield-report-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let out = dir.join("made");
+    let (code, _, err) = run(
+        &[
+            "compare",
+            "builtin:cornell",
+            "--size",
+            "64x48",
+            "--aov",
+            "ao",
+            "--radius",
+            "1",
+            "--spp",
+            "8",
+            "--methods",
+            "none,ssao,gtao",
+            "--out",
+            out.to_str().unwrap(),
+        ],
+        &dir.join("cache"),
+    );
+    if !gpu_available(&err) {
+        return;
+    }
+    assert_eq!(code, 0, "{err}");
+    // Relative paths only: the folder works wherever it is put.
+    let moved = dir.join("moved");
+    std::fs::rename(&out, &moved).unwrap();
+    let html = std::fs::read_to_string(moved.join("report.html")).unwrap();
+    assert!(
+        !html.contains(dir.to_str().unwrap()) && !html.contains("/.cache/"),
+        "the report names a directory"
+    );
+    let url = format!("file://{}/report.html", moved.display());
+    let o = chromium(
+        &dir.join("profile"),
+        &[
+            "--virtual-time-budget=10000",
+            "--dump-dom",
+            &format!("{url}#selftest"),
+        ],
+    );
+    let dom = String::from_utf8_lossy(&o.stdout);
+    let log = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "chromium failed: {log}");
+    let console_errors: Vec<&str> = log
+        .lines()
+        .filter(|l| l.contains("CONSOLE") && (l.contains("ERROR") || l.contains("Uncaught")))
+        .collect();
+    assert!(
+        console_errors.is_empty(),
+        "console errors: {console_errors:?}"
+    );
+    assert!(!dom.contains("data-errors"), "script errors: {dom}");
+    assert!(
+        dom.contains(r#"data-ready="1""#),
+        "the page did not load: {dom}"
+    );
+    assert!(
+        dom.contains(r#"data-selftest="ok""#),
+        "self-test: {}",
+        dom.split("data-selftest=")
+            .nth(1)
+            .unwrap_or("(did not finish)")
+    );
+    let table = dom
+        .split(r#"<table id="metrics""#)
+        .nth(1)
+        .and_then(|t| t.split("</table>").next())
+        .expect("the metrics table is on the page");
+    for m in ["none", "ssao", "gtao"] {
+        assert!(
+            table.contains(&format!(">{m}</a>")),
+            "no row for {m}: {table}"
+        );
+    }
+    // What is presented: a screenshot of the page shows dark text on the light page.
+    let shot = dir.join("page.png");
+    let o = chromium(
+        &dir.join("profile"),
+        &[
+            "--window-size=1200,900",
+            &format!("--screenshot={}", shot.display()),
+            &url,
+        ],
+    );
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let img = image::open(&shot).unwrap().to_rgb8();
+    let dark = img.pixels().filter(|p| p.0.iter().all(|&c| c < 80)).count();
+    let light = img
+        .pixels()
+        .filter(|p| p.0.iter().all(|&c| c > 230))
+        .count();
+    let n = (img.width() * img.height()) as usize;
+    eprintln!(
+        "report screenshot: {:.2} % dark, {:.1} % light pixels",
+        100.0 * dark as f64 / n as f64,
+        100.0 * light as f64 / n as f64
+    );
+    assert!(dark * 200 > n && light * 2 > n, "the page looks blank");
+}

@@ -5,6 +5,7 @@
 pub mod image_ops;
 pub mod metrics;
 pub mod report;
+pub mod strip;
 
 pub use metrics::{Mask, MaskSettings, Metrics};
 

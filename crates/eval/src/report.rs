@@ -61,7 +61,7 @@ pub fn convergence_svg(methods: &[MethodReport]) -> String {
     let x = |f: u32| left + (f as f64).log2() / max_frames.log2() * (w - left - right);
     let y = |e: f64| top + (1.0 - e / max_err) * (h - top - bottom);
     let mut svg = format!(
-        r##"<svg xmlns="http://www.w3.org/2000/svg" width="{w}" height="{h}" style="background:#fff;border:1px solid #ccc">
+        r##"<svg width="{w}" height="{h}" style="background:#fff;border:1px solid #ccc">
 <line x1="{left}" y1="{y0}" x2="{x1}" y2="{y0}" stroke="#000"/><line x1="{left}" y1="{top}" x2="{left}" y2="{y0}" stroke="#000"/>
 <text x="{xm}" y="{yl}" text-anchor="middle" font-size="12">frames (log scale)</text>
 <text x="14" y="{ym}" font-size="12" transform="rotate(-90 14 {ym})" text-anchor="middle">relative error</text>"##,
@@ -118,7 +118,8 @@ pub struct Report {
     pub size: [u32; 2],
     pub radius: String,
     pub adapter: String,
-    /// Where the reference came from (file or cache path) and its sampling.
+    /// Where the reference came from (a file's name, or the cache entry's; never a directory,
+    /// so that the folder can be moved and shared) and its sampling.
     pub reference: ReferenceInfo,
     pub mask: MaskSettings,
     /// The pixel rectangle [x0, y0, x1, y1) the metrics were restricted to, if any.
@@ -139,6 +140,137 @@ pub struct ReferenceInfo {
     pub seed: Option<u32>,
     pub image: String,
 }
+
+/// An HTML id for a method's section.
+fn anchor(name: &str) -> String {
+    name.chars()
+        .map(|c| if c.is_ascii_alphanumeric() { c } else { '-' })
+        .collect()
+}
+
+/// The report's behaviour: sortable metrics table; per method an image that flips between the
+/// method, the reference and the error (buttons, slider, keys 1-3 and space) and zooms ×4 where
+/// clicked. With `#selftest` in the address it exercises all of that itself and writes the
+/// outcome into `body[data-selftest]` (the browser test reads it).
+const SCRIPT: &str = r##"<script>
+"use strict";
+window.addEventListener("error", function (e) {
+  document.body.dataset.errors = (document.body.dataset.errors || "") + e.message + ";";
+});
+function sortBy(th) {
+  const table = th.closest("table"), body = table.tBodies[0];
+  const col = Array.prototype.indexOf.call(th.parentNode.children, th);
+  const asc = !th.classList.contains("asc");
+  table.querySelectorAll("th").forEach(function (h) { h.classList.remove("asc", "desc"); });
+  th.classList.add(asc ? "asc" : "desc");
+  const key = function (row) {
+    const cell = row.children[col];
+    if (th.dataset.sort === "num") {
+      const v = parseFloat(cell.dataset.v);
+      return isNaN(v) ? Infinity : v;
+    }
+    return cell.textContent;
+  };
+  const rows = Array.from(body.rows);
+  rows.sort(function (a, b) {
+    const x = key(a), y = key(b);
+    const c = x < y ? -1 : x > y ? 1 : 0;
+    return asc ? c : -c;
+  });
+  rows.forEach(function (r) { body.appendChild(r); });
+}
+document.querySelectorAll("th[data-sort]").forEach(function (th) {
+  th.addEventListener("click", function () { sortBy(th); });
+});
+function show(section, i) {
+  const img = section.querySelector("img");
+  const srcs = img.dataset.srcs.split("|"), names = img.dataset.names.split("|");
+  img.src = srcs[i];
+  img.alt = names[i];
+  section.dataset.shown = String(i);
+  section.querySelector("input[type=range]").value = String(i);
+  section.querySelector(".which").textContent = names[i];
+  section.querySelectorAll("button").forEach(function (b) {
+    b.classList.toggle("on", b.dataset.i === String(i));
+  });
+  section.querySelector(".legend").style.visibility = i === 2 ? "visible" : "hidden";
+}
+function zoom(section, x, y) {
+  const frame = section.querySelector(".frame"), img = frame.querySelector("img");
+  const w = parseInt(img.getAttribute("width"), 10), h = parseInt(img.getAttribute("height"), 10);
+  const zoomed = !frame.classList.contains("zoomed");
+  frame.classList.toggle("zoomed", zoomed);
+  const s = zoomed ? 4 : 1;
+  img.style.width = (w * s) + "px";
+  img.style.height = (h * s) + "px";
+  frame.scrollLeft = zoomed ? x * s - frame.clientWidth / 2 : 0;
+  frame.scrollTop = zoomed ? y * s - frame.clientHeight / 2 : 0;
+  section.dataset.zoom = String(s);
+}
+document.querySelectorAll("section.flip").forEach(function (section) {
+  show(section, 0);
+  section.querySelectorAll("button").forEach(function (b) {
+    b.addEventListener("click", function () { show(section, parseInt(b.dataset.i, 10)); });
+  });
+  section.querySelector("input[type=range]").addEventListener("input", function (e) {
+    show(section, parseInt(e.target.value, 10));
+  });
+  section.querySelector(".frame img").addEventListener("click", function (e) {
+    const r = e.target.getBoundingClientRect(), s = parseInt(section.dataset.zoom || "1", 10);
+    zoom(section, (e.clientX - r.left) / s, (e.clientY - r.top) / s);
+  });
+  section.addEventListener("keydown", function (e) {
+    if (e.key === "1" || e.key === "2" || e.key === "3") show(section, parseInt(e.key, 10) - 1);
+    else if (e.key === " ") { e.preventDefault(); show(section, section.dataset.shown === "0" ? 1 : 0); }
+  });
+  section.addEventListener("mouseenter", function () { section.focus({ preventScroll: true }); });
+});
+function selftest() {
+  const failures = [];
+  const table = document.getElementById("metrics");
+  const rmse = table.querySelectorAll("th")[4];
+  rmse.click();
+  const values = Array.from(table.tBodies[0].rows).map(function (r) { return parseFloat(r.children[4].dataset.v); });
+  for (let i = 1; i < values.length; i++) if (values[i - 1] > values[i]) failures.push("RMSE not ascending after a click");
+  rmse.click();
+  const down = Array.from(table.tBodies[0].rows).map(function (r) { return parseFloat(r.children[4].dataset.v); });
+  for (let i = 1; i < down.length; i++) if (down[i - 1] < down[i]) failures.push("RMSE not descending after a second click");
+  document.querySelectorAll("section.flip").forEach(function (section) {
+    const img = section.querySelector("img"), srcs = img.dataset.srcs.split("|");
+    section.dispatchEvent(new KeyboardEvent("keydown", { key: "2" }));
+    if (img.getAttribute("src") !== srcs[1]) failures.push(section.id + ": key 2 did not show the reference");
+    const slider = section.querySelector("input[type=range]");
+    slider.value = "2";
+    slider.dispatchEvent(new Event("input"));
+    if (img.getAttribute("src") !== srcs[2]) failures.push(section.id + ": the slider did not show the error");
+    section.dispatchEvent(new KeyboardEvent("keydown", { key: "1" }));
+    img.dispatchEvent(new MouseEvent("click", { clientX: img.getBoundingClientRect().left + 5, clientY: img.getBoundingClientRect().top + 5 }));
+    if (section.dataset.zoom !== "4" || img.clientWidth !== 4 * parseInt(img.getAttribute("width"), 10)) failures.push(section.id + ": a click did not zoom ×4");
+    img.dispatchEvent(new MouseEvent("click", {}));
+    if (section.dataset.zoom !== "1") failures.push(section.id + ": a second click did not zoom back");
+  });
+  const all = [];
+  document.querySelectorAll("img[data-srcs]").forEach(function (img) {
+    img.dataset.srcs.split("|").forEach(function (s) { if (all.indexOf(s) < 0) all.push(s); });
+  });
+  Promise.all(all.map(function (s) {
+    return new Promise(function (done) {
+      const probe = new Image();
+      probe.onload = function () { done(probe.naturalWidth > 0 ? null : s); };
+      probe.onerror = function () { done(s); };
+      probe.src = s;
+    });
+  })).then(function (missing) {
+    missing.forEach(function (s) { if (s) failures.push("image " + s + " did not load"); });
+    document.body.dataset.selftest = failures.length ? failures.join("; ") : "ok";
+  });
+}
+window.addEventListener("load", function () {
+  document.body.dataset.ready = "1";
+  if (location.hash === "#selftest") selftest();
+});
+</script>
+"##;
 
 fn escape(s: &str) -> String {
     s.replace('&', "&amp;")
@@ -167,14 +299,18 @@ pub fn write(dir: &Path, report: &Report) -> std::io::Result<()> {
 <style>body{{font-family:sans-serif;margin:1.5em;background:#fafafa}}table{{border-collapse:collapse;margin:1em 0}}
 td,th{{border:1px solid #ccc;padding:4px 8px;text-align:right}}th{{background:#eee}}
 .row{{display:flex;gap:12px;flex-wrap:wrap;align-items:flex-start}}figure{{margin:0}}figcaption{{font-size:90%;color:#444}}
-img{{image-rendering:pixelated;max-width:480px;border:1px solid #999}}.bar{{width:320px;height:14px;border:1px solid #999;background:linear-gradient(to right,{gradient})}}
+.frame{{overflow:auto;max-width:min(100%,960px);max-height:80vh;border:1px solid #999;display:inline-block;cursor:zoom-in}}
+.frame.zoomed{{cursor:zoom-out}}.frame img{{image-rendering:pixelated;display:block;max-width:none}}
+.controls{{margin:4px 0}}.controls button.on{{background:#333;color:#fff}}.which{{font-size:90%;color:#444}}
+th[data-sort]{{cursor:pointer}}th.asc::after{{content:" ▲"}}th.desc::after{{content:" ▼"}}section.flip:focus{{outline:2px solid #88f}}.bar{{width:320px;height:14px;border:1px solid #999;background:linear-gradient(to right,{gradient})}}
 .ticks{{display:flex;justify-content:space-between;width:322px;font-size:80%}}</style></head><body>
 <h1>{aov} on {scene}</h1>
 <p>{w}×{hh} pixels, near-field radius {radius}, adapter {adapter}. Reference: {refpath}{spp}.
 Metrics over pixels that both images see as surface, outside a {border}-pixel border band, excluding {sil} silhouette pixels
 (view depth differing by more than {tol}%, dilated by 1){nodepth}. Error e = method − reference on the mean of RGB.
 The reference's own noise (RMS standard error over these pixels) is {noise:.5}.</p>
-<table><tr><th>method</th><th>pixels</th><th>bias</th><th>MAE</th><th>RMSE</th><th>relative error</th><th>FLIP</th></tr>"#,
+<p>Click a column's heading to sort by it. Under each method: <b>1</b> / <b>2</b> / <b>3</b> (or the slider, or the buttons) flip one image between the method, the reference and the signed error; <b>space</b> swaps method and reference; a click zooms ×4 there, another click zooms back.</p>
+<table id="metrics"><thead><tr><th data-sort="text">method</th><th data-sort="num">pixels</th><th data-sort="num">bias</th><th data-sort="num">MAE</th><th data-sort="num">RMSE</th><th data-sort="num">relative error</th><th data-sort="num">FLIP</th></tr></thead><tbody>"#,
         scene = escape(&report.scene),
         aov = escape(&report.aov),
         w = report.size[0],
@@ -200,19 +336,26 @@ The reference's own noise (RMS standard error over these pixels) is {noise:.5}.<
         let x = &m.metrics;
         let _ = write!(
             h,
-            "<tr><th>{}</th><td>{}</td><td>{:+.5}</td><td>{:.5}</td><td>{:.5}</td><td>{:.4}</td><td>{}</td></tr>",
-            escape(&m.name),
+            "<tr><th><a href=\"#m-{id}\">{name}</a></th><td data-v=\"{}\">{}</td><td data-v=\"{}\">{:+.5}</td><td data-v=\"{}\">{:.5}</td><td data-v=\"{}\">{:.5}</td><td data-v=\"{}\">{:.4}</td><td data-v=\"{}\">{}</td></tr>",
+            x.pixels,
             x.pixels,
             x.bias,
+            x.bias,
+            x.mae,
             x.mae,
             x.rmse,
+            x.rmse,
             x.relative_error,
+            x.relative_error,
+            x.flip.unwrap_or(f64::NAN),
             x.flip
                 .map(|f| format!("{f:.4}"))
-                .unwrap_or_else(|| "–".into())
+                .unwrap_or_else(|| "–".into()),
+            id = anchor(&m.name),
+            name = escape(&m.name),
         );
     }
-    h.push_str("</table>");
+    h.push_str("</tbody></table>");
     let curve = convergence_svg(&report.methods);
     if !curve.is_empty() {
         let _ = write!(
@@ -236,20 +379,24 @@ The reference's own noise (RMS standard error over these pixels) is {noise:.5}.<
     for m in &report.methods {
         let _ = write!(
             h,
-            r#"<h2>{name}</h2><div class="row">
-<figure><img src="{img}" alt="{name}"><figcaption>{name} (tonemapped)</figcaption></figure>
-<figure><img src="{refimg}" alt="reference"><figcaption>reference (tonemapped)</figcaption></figure>
-<figure><img src="{heat}" alt="error"><figcaption>signed error, method − reference (grey: excluded)
-<div class="bar"></div><div class="ticks"><span>{lo:+.4}</span><span>0</span><span>{hi:+.4}</span></div></figcaption></figure>
-</div>"#,
+            r#"<section class="flip" id="m-{id}" tabindex="0"><h2>{name}</h2>
+<div class="controls"><button data-i="0">1 {name}</button><button data-i="1">2 reference</button><button data-i="2">3 error</button>
+<input type="range" min="0" max="2" step="1" value="0" aria-label="method, reference, error"> <span class="which"></span></div>
+<div class="frame"><img data-srcs="{img}|{refimg}|{heat}" data-names="{name} (tonemapped)|reference (tonemapped)|signed error, method − reference (grey: excluded)" src="{img}" alt="{name}" width="{w}" height="{hh}"></div>
+<div class="legend"><div class="bar"></div><div class="ticks"><span>{lo:+.4}</span><span>0</span><span>{hi:+.4}</span></div></div>
+</section>"#,
+            id = anchor(&m.name),
             name = escape(&m.name),
             img = escape(&m.image),
             refimg = escape(&report.reference.image),
             heat = escape(&m.heatmap),
             lo = -m.error_range,
             hi = m.error_range,
+            w = report.size[0],
+            hh = report.size[1],
         );
     }
+    h.push_str(SCRIPT);
     h.push_str("</body></html>\n");
     nearfield_scene::atomic::write_bytes(&dir.join("report.html"), h.as_bytes())
         .map_err(std::io::Error::other)

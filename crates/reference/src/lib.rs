@@ -165,7 +165,7 @@ pub struct PixelResult {
 }
 
 /// Renders the reference for one AOV. `progress` shows a bar with ETA on stderr when it is a
-/// terminal. Results depend only on the inputs and settings, not on the thread count.
+/// terminal, else a plain line every few seconds. Results depend only on the inputs and settings, not on the thread count.
 pub fn render(
     scene: &Scene,
     env: &Environment,
@@ -175,20 +175,12 @@ pub fn render(
 ) -> ReferenceImage {
     let ctx = integrate::Context::new(scene, env, camera, settings);
     let (w, h) = settings.size;
-    let bar = if progress {
-        let bar = indicatif::ProgressBar::new(h as u64);
-        bar.set_style(
-            indicatif::ProgressStyle::with_template(
-                "reference {msg} [{bar:40}] {pos}/{len} rows, {elapsed} elapsed, ETA {eta}",
-            )
-            .expect("valid template")
-            .progress_chars("=> "),
-        );
-        bar.set_message(settings.aov.name());
-        bar
-    } else {
-        indicatif::ProgressBar::hidden()
-    };
+    let bar = nearfield_scene::progress::Progress::new(
+        &format!("reference {}", settings.aov.name()),
+        h as u64,
+        "rows",
+        progress,
+    );
     let rows: Vec<Vec<PixelResult>> = (0..h)
         .into_par_iter()
         .map(|y| {
@@ -197,7 +189,7 @@ pub fn render(
             row
         })
         .collect();
-    bar.finish_and_clear();
+    bar.finish();
     let mut img = ReferenceImage {
         width: w,
         height: h,

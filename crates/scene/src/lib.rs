@@ -20,6 +20,7 @@ pub mod limits;
 pub mod load;
 pub mod material;
 pub mod mesh;
+pub mod progress;
 pub mod sh;
 pub mod sky;
 pub mod sun;
