@@ -57,6 +57,10 @@ pub struct CompareArgs {
     /// labelled with its name and its relative error.
     #[arg(long)]
     pub strip: Option<PathBuf>,
+    /// With --strip: each method's signed error heat map right of its image (blue: too dark,
+    /// red: too bright, grey: excluded), labelled with its range.
+    #[arg(long, requires = "strip")]
+    pub strip_errors: bool,
 }
 
 /// `--region X0,Y0,X1,Y1` inside an image of `size`.
@@ -267,10 +271,15 @@ pub fn run(args: CompareArgs) -> Result<()> {
         let image = format!("{method}.png");
         let heat = format!("{method}-error.png");
         png(srgb, args.out.join(&image))?;
-        png(
-            image_ops::heatmap(&errors, &mask.valid, w, h, range),
-            args.out.join(&heat),
-        )?;
+        let heatmap = image_ops::heatmap(&errors, &mask.valid, w, h, range);
+        if args.strip_errors {
+            panels.push(Panel {
+                image: heatmap.clone(),
+                title: format!("{method} − reference"),
+                subtitle: format!("blue −{range:.3} … red +{range:.3}"),
+            });
+        }
+        png(heatmap, args.out.join(&heat))?;
         progress.suspend(|| println!(
             "{method:<10} pixels {:>8}  bias {:+.5}  MAE {:.5}  RMSE {:.5}  rel {:.4}  FLIP {:.4}",
             m.pixels,

@@ -8,6 +8,7 @@
 //! viewer's script, option checks) can be exercised without a process per input.
 
 pub mod bench;
+pub mod book;
 pub mod compare;
 pub mod options;
 pub mod reference;

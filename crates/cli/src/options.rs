@@ -177,7 +177,7 @@ pub struct TechniqueOpts {
     /// Near-field radius in metres (> 0, or inf); default: the technique's.
     #[arg(long, allow_hyphen_values = true)]
     pub radius: Option<String>,
-    /// Technique setting KEY=VALUE (repeatable); see the README for each technique's keys.
+    /// Technique setting KEY=VALUE (repeatable); see each technique's page in the book (make docs).
     #[arg(long = "set", value_name = "KEY=VALUE")]
     pub set: Vec<String>,
     /// Exposure in EV stops applied before tonemapping (−20..=20).

@@ -13,7 +13,7 @@ pub struct RenderArgs {
     pub scene: SceneOpts,
     #[command(flatten)]
     pub technique: TechniqueOpts,
-    /// Near-field technique (see the README's list; `none` = no occlusion).
+    /// Near-field technique (every one is listed in the book's Techniques; `none` = no occlusion).
     #[arg(long, default_value = "none")]
     pub method: String,
     /// Frames to render before output (temporal techniques converge over frames; ≥ 1).

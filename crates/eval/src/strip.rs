@@ -71,9 +71,8 @@ fn draw_text(
             }
             let p = img.get_pixel_mut(px as u32, py as u32);
             let a = coverage.clamp(0.0, 1.0);
-            for ch in 0..3 {
-                p.0[ch] =
-                    (f32::from(p.0[ch]) * (1.0 - a) + f32::from(colour[ch]) * a).round() as u8;
+            for (c, &target) in p.0.iter_mut().zip(&colour) {
+                *c = (f32::from(*c) * (1.0 - a) + f32::from(target) * a).round() as u8;
             }
         });
     }

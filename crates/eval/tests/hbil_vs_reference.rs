@@ -4,7 +4,7 @@
 //! - over frames on a still camera, emission + diffuse (`lambertian`) approaches the path-traced
 //!   `radiance` (8 segments): the error falls, then levels off.
 //!
-//! README's hbil section lists the full numbers (192×108, 256 spp).
+//! the book's hbil section lists the full numbers (192×108, 256 spp).
 
 mod common;
 

@@ -3,7 +3,7 @@
 //! `settings::layers::LAYERED_STEPS`), `layers=2` has an `ao` MAE against the reference no
 //! higher than `layers=1` (within 2 %, see below) on every built-in scene and on Crytek Sponza,
 //! at R = 0.5 m and R = 1 m (masked as `compare` masks).
-//! README's layer section lists the table this prints.
+//! the book's layer section lists the table this prints.
 
 mod common;
 
@@ -11,7 +11,7 @@ use nearfield_reference::{ReferenceAov, ReferenceSettings};
 use nearfield_render::{Aov, RenderSettings, Renderer, TechniqueParams};
 use nearfield_scene::{Camera, Scene, SunMode, builtin};
 
-/// The scenes: every built-in one with its own camera, and Sponza from the README's view.
+/// The scenes: every built-in one with its own camera, and Sponza from the the book's view.
 fn scenes() -> Vec<(String, Scene, Camera)> {
     let mut out: Vec<(String, Scene, Camera)> = builtin::NAMES
         .iter()
@@ -78,7 +78,7 @@ fn two_layers_never_raise_the_ao_error() {
                 // 2 %: s3ho on `columns` at R = 1 (0.0110 → 0.0112), where the second layer
                 // frees the gap behind the front column in which the hidden column stands (a third
                 // surface two layers cannot see; `layers=4` or `cameras` see it). Everywhere else
-                // the second layer lowers the error (README's table).
+                // the second layer lowers the error (the book's table).
                 if mae[1] > 1.02 * mae[0] + 1e-4 {
                     failures.push(format!(
                         "{name} R={radius} {method}: {} → {}",

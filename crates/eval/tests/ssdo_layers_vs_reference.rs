@@ -15,7 +15,7 @@
 //! - the layers, the additional cameras and the environment lights render without GPU errors
 //!   and give finite AOVs.
 //!
-//! README's "Beyond one depth layer" section lists the full numbers and the commands.
+//! the book's "Beyond one depth layer" section lists the full numbers and the commands.
 
 mod common;
 
@@ -104,7 +104,7 @@ fn shadow_correction_restores_contact_shadows() {
     eprintln!(
         "contact band light-irradiance RMSE: shadow map {plain:.4} → corrected {corrected:.4}"
     );
-    // Measured 0.122 → 0.070 (README); the bound leaves room for driver differences.
+    // Measured 0.122 → 0.070 (the book); the bound leaves room for driver differences.
     assert!(
         corrected < 0.8 * plain,
         "correction {corrected} not below 0.8 × {plain}"
@@ -223,7 +223,7 @@ fn a_second_layer_lets_marched_rays_pass_behind_thin_posts() {
         masked_rmse(&img, &depth, &reference, size, None)
     };
     // ssdo and s3ho share the blocker test and the marching; both must gain. Measured at
-    // 320×180 (README): whole image 0.119 → 0.051 (ssdo), 0.118 → 0.050 (s3ho).
+    // 320×180 (the book): whole image 0.119 → 0.051 (ssdo), 0.118 → 0.050 (s3ho).
     for technique in ["ssdo", "s3ho"] {
         let one = error(&format!("{technique}:steps=16"));
         let two = error(&format!("{technique}:steps=16+layers=2"));
@@ -262,7 +262,7 @@ fn environment_lights_with_correction_beat_their_shadow_maps_alone() {
         );
         errors.push((alone, corrected));
     }
-    // Measured (README): env-irradiance 0.0474 → 0.0385, diffuse 0.0586 → 0.0578. The diffuse
+    // Measured (the book): env-irradiance 0.0474 → 0.0385, diffuse 0.0586 → 0.0578. The diffuse
     // gain is small because the screen-space bounce's error dominates it; it must still be a gain.
     let (env_alone, env_corrected) = errors[0];
     assert!(

@@ -1,7 +1,7 @@
 //! SSDO against SSAO, measured against the reference on `builtin:cornell` (masked as `compare`
 //! masks): SSDO's env-irradiance has a lower mean relative error than SSAO's, and SSDO's diffuse
 //! with the bounce a lower one than without, under the analytic sky and under a real HDR map
-//! (rooitou_park_1k, outdoor with sun). README's results table lists the full numbers.
+//! (rooitou_park_1k, outdoor with sun). the book's results table lists the full numbers.
 
 mod common;
 

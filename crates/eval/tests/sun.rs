@@ -130,7 +130,7 @@ fn cornell_sun_shadow_falls_where_the_geometry_says() {
     );
 }
 
-/// README's sun table (192×108 there; 128×72 here): every technique's image error falls when
+/// the book's sun table (192×108 there; 128×72 here): every technique's image error falls when
 /// the sun casts its shadow.
 #[test]
 fn lambertian_error_falls_with_the_sun_split_out() {

@@ -6,7 +6,7 @@
 //!   denoised results (vbgi's svgf default, hbil with `denoise=svgf`) is below a written bound,
 //!   which the raw per-pixel result (`denoise=off`) exceeds.
 //!
-//! README's vbgi section lists the full numbers and the commands.
+//! the book's vbgi section lists the full numbers and the commands.
 
 mod common;
 
@@ -169,5 +169,5 @@ fn denoised_results_leave_no_4x4_pattern() {
 }
 
 /// The 4×4-periodic residue of `ao` (cornell, R = 1, 320×180, 16 frames) a denoised result must
-/// stay below; measured in `denoised_results_leave_no_4x4_pattern` (README).
+/// stay below; measured in `denoised_results_leave_no_4x4_pattern` (the book).
 const RESIDUE_BOUND: f64 = 0.002;

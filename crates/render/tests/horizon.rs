@@ -562,5 +562,5 @@ fn ao_is_stable_under_a_turning_camera() {
 
 /// Mean |Δao| between consecutive frames a denoised result must stay below
 /// (`ao_is_stable_under_a_turning_camera`; measured on lavapipe: vbgi 0.0045, hbil with svgf
-/// 0.0045, their raw results 0.0062 and 0.0065; README).
+/// 0.0045, their raw results 0.0062 and 0.0065; the book).
 const STABILITY_BOUND: f64 = 0.0055;

@@ -1,6 +1,7 @@
 //! Progress of long runs on stderr: an indicatif bar with ETA when stderr is a terminal, else a
-//! plain line at most every [`PLAIN_EVERY`] (none for runs shorter than that), so logs of CI
-//! and scripts show that a run is alive without filling up.
+//! plain line at most every [`PLAIN_EVERY`] (none for runs shorter than that; the environment
+//! variable `NEARFIELD_PROGRESS_SECONDS` sets another interval), so logs of CI and scripts show
+//! that a run is alive without filling up.
 
 use indicatif::{ProgressBar, ProgressStyle};
 use std::io::IsTerminal;
@@ -15,6 +16,7 @@ pub struct Progress {
     unit: &'static str,
     total: u64,
     bar: Option<ProgressBar>,
+    every: Duration,
     plain: Mutex<Plain>,
 }
 
@@ -50,6 +52,12 @@ impl Progress {
             unit,
             total,
             bar,
+            every: std::env::var("NEARFIELD_PROGRESS_SECONDS")
+                .ok()
+                .and_then(|s| s.parse::<f64>().ok())
+                .filter(|s| s.is_finite() && *s >= 0.0)
+                .map(Duration::from_secs_f64)
+                .unwrap_or(PLAIN_EVERY),
             plain: Mutex::new(Plain {
                 start: now,
                 last: now,
@@ -83,7 +91,7 @@ impl Progress {
         };
         p.done += n;
         let now = Instant::now();
-        if now.duration_since(p.last) >= PLAIN_EVERY && p.done < self.total {
+        if now.duration_since(p.last) >= self.every && p.done < self.total {
             p.last = now;
             let elapsed = now.duration_since(p.start).as_secs_f64();
             let eta = elapsed / p.done.max(1) as f64 * (self.total - p.done) as f64;

@@ -36,7 +36,7 @@ pub struct ViewArgs {
     /// PNG to save the 3D view to (without the interface) after --frames.
     #[arg(long, value_name = "FILE.png")]
     pub screenshot: Option<PathBuf>,
-    /// Run a script of viewer commands, one per frame (see the README's viewer section).
+    /// Run a script of viewer commands, one per frame (see the book's viewer page).
     #[arg(long, value_name = "FILE")]
     pub script: Option<PathBuf>,
     /// Present without waiting for vertical sync.

@@ -4,8 +4,8 @@
 //! (the field's name), type, default (as typed after `key=`), kind and range, unit and doc line.
 //! From that one declaration come the struct and its rustdoc, `Default`, the `--set` parser
 //! ([`Declared::set`]), the table that the viewer shows as sliders, checkboxes and lists
-//! ([`Declared::TABLE`]) and the README's settings tables ([`markdown_table`], checked by a
-//! test). Word-valued settings are enums written with [`choice!`].
+//! ([`Declared::TABLE`]) and the book's settings tables ([`markdown_table`], [`book_pages`];
+//! a test checks the committed pages). Word-valued settings are enums written with [`choice!`].
 //!
 //! This module knows nothing of techniques or GPU resources; `technique/` builds on it.
 
@@ -86,7 +86,7 @@ impl Setting {
         }
     }
 
-    /// The README's "unit / range" cell.
+    /// The settings table's "unit / range" cell.
     pub fn range_text(&self) -> String {
         let unit = if self.unit.is_empty() {
             String::new()
@@ -376,7 +376,7 @@ pub fn apply<S: Declared>(
     Ok(())
 }
 
-/// The README table of a settings struct: key, meaning, unit / range, default.
+/// The markdown table of a settings struct: key, meaning, unit / range, default.
 pub fn markdown_table(table: &[Setting], presets: &[Preset]) -> String {
     let mut out = String::from("| key | meaning | unit / range | default |\n|---|---|---|---|\n");
     if !presets.is_empty() {
@@ -404,10 +404,8 @@ pub fn markdown_table(table: &[Setting], presets: &[Preset]) -> String {
     out
 }
 
-/// Every family of techniques that shares one settings struct: (README marker, the techniques,
-/// table, presets). The README's settings tables sit between `<!-- settings:ID -->` and
-/// `<!-- /settings:ID -->` and are [`markdown_table`] of these (a test checks; `cargo run -p
-/// nearfield-render --example settings_tables -- --write README.md` rewrites them).
+/// Every family of techniques that shares one settings struct: (id of its book page
+/// `settings-ID.md`, the techniques, table, presets).
 pub const FAMILIES: &[(&str, &str, &[Setting], &[Preset])] = &[
     (
         "ssdo",
@@ -425,26 +423,26 @@ pub const FAMILIES: &[(&str, &str, &[Setting], &[Preset])] = &[
     ("vbgi", "vbgi", vbgi::Settings::TABLE, vbgi::PRESETS),
 ];
 
-/// Replaces every family's table in `readme` (between its markers) by the generated one; an
-/// error names a family whose markers are missing.
-pub fn rewrite_readme(readme: &str) -> Result<String, String> {
-    let mut out = readme.to_string();
-    for (id, _, table, presets) in FAMILIES {
-        let (open, close) = (
-            format!("<!-- settings:{id} -->\n"),
-            format!("<!-- /settings:{id} -->"),
-        );
-        let start = out
-            .find(&open)
-            .ok_or_else(|| format!("README: no {open:?} marker"))?
-            + open.len();
-        let end = out[start..]
-            .find(&close)
-            .ok_or_else(|| format!("README: no {close:?} marker"))?
-            + start;
-        out.replace_range(start..end, &markdown_table(table, presets));
-    }
-    Ok(out)
+/// The book's generated settings pages: (file name, content) per family, e.g.
+/// `settings-ssdo.md`, each naming the techniques it applies to and giving the table.
+pub fn book_pages() -> Vec<(String, String)> {
+    FAMILIES
+        .iter()
+        .map(|(id, techniques, table, presets)| {
+            let names: Vec<String> = techniques.split(", ").map(|t| format!("`{t}`")).collect();
+            (
+                format!("settings-{id}.md"),
+                format!(
+                    "<!-- generated from the settings declarations (crates/render/src/settings/); \
+                     regenerate with `cargo run -p nearfield-cli --example book_reference` -->\n\n\
+                     Settings of {}: `--set key=value` on the command line, `technique:key=value` \
+                     (joined by `+`) in `--methods`, the panel in the viewer.\n\n{}",
+                    names.join(", "),
+                    markdown_table(table, presets)
+                ),
+            )
+        })
+        .collect()
 }
 
 /// The keys of a settings table, for error messages.

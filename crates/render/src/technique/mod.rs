@@ -127,7 +127,7 @@ pub type CheckFn = fn(&TechniqueParams) -> Result<(), String>;
 /// A registry entry.
 pub struct TechniqueDesc {
     pub name: &'static str,
-    /// One line for `--help` and the README.
+    /// One line for `--help` and the book.
     pub summary: &'static str,
     pub create: CreateFn,
     /// Parses the settings as `create` does, without a device: what a command checks before it

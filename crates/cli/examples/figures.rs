@@ -1,0 +1,352 @@
+//! Measures every number and makes every figure of the book (scripts/figures.sh runs it from
+//! the repository root after a release build):
+//! - `nearfield compare` of every technique on cornell and columns for ao, env-irradiance,
+//!   indirect-irradiance, diffuse and lambertian, and (where ../shared/assets has it) on Crytek
+//!   Sponza for ao, env-irradiance and diffuse;
+//! - `nearfield bench` of every technique;
+//! - each technique's failure strip (docs/src/img/failures/TECH.png);
+//! - the demo strip (docs/src/img/cornell-compare.png, the same command as `make demo`);
+//! - the vbgi page's crops (docs/src/img/crops-wall.png, crops-box.png);
+//!
+//! into docs/src/generated/results.json, then the pages rendered from it (book_reference).
+//! Scratch output goes to target/figures/. `FIGURES_QUICK=1` runs smaller images and fewer
+//! samples (to try the pipeline, not to publish).
+
+use nearfield_cli::book::{Bench, Failure, MethodError, Results, Run};
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+const BIN: &str = "target/release/nearfield";
+const TECHNIQUES: &str = "none,ssao,ssdo,ssdo-vpl,instant-radiosity,s3ho,ssbn,gtao,hbil,vbgi";
+/// Techniques with an indirect term, one bounce (the reference's indirect is one bounce).
+const INDIRECT: &str = "ssdo,ssdo-vpl,instant-radiosity,s3ho,hbil:source=direct,vbgi:source=direct";
+
+fn quick() -> bool {
+    std::env::var("FIGURES_QUICK").as_deref() == Ok("1")
+}
+
+fn nearfield(args: &[String]) -> String {
+    eprintln!("figures: nearfield {}", args.join(" "));
+    let out = Command::new(BIN).args(args).output().unwrap_or_else(|e| {
+        panic!("{BIN}: {e} (build it: cargo build --release -p nearfield-cli)")
+    });
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        out.status.success(),
+        "nearfield {}: {stderr}",
+        args.join(" ")
+    );
+    String::from_utf8_lossy(&out.stdout).into_owned()
+}
+
+fn words(s: &str) -> Vec<String> {
+    s.split_whitespace().map(str::to_string).collect()
+}
+
+fn json(path: &Path) -> serde_json::Value {
+    let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    serde_json::from_str(&text).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+}
+
+struct Scene {
+    name: &'static str,
+    args: String,
+}
+
+fn scenes(assets: &Path) -> Vec<Scene> {
+    let mut v = vec![
+        Scene {
+            name: "cornell",
+            args: "builtin:cornell".into(),
+        },
+        Scene {
+            name: "columns",
+            args: "builtin:columns".into(),
+        },
+    ];
+    let sponza = assets.join("scenes/crytek_sponza/Sponza.gltf");
+    let env = assets.join("env/rooitou_park_1k.hdr");
+    if sponza.is_file() && env.is_file() {
+        v.push(Scene {
+            name: "sponza",
+            args: format!(
+                "{} --eye 9,1.5,-0.4 --target -5,3.5,0.2 --fov 60 --env {}",
+                sponza.display(),
+                env.display()
+            ),
+        });
+    } else {
+        eprintln!("figures: {} not found, Sponza left out", sponza.display());
+    }
+    v
+}
+
+/// `compare` into target/figures/ID; the per-method error from metrics.json.
+fn compare(id: &str, scene: &Scene, rest: &str) -> (String, Vec<MethodError>, String) {
+    let out = PathBuf::from("target/figures").join(id);
+    let cmd = format!("compare {} {rest} --out {}", scene.args, out.display());
+    nearfield(&words(&cmd));
+    let m = json(&out.join("metrics.json"));
+    let aov = m["aov"].as_str().unwrap_or_default().to_string();
+    let metric = if aov == "ao" { "mae" } else { "relative_error" };
+    let methods = m["methods"]
+        .as_array()
+        .expect("methods")
+        .iter()
+        .map(|x| MethodError {
+            name: x["name"].as_str().unwrap_or_default().into(),
+            error: x["metrics"][metric].as_f64().unwrap_or(f64::NAN),
+        })
+        .collect();
+    let adapter = m["adapter"].as_str().unwrap_or_default().to_string();
+    (
+        format!("nearfield {}", words(&cmd).join(" ")),
+        methods,
+        adapter,
+    )
+}
+
+fn main() {
+    let assets =
+        PathBuf::from(std::env::var("NEARFIELD_ASSETS").unwrap_or("../shared/assets".into()));
+    let (size, spp, path_spp) = if quick() {
+        ("96x54", 16, 32)
+    } else {
+        ("192x108", 128, 256)
+    };
+    let common = format!("--size {size} --radius 1");
+    // Failure pictures are looked at: larger.
+    let failure_size = if quick() { "192x108" } else { "384x216" };
+    let mut runs = Vec::new();
+    let mut adapter = String::new();
+    for scene in scenes(&assets) {
+        for (aov, methods, frames, spp, extra) in [
+            ("ao", TECHNIQUES, 16, spp, ""),
+            ("env-irradiance", TECHNIQUES, 16, spp, ""),
+            ("indirect-irradiance", INDIRECT, 1, spp, ""),
+            ("diffuse", TECHNIQUES, 16, spp, ""),
+            ("lambertian", TECHNIQUES, 16, path_spp, "--max-depth 8"),
+        ] {
+            // `lambertian` is compared with the full path tracer, which has no near-field
+            // radius: on a scene far larger than R it measures the far field, not the technique.
+            // Sponza's one-bounce indirect light is left out with it (see the results page).
+            if scene.name == "sponza" && matches!(aov, "lambertian" | "indirect-irradiance") {
+                continue;
+            }
+            let id = format!("{}-{aov}", scene.name);
+            let rest = format!(
+                "{common} --aov {aov} --frames {frames} --spp {spp} {extra} --methods {methods}"
+            );
+            let (command, methods, a) = compare(&id, &scene, &rest);
+            adapter = a;
+            runs.push(Run {
+                scene: scene.name.into(),
+                aov: aov.into(),
+                metric: if aov == "ao" { "MAE" } else { "relative error" }.into(),
+                command: command.replace(&assets.display().to_string(), "../shared/assets"),
+                methods,
+            });
+        }
+    }
+
+    // Frame times: every technique in turn, on the default scene.
+    let bench_size = if quick() { "320x180" } else { "640x360" };
+    let bench_json = PathBuf::from("target/figures/bench.json");
+    let bench_cmd = format!(
+        "bench builtin:cornell --size {bench_size} --methods {TECHNIQUES} --frames {} --warmup 4 --json {}",
+        if quick() { 4 } else { 24 },
+        bench_json.display()
+    );
+    nearfield(&words(&bench_cmd));
+    let b = json(&bench_json);
+    let from = b["overhead_from"].as_str().unwrap_or("wall").to_string();
+    let frame_ms = TECHNIQUES
+        .split(',')
+        .map(|t| {
+            let m = &b["methods"][t];
+            let ms = if from == "gpu" {
+                m["gpu_total"]["median_ms"].as_f64()
+            } else {
+                m["wall"]["median_ms"].as_f64()
+            };
+            MethodError {
+                name: t.into(),
+                error: ms.unwrap_or(f64::NAN),
+            }
+        })
+        .collect();
+    let bench = Bench {
+        command: format!("nearfield {bench_cmd}").replace(" --json target/figures/bench.json", ""),
+        adapter: format!(
+            "{} ({})",
+            b["adapter"]["name"].as_str().unwrap_or_default(),
+            b["adapter"]["device_type"].as_str().unwrap_or_default()
+        ),
+        from,
+        frame_ms,
+    };
+
+    // Failure strips: what each technique gets wrong, where it shows.
+    std::fs::create_dir_all("docs/src/img/failures").expect("docs/src/img/failures");
+    let cornell = &scenes(&assets)[0];
+    let columns = &scenes(&assets)[1];
+    let cases: [(&str, &str, &Scene, &str, u32, &str); 9] = [
+        (
+            "ssao",
+            "darkens by the occluded fraction, whatever the occluder reflects, and misses blockers hidden behind the first depth layer",
+            cornell,
+            "ao",
+            1,
+            "ssao",
+        ),
+        (
+            "ssdo",
+            "one bounce from on-screen senders only: light from hidden and off-screen surfaces is missing",
+            cornell,
+            "indirect-irradiance",
+            1,
+            "ssdo",
+        ),
+        (
+            "ssdo-vpl",
+            "the environment as directional lights: coarse shadows of each light where the screen-space restoration cannot see",
+            cornell,
+            "env-irradiance",
+            16,
+            "ssdo-vpl",
+        ),
+        (
+            "instant-radiosity",
+            "the clamped 1/d² of the virtual point lights and their finite count leave the indirect light blotchy",
+            cornell,
+            "indirect-irradiance",
+            1,
+            "instant-radiosity",
+        ),
+        (
+            "s3ho",
+            "16 SH coefficients cannot hold a sharp visibility edge: ringing where walls meet",
+            cornell,
+            "lambertian",
+            16,
+            "s3ho",
+        ),
+        (
+            "ssbn",
+            "one cone around the bent normal: a visibility that is not a cone is wrong",
+            cornell,
+            "env-irradiance",
+            16,
+            "ssbn",
+        ),
+        (
+            "gtao",
+            "occlusion only: no colour bleeding from the walls",
+            cornell,
+            "diffuse",
+            16,
+            "gtao",
+        ),
+        (
+            "hbil",
+            "horizons assume that what rises above them is infinitely thick: light passing behind thin columns is lost",
+            columns,
+            "indirect-irradiance",
+            1,
+            "hbil:source=direct",
+        ),
+        (
+            "vbgi",
+            "per-pixel thickness from the second depth layer still misses senders that no layer sees",
+            cornell,
+            "indirect-irradiance",
+            1,
+            "vbgi:source=direct",
+        ),
+    ];
+    let mut failures = Vec::new();
+    for (technique, what, scene, aov, frames, spec) in cases {
+        let (spp, extra) = if aov == "lambertian" {
+            (path_spp, "--max-depth 8")
+        } else {
+            (spp, "")
+        };
+        let image = format!("img/failures/{technique}.png");
+        let rest = format!(
+            "--size {failure_size} --radius 1 --aov {aov} --frames {frames} --spp {spp} {extra} --methods {spec} --strip docs/src/{image} --strip-errors"
+        );
+        let (command, methods, _) = compare(&format!("failure-{technique}"), scene, &rest);
+        failures.push(Failure {
+            technique: technique.into(),
+            what: what.into(),
+            scene: scene.name.into(),
+            aov: aov.into(),
+            command: command
+                .replace(
+                    &format!(" --strip docs/src/{image} --strip-errors"),
+                    " --strip F.png --strip-errors",
+                )
+                .replace(&format!(" --out target/figures/failure-{technique}"), ""),
+            image,
+            relative_error: methods[0].error,
+        });
+    }
+
+    // The demo strip, as `make demo` makes it.
+    nearfield(&words(
+        "compare builtin:cornell --radius 1 --size 384x288 --aov lambertian --frames 16 --spp 256 \
+         --max-depth 8 --methods none,ssao,ssdo,s3ho,hbil,vbgi --out target/figures/demo \
+         --strip docs/src/img/cornell-compare.png",
+    ));
+
+    // Crops of the right wall and the short box's top at 1280×720 after 16 frames: hbil,
+    // hbil with the svgf denoiser, vbgi (the vbgi page's before / after).
+    let crops = Path::new("target/figures/crops");
+    std::fs::create_dir_all(crops).expect("target/figures/crops");
+    let mut shots = Vec::new();
+    for (title, spec) in [
+        ("hbil", "--method hbil"),
+        ("hbil denoise=svgf", "--method hbil --set denoise=svgf"),
+        ("vbgi", "--method vbgi"),
+    ] {
+        let file = crops.join(format!("{}.png", title.replace([' ', '='], "-")));
+        nearfield(&words(&format!(
+            "render builtin:cornell --frames 16 {spec} -o {}",
+            file.display()
+        )));
+        shots.push((title, image::open(&file).expect("render's PNG").to_rgb8()));
+    }
+    for (name, (x, y, w, h)) in [("wall", (700, 60, 320, 600)), ("box", (560, 380, 480, 180))] {
+        let panels: Vec<_> = shots
+            .iter()
+            .map(|(title, img)| nearfield_eval::strip::Panel {
+                image: image::imageops::crop_imm(img, x, y, w, h).to_image(),
+                title: title.to_string(),
+                subtitle: String::new(),
+            })
+            .collect();
+        nearfield_eval::strip::strip(&panels)
+            .save(format!("docs/src/img/crops-{name}.png"))
+            .expect("write the crops");
+    }
+
+    let date = Command::new("date")
+        .args(["-u", "+%Y-%m-%d"])
+        .output()
+        .map(|o| String::from_utf8_lossy(&o.stdout).trim().to_string())
+        .unwrap_or_default();
+    let results = Results {
+        adapter,
+        date,
+        runs,
+        bench,
+        failures,
+    };
+    let text = serde_json::to_string_pretty(&results).expect("results serialise") + "\n";
+    nearfield_scene::atomic::write_bytes(
+        Path::new("docs/src/generated/results.json"),
+        text.as_bytes(),
+    )
+    .expect("write docs/src/generated/results.json");
+    eprintln!("figures: wrote docs/src/generated/results.json");
+}
