@@ -107,6 +107,11 @@ fn compare(id: &str, scene: &Scene, rest: &str) -> (String, Vec<MethodError>, St
 }
 
 fn main() {
+    // FIGURES_ONLY=crops remakes only the crops (they are not in results.json).
+    if std::env::var("FIGURES_ONLY").as_deref() == Ok("crops") {
+        crops();
+        return;
+    }
     let assets =
         PathBuf::from(std::env::var("NEARFIELD_ASSETS").unwrap_or("../shared/assets".into()));
     let (size, spp, path_spp) = if quick() {
@@ -193,7 +198,7 @@ fn main() {
     let cases: [(&str, &str, &Scene, &str, u32, &str); 9] = [
         (
             "ssao",
-            "darkens by the occluded fraction, whatever the occluder reflects, and misses blockers hidden behind the first depth layer",
+            "too little occlusion almost everywhere: within R its few samples miss much of the walls and blocks that occlude, and nothing behind the first depth layer counts — the tall block's face beside the red wall most of all",
             cornell,
             "ao",
             1,
@@ -201,7 +206,7 @@ fn main() {
         ),
         (
             "ssdo",
-            "one bounce from on-screen senders only: light from hidden and off-screen surfaces is missing",
+            "far too little one-bounce light: only senders the screen shows and a sample lands on within R contribute, so most of the light from the walls onto the floor, the blocks and each other is missing",
             cornell,
             "indirect-irradiance",
             1,
@@ -209,7 +214,7 @@ fn main() {
         ),
         (
             "ssdo-vpl",
-            "the environment as directional lights: coarse shadows of each light where the screen-space restoration cannot see",
+            "the sky as a finite set of shadow-mapped directional lights: most surfaces too dark, the short block's top too bright, where the lights' coarse shadows and the restored small-scale shadows do not add up to the sky",
             cornell,
             "env-irradiance",
             16,
@@ -217,7 +222,7 @@ fn main() {
         ),
         (
             "instant-radiosity",
-            "the clamped 1/d² of the virtual point lights and their finite count leave the indirect light blotchy",
+            "virtual point lights spread the bounce too evenly: too bright high on the walls and at the back, too dark in the corners and under the blocks, where the clamped 1/d² removes near light that the screen-space bounce does not restore",
             cornell,
             "indirect-irradiance",
             1,
@@ -225,7 +230,7 @@ fn main() {
         ),
         (
             "s3ho",
-            "16 SH coefficients cannot hold a sharp visibility edge: ringing where walls meet",
+            "16 SH coefficients cannot hold a sharp visibility edge: the sun's shadow on the back wall and the blocks' contact shadows are smeared — too dark in the lit part, too bright along the edges",
             cornell,
             "lambertian",
             16,
@@ -233,7 +238,7 @@ fn main() {
         ),
         (
             "ssbn",
-            "one cone around the bent normal: a visibility that is not a cone is wrong",
+            "one cone around the bent normal stands for the visible sky: too bright everywhere, most of all on the floor and the block faces that see the walls",
             cornell,
             "env-irradiance",
             16,
@@ -241,7 +246,7 @@ fn main() {
         ),
         (
             "gtao",
-            "occlusion only: no colour bleeding from the walls",
+            "occlusion without light: no colour bleeding from the walls, so the floor, the blocks and the back wall are too dark",
             cornell,
             "diffuse",
             16,
@@ -249,7 +254,7 @@ fn main() {
         ),
         (
             "hbil",
-            "horizons assume that what rises above them is infinitely thick: light passing behind thin columns is lost",
+            "horizons take what rises above them as infinitely thick and see only the column's front: its faces get too little bounce light, the floor around it is off both ways",
             columns,
             "indirect-irradiance",
             1,
@@ -257,7 +262,7 @@ fn main() {
         ),
         (
             "vbgi",
-            "per-pixel thickness from the second depth layer still misses senders that no layer sees",
+            "thickness from the second depth layer still misses what no layer sees: the side walls near the open front get too much bounce, the back wall too little, and in one frame the 4×4 interleaving shows",
             cornell,
             "indirect-irradiance",
             1,
@@ -299,36 +304,7 @@ fn main() {
          --strip docs/src/img/cornell-compare.png",
     ));
 
-    // Crops of the right wall and the short box's top at 1280×720 after 16 frames: hbil,
-    // hbil with the svgf denoiser, vbgi (the vbgi page's before / after).
-    let crops = Path::new("target/figures/crops");
-    std::fs::create_dir_all(crops).expect("target/figures/crops");
-    let mut shots = Vec::new();
-    for (title, spec) in [
-        ("hbil", "--method hbil"),
-        ("hbil denoise=svgf", "--method hbil --set denoise=svgf"),
-        ("vbgi", "--method vbgi"),
-    ] {
-        let file = crops.join(format!("{}.png", title.replace([' ', '='], "-")));
-        nearfield(&words(&format!(
-            "render builtin:cornell --frames 16 {spec} -o {}",
-            file.display()
-        )));
-        shots.push((title, image::open(&file).expect("render's PNG").to_rgb8()));
-    }
-    for (name, (x, y, w, h)) in [("wall", (700, 60, 320, 600)), ("box", (560, 380, 480, 180))] {
-        let panels: Vec<_> = shots
-            .iter()
-            .map(|(title, img)| nearfield_eval::strip::Panel {
-                image: image::imageops::crop_imm(img, x, y, w, h).to_image(),
-                title: title.to_string(),
-                subtitle: String::new(),
-            })
-            .collect();
-        nearfield_eval::strip::strip(&panels)
-            .save(format!("docs/src/img/crops-{name}.png"))
-            .expect("write the crops");
-    }
+    crops();
 
     let date = Command::new("date")
         .args(["-u", "+%Y-%m-%d"])
@@ -349,4 +325,37 @@ fn main() {
     )
     .expect("write docs/src/generated/results.json");
     eprintln!("figures: wrote docs/src/generated/results.json");
+}
+
+/// The vbgi page's crops of the right wall and the short box's top at 1280×720 after 16
+/// frames: hbil, hbil with the svgf denoiser, vbgi.
+fn crops() {
+    let crops = Path::new("target/figures/crops");
+    std::fs::create_dir_all(crops).expect("target/figures/crops");
+    let mut shots = Vec::new();
+    for (title, spec) in [
+        ("hbil", "--method hbil"),
+        ("hbil denoise=svgf", "--method hbil --set denoise=svgf"),
+        ("vbgi", "--method vbgi"),
+    ] {
+        let file = crops.join(format!("{}.png", title.replace([' ', '='], "-")));
+        nearfield(&words(&format!(
+            "render builtin:cornell --frames 16 {spec} -o {}",
+            file.display()
+        )));
+        shots.push((title, image::open(&file).expect("render's PNG").to_rgb8()));
+    }
+    for (name, (x, y, w, h)) in [("wall", (840, 60, 220, 600)), ("box", (600, 400, 320, 160))] {
+        let panels: Vec<_> = shots
+            .iter()
+            .map(|(title, img)| nearfield_eval::strip::Panel {
+                image: image::imageops::crop_imm(img, x, y, w, h).to_image(),
+                title: title.to_string(),
+                subtitle: String::new(),
+            })
+            .collect();
+        nearfield_eval::strip::strip(&panels)
+            .save(format!("docs/src/img/crops-{name}.png"))
+            .expect("write the crops");
+    }
 }

@@ -443,12 +443,17 @@ fn technique_page(r: &Results, technique: &str) -> String {
 
 /// A technique's failure figure with its caption.
 fn failure_page(f: &Failure) -> String {
+    let mut what = f.what.chars();
+    let what = what
+        .next()
+        .map(|c| c.to_uppercase().chain(what).collect::<String>())
+        .unwrap_or_default();
     format!(
-        "{GENERATED}![{t}: {what}](../{img})\n\n*{what}.* Left to right: `{t}`, its signed error \
+        "{GENERATED}![{t}: {alt}](../{img})\n\n*{what}.* Left to right: `{t}`, its signed error \
          (blue: too dark, red: too bright, grey: not compared), the reference. `{aov}` on {scene}, \
          relative error {err:.4}. `{cmd}`\n",
         t = f.technique,
-        what = f.what,
+        alt = f.what,
         img = f.image,
         aov = f.aov,
         scene = f.scene,

@@ -83,14 +83,17 @@ fn draw_text(
 pub fn strip(panels: &[Panel]) -> RgbImage {
     assert!(!panels.is_empty(), "a strip needs a panel");
     let (w, h) = panels[0].image.dimensions();
+    let n = panels.len() as u32;
     assert!(
         panels.iter().all(|p| p.image.dimensions() == (w, h)),
         "the panels of a strip have one size"
     );
     let font = font();
-    let n = panels.len() as u32;
-    // Titles at about 1/14 of the height, never wider than the panel.
-    let mut size = (h as f32 / 14.0).max(11.0);
+    // Titles at about 1/14 of the height, or larger for a long strip, so that they stay
+    // readable when the whole strip is shown scaled down to a page's width (~1000 pixels) —
+    // never wider than the panel.
+    let total_width = (n * w + (n + 1) * GAP) as f32;
+    let mut size = (h as f32 / 14.0).max(total_width * 0.012).max(11.0);
     for p in panels {
         for (text, k) in [(&p.title, 1.0), (&p.subtitle, 0.8)] {
             let tw = text_width(&font, size * k, text);
