@@ -354,8 +354,11 @@ fn crops() {
                 subtitle: String::new(),
             })
             .collect();
-        nearfield_eval::strip::strip(&panels)
-            .save(format!("docs/src/img/crops-{name}.png"))
-            .expect("write the crops");
+        let strip = nearfield_eval::strip::strip(&panels);
+        let path = PathBuf::from(format!("docs/src/img/crops-{name}.png"));
+        nearfield_scene::atomic::write_atomically(&path, |tmp| {
+            strip.save_with_format(tmp, image::ImageFormat::Png)
+        })
+        .expect("write the crops");
     }
 }
