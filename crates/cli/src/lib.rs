@@ -119,10 +119,19 @@ pub fn main() -> ExitCode {
             return ExitCode::SUCCESS;
         }
         Err(e) => {
-            // clap's first line names the problem; its usage block would make it several.
+            // clap's first paragraph names the problem (a missing argument on the lines after
+            // its first); its usage block would make it several lines.
             let text = e.to_string();
-            let first = text.lines().next().unwrap_or("invalid arguments");
-            let first = first.strip_prefix("error: ").unwrap_or(first);
+            let paragraph: Vec<&str> = text
+                .lines()
+                .take_while(|l| !l.trim().is_empty())
+                .map(str::trim)
+                .collect();
+            let first = match paragraph.join(" ") {
+                p if p.is_empty() => "invalid arguments".to_string(),
+                p => p,
+            };
+            let first = first.strip_prefix("error: ").unwrap_or(&first);
             eprintln!("nearfield: error: {first} (see nearfield --help)");
             return ExitCode::from(2);
         }
