@@ -1,7 +1,8 @@
 //! Writes the book's generated pages into docs/src/generated/: the command line from clap, the
 //! settings tables from their declarations, and — from the measured
 //! docs/src/generated/results.json (scripts/figures.sh) — the results tables, the failure
-//! figures' captions and the README's headline table:
+//! figures' captions and the README's headline table; from docs/src/fits/*.json (scripts/fits.sh)
+//! the fitted presets' table:
 //!
 //! ```text
 //! cargo run -p nearfield-cli --example book_reference
@@ -19,7 +20,8 @@ fn main() {
     let dir = root.join("docs/src/generated");
     std::fs::create_dir_all(&dir).unwrap_or_else(|e| fail(format!("{}: {e}", dir.display())));
     let results = nearfield_cli::book::read_results(&root).unwrap_or_else(|e| fail(e));
-    for (name, text) in nearfield_cli::book::generated_pages(results.as_ref()) {
+    let fits = nearfield_cli::book::read_fits(&root).unwrap_or_else(|e| fail(e));
+    for (name, text) in nearfield_cli::book::generated_pages(results.as_ref(), &fits) {
         let path = dir.join(&name);
         nearfield_scene::atomic::write_bytes(&path, text.as_bytes())
             .unwrap_or_else(|e| fail(format!("{}: {e}", path.display())));
@@ -34,5 +36,15 @@ fn main() {
         nearfield_scene::atomic::write_bytes(&path, new.as_bytes())
             .unwrap_or_else(|e| fail(format!("{}: {e}", path.display())));
         println!("wrote README.md's headline table");
+    }
+    if !fits.is_empty() {
+        let path = root.join("README.md");
+        let readme = std::fs::read_to_string(&path)
+            .unwrap_or_else(|e| fail(format!("{}: {e}", path.display())));
+        let new =
+            nearfield_cli::book::rewrite_readme_fits(&readme, &fits).unwrap_or_else(|e| fail(e));
+        nearfield_scene::atomic::write_bytes(&path, new.as_bytes())
+            .unwrap_or_else(|e| fail(format!("{}: {e}", path.display())));
+        println!("wrote README.md's fitted table");
     }
 }

@@ -110,9 +110,12 @@ pub fn cli_reference() -> String {
 
 /// Every generated page: (file name in docs/src/generated/, content); the results pages when
 /// measured results are given.
-pub fn generated_pages(results: Option<&Results>) -> Vec<(String, String)> {
+pub fn generated_pages(results: Option<&Results>, fits: &[Fit]) -> Vec<(String, String)> {
     let mut pages = nearfield_render::settings::book_pages();
     pages.push(("cli.md".into(), cli_reference()));
+    if !fits.is_empty() {
+        pages.push(("fits.md".into(), fits_page(fits)));
+    }
     if let Some(r) = results {
         pages.extend(results_pages(r));
     }
@@ -497,4 +500,156 @@ pub fn rewrite_readme_headline(readme: &str, r: &Results) -> Result<String, Stri
     let mut out = readme.to_string();
     out.replace_range(start..end, &headline(r));
     Ok(out)
+}
+
+// ---- Fits: `nearfield fit` runs of scripts/fits.sh in docs/src/fits/TECHNIQUE.json, each the
+// ---- source of a technique's `quality=fitted` preset (crates/render/src/settings/fitted.rs).
+
+/// The errors of one side (training or held-out scenes) of a fit, before and after.
+#[derive(Clone, Debug, Deserialize)]
+pub struct FitSide {
+    pub before: f64,
+    pub after: f64,
+    pub per_scene: std::collections::BTreeMap<String, FitScene>,
+}
+
+#[derive(Clone, Debug, Deserialize)]
+pub struct FitScene {
+    pub before: f64,
+    pub after: f64,
+}
+
+/// What `nearfield fit` writes (the fields the book shows).
+#[derive(Clone, Debug, Deserialize)]
+pub struct Fit {
+    pub method: String,
+    pub params: std::collections::BTreeMap<String, serde_json::Value>,
+    pub spec: String,
+    pub metric: String,
+    pub aov: String,
+    pub frames: u32,
+    pub size: [u32; 2],
+    pub spp: u32,
+    pub train: FitSide,
+    pub holdout: FitSide,
+    pub evaluations: usize,
+    pub stopped: String,
+    pub seconds: f64,
+    pub command: String,
+}
+
+impl Fit {
+    /// `key=value` of the fitted settings, as the preset states them.
+    pub fn settings(&self) -> Vec<(String, String)> {
+        self.params
+            .iter()
+            .map(|(k, v)| (k.clone(), v.to_string()))
+            .collect()
+    }
+
+    /// The held-out error's relative change, in percent (negative: lower).
+    pub fn holdout_change(&self) -> f64 {
+        100.0 * (self.holdout.after / self.holdout.before - 1.0)
+    }
+}
+
+/// Reads docs/src/fits/TECHNIQUE.json below `root` for every registered technique that has one,
+/// in registry order.
+pub fn read_fits(root: &std::path::Path) -> Result<Vec<Fit>, String> {
+    let mut fits = Vec::new();
+    for t in registry_order() {
+        let path = root.join(format!("docs/src/fits/{t}.json"));
+        match std::fs::read_to_string(&path) {
+            Ok(text) => fits
+                .push(serde_json::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))?),
+            Err(e) if e.kind() == std::io::ErrorKind::NotFound => {}
+            Err(e) => return Err(format!("{}: {e}", path.display())),
+        }
+    }
+    Ok(fits)
+}
+
+/// The results table's "fitted" rows: per technique, what was fitted on which AOV, and the
+/// training and held-out errors before and after, side by side.
+pub fn fits_table(fits: &[Fit]) -> String {
+    let mut out = String::from(
+        "| technique | fitted on | `quality=fitted` | train: default → fitted | held out: default → fitted |\n|---|---|---|---|---|\n",
+    );
+    for f in fits {
+        let set: Vec<String> = f
+            .settings()
+            .iter()
+            .map(|(k, v)| format!("{k}={v}"))
+            .collect();
+        out += &format!(
+            "| `{}` | `{}`, {} frame{} | `{}` | {:.4} → **{:.4}** | {:.4} → **{:.4}** ({:+.1} %) |\n",
+            f.method,
+            f.aov,
+            f.frames,
+            if f.frames == 1 { "" } else { "s" },
+            set.join(" "),
+            f.train.before,
+            f.train.after,
+            f.holdout.before,
+            f.holdout.after,
+            f.holdout_change()
+        );
+    }
+    out
+}
+
+/// docs/src/generated/fits.md: the table, every scene's errors and the command of each fit.
+fn fits_page(fits: &[Fit]) -> String {
+    let mut out = String::from(
+        "<!-- generated from docs/src/fits/*.json, measured by scripts/fits.sh; do not edit -->\n\n",
+    );
+    out += &fits_table(fits);
+    for f in fits {
+        out += &format!(
+            "\n#### `{}`\n\n`{}` of `{}` at {}×{}, reference {} spp; {} evaluations ({}), {:.0} s:\n\n```text\nnearfield {}\n```\n\n| scene | side | default | fitted |\n|---|---|---|---|\n",
+            f.method,
+            f.metric,
+            f.aov,
+            f.size[0],
+            f.size[1],
+            f.spp,
+            f.evaluations,
+            f.stopped,
+            f.seconds,
+            f.command
+        );
+        for (side, s) in [("train", &f.train), ("held out", &f.holdout)] {
+            for (scene, e) in &s.per_scene {
+                out += &format!(
+                    "| {} | {side} | {:.4} | {:.4} |\n",
+                    cell(scene),
+                    e.before,
+                    e.after
+                );
+            }
+        }
+    }
+    out
+}
+
+/// Replaces the README's text between `<!-- NAME -->` and `<!-- /NAME -->`.
+fn replace_marked(readme: &str, name: &str, text: &str) -> Result<String, String> {
+    let (open, close) = (format!("<!-- {name} -->\n"), format!("<!-- /{name} -->"));
+    let start = readme
+        .find(&open)
+        .ok_or(format!("README: no {open} marker"))?
+        + open.len();
+    let end = readme[start..]
+        .find(&close)
+        .ok_or(format!("README: no {close} marker"))?
+        + start;
+    let mut out = readme.to_string();
+    out.replace_range(start..end, text);
+    Ok(out)
+}
+
+/// Replaces the README's fitted table between `<!-- results:fitted -->` and
+/// `<!-- /results:fitted -->`.
+pub fn rewrite_readme_fits(readme: &str, fits: &[Fit]) -> Result<String, String> {
+    replace_marked(readme, "results:fitted", &fits_table(fits))
 }

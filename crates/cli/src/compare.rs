@@ -350,7 +350,7 @@ fn file_name(p: &std::path::Path) -> String {
 
 /// The comparison mask: GPU and reference coverage and depth (silhouettes excluded), within
 /// `region` if given.
-fn gpu_mask(
+pub(crate) fn gpu_mask(
     r: &mut Renderer,
     value: &nearfield_render::AovImage,
     ref_alpha: &[f32],

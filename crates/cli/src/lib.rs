@@ -10,6 +10,7 @@
 pub mod bench;
 pub mod book;
 pub mod compare;
+pub mod fit;
 pub mod options;
 pub mod reference;
 pub mod render;
@@ -40,6 +41,8 @@ enum Command {
     Compare(compare::CompareArgs),
     /// Time every pass of one or more techniques (median and p90 over many frames).
     Bench(bench::BenchArgs),
+    /// Fit a technique's numeric settings against the reference; held-out scenes measured.
+    Fit(fit::FitArgs),
     /// Interactive viewer: every technique, setting and AOV live, A/B split, timings.
     View(view::ViewArgs),
 }
@@ -141,6 +144,7 @@ pub fn main() -> ExitCode {
         Command::Reference(a) => reference::run(a),
         Command::Compare(a) => compare::run(a),
         Command::Bench(a) => bench::run(a),
+        Command::Fit(a) => fit::run(a),
         Command::View(a) => view::run(a),
     };
     match result {

@@ -214,6 +214,29 @@ fn every_bad_input_exits_2_with_one_line() {
         (vec!["view".into(), "--method".into(), "ssdo".into(), "--radius".into(), "inf".into()], "radius=inf"),
         (vec!["view".into(), "--size".into(), "0x0".into()], "--size"),
         (vec!["view".into(), "/nonexistent/scene.glb".into()], "scene.glb"),
+        // fit: everything is checked before a scene is loaded or a reference rendered.
+        (fit(&["--params", "nosuch", "--scenes", "builtin:cornell"]), "has no setting 'nosuch'"),
+        (fit(&["--params", "mode", "--scenes", "builtin:cornell"]), "not a numeric setting"),
+        (fit(&["--params", "bounce", "--scenes", "builtin:cornell"]), "not a numeric setting"),
+        (fit(&["--params", "", "--scenes", "builtin:cornell"]), "names no setting"),
+        (fit(&["--params", "strength,strength", "--scenes", "builtin:cornell"]), "named twice"),
+        (fit(&["--params", "strength=5..1", "--scenes", "builtin:cornell"]), "LO..HI"),
+        (fit(&["--params", "strength=0..99", "--scenes", "builtin:cornell"]), "LO..HI"),
+        (fit(&["--params", "strength=a..b", "--scenes", "builtin:cornell"]), "KEY=LO..HI"),
+        (fit(&["--params", "strength", "--scenes", ""]), "names no scene"),
+        (fit(&["--params", "strength", "--scenes", ",,"]), "names no scene"),
+        (fit(&["--params", "strength", "--scenes", "builtin:cornell", "--budget", "0"]), "--budget 0"),
+        (fit(&["--params", "strength,fade", "--scenes", "builtin:cornell", "--budget", "2"]), "at least 3"),
+        (fit(&["--params", "strength", "--scenes", "builtin:cornell", "--metric", "mse"]), "--metric mse"),
+        (fit(&["--params", "strength", "--scenes", "builtin:cornell", "--aov", "motion"]), "does not compute"),
+        (fit(&["--params", "strength", "--scenes", "builtin:cornell", "--holdout", "builtin:cornell"]), "also a training scene"),
+        (fit(&["--params", "strength", "--scenes", "builtin:cornell:env="]), "names no environment"),
+        (fit(&["--params", "strength", "--scenes", "builtin:cornell", "--radius", "inf"]), "finite"),
+        (fit(&["--params", "strength", "--scenes", "builtin:cornell", "--frames", "0"]), "--frames 0"),
+        (fit(&["--params", "strength", "--scenes", "builtin:cornell", "--out", "/nonexistent/dir/fit.json"]), "does not exist"),
+        (vec!["fit".into(), "magic".into(), "--params".into(), "strength".into(), "--scenes".into(), "builtin:cornell".into()], "unknown technique"),
+        (fit(&["--params", "strength", "--scenes", "/nonexistent/scene.glb", "--holdout", "none", "--size", "16x16"]), "scene.glb"),
+        (fit(&["--params", "strength", "--scenes", "builtin:nosuch", "--holdout", "none", "--size", "16x16"]), "nosuch"),
     ];
     for (args, needle) in cases {
         let args: Vec<&str> = args.iter().map(String::as_str).collect();
@@ -231,6 +254,15 @@ fn every_bad_input_exits_2_with_one_line() {
             "{args:?}: '{needle}' not in:\n{stderr}"
         );
     }
+}
+
+/// `fit ssdo ARGS…`.
+fn fit(args: &[&str]) -> Vec<String> {
+    ["fit", "ssdo"]
+        .iter()
+        .chain(args)
+        .map(|s| s.to_string())
+        .collect()
 }
 
 /// The one-triangle glTF of [`gltf`] as JSON, changed by `edit`.

@@ -188,8 +188,9 @@ fn generated_pages_and_the_readme_headline_are_current() {
     let results = nearfield_cli::book::read_results(&root()).unwrap();
     let results =
         results.expect("docs/src/generated/results.json (scripts/figures.sh) is committed");
+    let fits = nearfield_cli::book::read_fits(&root()).unwrap();
     let mut stale = Vec::new();
-    for (name, text) in nearfield_cli::book::generated_pages(Some(&results)) {
+    for (name, text) in nearfield_cli::book::generated_pages(Some(&results), &fits) {
         let path = src().join("generated").join(&name);
         if std::fs::read_to_string(&path).ok().as_deref() != Some(text.as_str()) {
             stale.push(name);
@@ -200,6 +201,9 @@ fn generated_pages_and_the_readme_headline_are_current() {
         != Ok(readme.as_str())
     {
         stale.push("README.md headline".into());
+    }
+    if nearfield_cli::book::rewrite_readme_fits(&readme, &fits).as_deref() != Ok(readme.as_str()) {
+        stale.push("README.md fitted table".into());
     }
     assert!(
         stale.is_empty(),
@@ -306,4 +310,51 @@ fn readme_is_short_and_starts_with_the_two_commands() {
     // Both are targets of the Makefile.
     let makefile = read(&root().join("Makefile"));
     assert!(makefile.contains("\ndemo:") && makefile.contains("\ntest:"));
+}
+
+/// Every technique with free constants has a fit (scripts/fits.sh), and its `quality=fitted`
+/// preset states exactly the fitted values; the preset measures on the training scenes what the
+/// fit reports (same spec, so `compare --methods TECH:quality=fitted` reproduces the row).
+#[test]
+fn every_fitted_preset_is_the_fit_it_quotes() {
+    let fits = nearfield_cli::book::read_fits(&root()).unwrap();
+    let names: Vec<&str> = fits.iter().map(|f| f.method.as_str()).collect();
+    for t in nearfield_render::technique::names() {
+        let desc = nearfield_render::technique::find(t).unwrap();
+        let fitted = desc.presets.iter().find(|p| p.name == "fitted");
+        if t == "none" {
+            assert!(fitted.is_none());
+            continue;
+        }
+        let fitted = fitted.unwrap_or_else(|| panic!("{t}: no quality=fitted preset"));
+        let fit = fits
+            .iter()
+            .find(|f| f.method == t)
+            .unwrap_or_else(|| panic!("{t}: no docs/src/fits/{t}.json (have {names:?})"));
+        let mut want = fit.settings();
+        let mut have: Vec<(String, String)> = fitted
+            .set
+            .iter()
+            .map(|(k, v)| (k.to_string(), v.to_string()))
+            .collect();
+        want.sort();
+        have.sort();
+        let same = want.len() == have.len()
+            && want.iter().zip(&have).all(|((wk, wv), (hk, hv))| {
+                wk == hk && wv.parse::<f64>().ok() == hv.parse::<f64>().ok()
+            });
+        assert!(same, "{t}: preset {have:?}, fit {want:?}");
+        assert!(fit.spec.starts_with(&format!("{t}:")), "{}", fit.spec);
+        assert!(
+            fit.train.after <= fit.train.before,
+            "{t}: the fit raised the training error"
+        );
+        assert!(fit.evaluations >= 2 && fit.seconds > 0.0);
+        // The preset is accepted where the fit's spec is.
+        nearfield_render::technique::check_spec(
+            &format!("{t}:quality=fitted"),
+            &Default::default(),
+        )
+        .unwrap_or_else(|e| panic!("{t}: {e}"));
+    }
 }

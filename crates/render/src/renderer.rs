@@ -378,6 +378,16 @@ impl Renderer {
         self.cut = true;
     }
 
+    /// Discards all history and restarts the frame count: the next frames draw the same noise
+    /// as a new renderer's first frames, so that one setting measured twice gives one result
+    /// (what a fit that reuses the renderer needs).
+    pub fn restart(&mut self) {
+        self.cut = true;
+        self.frame_index = 0;
+        self.previous = None;
+        self.previous_camera = None;
+    }
+
     pub fn camera(&self) -> &Camera {
         &self.camera
     }

@@ -10,6 +10,7 @@
 //! This module knows nothing of techniques or GPU resources; `technique/` builds on it.
 
 pub mod denoise;
+pub mod fitted;
 pub mod horizon;
 pub mod layers;
 pub mod s3ho;
@@ -388,7 +389,7 @@ pub fn markdown_table(table: &[Setting], presets: &[Preset]) -> String {
             })
             .collect();
         out += &format!(
-            "| `quality` | preset: {}; explicit settings refine it | | |\n",
+            "| `quality` | preset: {}; `fitted` each technique's constants fitted against the reference (results page, \"Fitted presets\"); explicit settings refine it | | |\n",
             names.join(", ")
         );
     }

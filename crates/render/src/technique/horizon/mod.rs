@@ -98,13 +98,18 @@ pub use params::HorizonParams;
 /// The history geometry and split geometry: world normal xyz, view depth w.
 pub const GEOMETRY_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
 
+const GTAO_PRESETS: [crate::settings::Preset; 5] =
+    crate::settings::fitted::with_fitted(PRESETS, crate::settings::fitted::GTAO);
+const HBIL_PRESETS: [crate::settings::Preset; 5] =
+    crate::settings::fitted::with_fitted(PRESETS, crate::settings::fitted::HBIL);
+
 pub const GTAO: TechniqueDesc = TechniqueDesc {
     name: "gtao",
     summary: "ground-truth AO: horizon search in slices, cosine-weighted AO, bent normal; ao × SH irradiance",
     create: create_gtao,
     check,
     settings: <Settings as Declared>::TABLE,
-    presets: PRESETS,
+    presets: &GTAO_PRESETS,
 };
 
 pub const HBIL: TechniqueDesc = TechniqueDesc {
@@ -113,7 +118,7 @@ pub const HBIL: TechniqueDesc = TechniqueDesc {
     create: create_hbil,
     check,
     settings: <Settings as Declared>::TABLE,
-    presets: PRESETS,
+    presets: &HBIL_PRESETS,
 };
 
 /// The 4×4 deinterleaved layers (with interleaving): split by radiance source (direct side 0,

@@ -67,13 +67,18 @@ pub use params::S3hoParams;
 /// 16 SH coefficients as half floats, 8 per texel (pack2x16float).
 pub const COEFFS_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Uint;
 
+const S3HO_PRESETS: [crate::settings::Preset; 5] =
+    crate::settings::fitted::with_fitted(super::ssdo::PRESETS, crate::settings::fitted::S3HO);
+const SSBN_PRESETS: [crate::settings::Preset; 5] =
+    crate::settings::fitted::with_fitted(super::ssdo::PRESETS, crate::settings::fitted::SSBN);
+
 pub const S3HO: TechniqueDesc = TechniqueDesc {
     name: "s3ho",
     summary: "screen-space SH occlusion (16 coefficients), SH lighting of environment and lights, indirect extension",
     create: create_s3ho,
     check,
     settings: <Settings as Declared>::TABLE,
-    presets: super::ssdo::PRESETS,
+    presets: &S3HO_PRESETS,
 };
 
 pub const SSBN: TechniqueDesc = TechniqueDesc {
@@ -82,7 +87,7 @@ pub const SSBN: TechniqueDesc = TechniqueDesc {
     create: create_ssbn,
     check,
     settings: <Settings as Declared>::TABLE,
-    presets: super::ssdo::PRESETS,
+    presets: &SSBN_PRESETS,
 };
 
 struct S3ho {

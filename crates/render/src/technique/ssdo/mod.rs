@@ -62,13 +62,22 @@ pub use params::SsdoParams;
 /// Most memory the virtual point lights' shadow maps may take.
 pub const VPL_SHADOW_BUDGET: u64 = 1 << 30;
 
+const SSAO_PRESETS: [crate::settings::Preset; 5] =
+    crate::settings::fitted::with_fitted(PRESETS, crate::settings::fitted::SSAO);
+const SSDO_PRESETS: [crate::settings::Preset; 5] =
+    crate::settings::fitted::with_fitted(PRESETS, crate::settings::fitted::SSDO);
+const SSDO_VPL_PRESETS: [crate::settings::Preset; 5] =
+    crate::settings::fitted::with_fitted(PRESETS, crate::settings::fitted::SSDO_VPL);
+const INSTANT_RADIOSITY_PRESETS: [crate::settings::Preset; 5] =
+    crate::settings::fitted::with_fitted(PRESETS, crate::settings::fitted::INSTANT_RADIOSITY);
+
 pub const SSAO: TechniqueDesc = TechniqueDesc {
     name: "ssao",
     summary: "normal-oriented hemisphere SSAO (same samples and visibility test as ssdo): ao × SH irradiance",
     create: create_ssao,
     check: |tp| Variant::Ssao.check(tp),
     settings: <Settings as Declared>::TABLE,
-    presets: PRESETS,
+    presets: &SSAO_PRESETS,
 };
 
 pub const SSDO: TechniqueDesc = TechniqueDesc {
@@ -77,7 +86,7 @@ pub const SSDO: TechniqueDesc = TechniqueDesc {
     create: create_ssdo,
     check: |tp| Variant::Ssdo.check(tp),
     settings: <Settings as Declared>::TABLE,
-    presets: PRESETS,
+    presets: &SSDO_PRESETS,
 };
 
 pub const SSDO_VPL: TechniqueDesc = TechniqueDesc {
@@ -86,7 +95,7 @@ pub const SSDO_VPL: TechniqueDesc = TechniqueDesc {
     create: create_ssdo_vpl,
     check: |tp| Variant::SsdoVpl.check(tp),
     settings: <Settings as Declared>::TABLE,
-    presets: PRESETS,
+    presets: &SSDO_VPL_PRESETS,
 };
 
 pub const INSTANT_RADIOSITY: TechniqueDesc = TechniqueDesc {
@@ -95,7 +104,7 @@ pub const INSTANT_RADIOSITY: TechniqueDesc = TechniqueDesc {
     create: create_instant_radiosity,
     check: |tp| Variant::InstantRadiosity.check(tp),
     settings: <Settings as Declared>::TABLE,
-    presets: PRESETS,
+    presets: &INSTANT_RADIOSITY_PRESETS,
 };
 
 /// Which technique of this file.

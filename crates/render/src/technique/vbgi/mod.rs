@@ -66,13 +66,16 @@ use bytemuck::{Pod, Zeroable};
 
 pub use crate::settings::vbgi::{PRESETS, Settings, Thickness, VbgiFar};
 
+const VBGI_PRESETS: [crate::settings::Preset; 5] =
+    crate::settings::fitted::with_fitted(PRESETS, crate::settings::fitted::VBGI);
+
 pub const VBGI: TechniqueDesc = TechniqueDesc {
     name: "vbgi",
     summary: "visibility-bitmask GI: sectors occupied between each sample's front and back (thickness from the second depth layer), cosine-weighted; light passes behind thin objects",
     create,
     check,
     settings: <Settings as Declared>::TABLE,
-    presets: PRESETS,
+    presets: &VBGI_PRESETS,
 };
 
 /// `VbgiParams` in bitmask.wgsl.
