@@ -96,9 +96,7 @@ pub fn run(args: CompareArgs) -> Result<()> {
     let methods = crate::options::methods_and_frames(args.methods.as_deref(), args.frames)?;
     crate::options::check_orbit(args.orbit)?;
     let size = crate::options::parse_size(&args.scene.size)?;
-    let border = args
-        .border
-        .unwrap_or(((size.0.min(size.1) as f32 * 0.02) as u32).max(2));
+    let border = args.border.unwrap_or_else(|| default_border(size));
     if 2 * border >= size.0.min(size.1) {
         return Err(BadInput(format!(
             "--border {border}: leaves no pixel of a {}x{} image",
@@ -339,6 +337,12 @@ pub fn run(args: CompareArgs) -> Result<()> {
         mask.silhouette_pixels
     );
     Ok(())
+}
+
+/// The excluded band at the image edge without `--border`: 2 % of the smaller side, at least 2
+/// pixels (also `fit`'s, so that both measure the same pixels).
+pub(crate) fn default_border((w, h): (u32, u32)) -> u32 {
+    ((w.min(h) as f32 * 0.02) as u32).max(2)
 }
 
 /// The last component of `p` (reports name no directories).

@@ -202,10 +202,7 @@ impl Target {
             }
         }
         let mut sum = 0.0;
-        let border = {
-            let (w, h) = self.renderer.size();
-            ((w.min(h) as f32 * 0.02) as u32).max(2)
-        };
+        let border = crate::compare::default_border(self.renderer.size());
         for t in &mut self.truths {
             let value = self.renderer.read_aov(t.aov);
             if t.mask.is_none() {
@@ -274,13 +271,17 @@ fn short_name(spec: &SceneSpec) -> String {
         .unwrap_or_else(|| spec.scene.clone())
 }
 
-/// A comma-separated scene list; `what` names the option in errors.
-fn parse_scene_list(what: &str, s: &str) -> Result<Vec<(String, SceneSpec)>> {
-    let names: Vec<&str> = s
-        .split(',')
+/// The non-empty items of a comma-separated list, trimmed.
+fn list_items(s: &str) -> Vec<&str> {
+    s.split(',')
         .map(str::trim)
         .filter(|n| !n.is_empty())
-        .collect();
+        .collect()
+}
+
+/// A comma-separated scene list; `what` names the option in errors.
+fn parse_scene_list(what: &str, s: &str) -> Result<Vec<(String, SceneSpec)>> {
+    let names = list_items(s);
     if names.is_empty() {
         return Err(BadInput(format!("{what} '{s}': names no scene")).into());
     }
@@ -301,11 +302,7 @@ pub fn parse_params(
     desc: &nearfield_render::technique::TechniqueDesc,
     resolved: &nearfield_render::TechniqueParams,
 ) -> Result<Vec<Dimension>> {
-    let items: Vec<&str> = text
-        .split(',')
-        .map(str::trim)
-        .filter(|p| !p.is_empty())
-        .collect();
+    let items = list_items(text);
     if items.is_empty() {
         return Err(BadInput(format!("--params '{text}': names no setting")).into());
     }
