@@ -5,6 +5,7 @@
 # per-pass medians after warm-up), and writes into $OUT (default out/device-bench):
 #   bench-1280x720.json, bench-1920x1080.json   `nearfield bench --json` reports
 #   device-bench.md                              one markdown table: per-pass and frame medians
+#   pareto-gtao/pareto.{json,svg}                gtao's error-versus-time front at 1920×1080
 #   device-bench.log                             everything it printed
 # It finishes within 8 minutes on that machine (frames and warm-up are sized for it).
 #
@@ -74,13 +75,16 @@ fi
 nvidia-smi --query-gpu=name,driver_version,memory.total --format=csv 2>/dev/null || true
 
 # Every registered technique, and the horizon techniques at full resolution too.
-METHODS=none,ssao,ssdo,ssdo-vpl,instant-radiosity,s3ho,ssbn,gtao,gtao:interleaved=off,hbil,hbil:interleaved=off,hbil:denoise=svgf,vbgi,vbgi:thickness=adaptive,vbgi:interleaved=off
+METHODS=none,ssao,ssdo,ssdo-vpl,instant-radiosity,s3ho,ssbn,gtao,gtao:interleaved=off,gtao:quality=high,gtao:slices=3+steps=3,hbil,hbil:interleaved=off,hbil:denoise=svgf,vbgi,vbgi:thickness=adaptive,vbgi:interleaved=off
 start=$(date +%s)
 for size in "${SIZES[@]}"; do
     echo "== $size"
     timeout 210 "$BIN" bench "$SCENE" --size "$size" --frames "$FRAMES" --warmup "$WARMUP" \
         --methods "$METHODS" --json "$OUT/bench-$size.json"
 done
+# gtao's error-versus-time front with GPU timestamps (the goal: gtao High ≤ 0.1 ms at 1080p).
+timeout 150 "$BIN" pareto "$SCENE" --size 1920x1080 --methods gtao --aov ao --radius 1 --spp 16 \
+    --warmup 10 --timed 30 --out "$OUT/pareto-gtao" || echo "device-bench: pareto did not finish"
 echo "device-bench: $(($(date +%s) - start)) s of benchmarks"
 
 python3 - "$OUT" "${SIZES[@]}" <<'PY'

@@ -21,7 +21,8 @@ fn main() {
     std::fs::create_dir_all(&dir).unwrap_or_else(|e| fail(format!("{}: {e}", dir.display())));
     let results = nearfield_cli::book::read_results(&root).unwrap_or_else(|e| fail(e));
     let fits = nearfield_cli::book::read_fits(&root).unwrap_or_else(|e| fail(e));
-    for (name, text) in nearfield_cli::book::generated_pages(results.as_ref(), &fits) {
+    let fronts = nearfield_cli::book::read_fronts(&root).unwrap_or_else(|e| fail(e));
+    for (name, text) in nearfield_cli::book::generated_pages(results.as_ref(), &fits, &fronts) {
         let path = dir.join(&name);
         nearfield_scene::atomic::write_bytes(&path, text.as_bytes())
             .unwrap_or_else(|e| fail(format!("{}: {e}", path.display())));

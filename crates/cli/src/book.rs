@@ -110,11 +110,18 @@ pub fn cli_reference() -> String {
 
 /// Every generated page: (file name in docs/src/generated/, content); the results pages when
 /// measured results are given.
-pub fn generated_pages(results: Option<&Results>, fits: &[Fit]) -> Vec<(String, String)> {
+pub fn generated_pages(
+    results: Option<&Results>,
+    fits: &[Fit],
+    fronts: &[Front],
+) -> Vec<(String, String)> {
     let mut pages = nearfield_render::settings::book_pages();
     pages.push(("cli.md".into(), cli_reference()));
     if !fits.is_empty() {
         pages.push(("fits.md".into(), fits_page(fits)));
+    }
+    if !fronts.is_empty() {
+        pages.push(("pareto.md".into(), fronts_page(fronts)));
     }
     if let Some(r) = results {
         pages.extend(results_pages(r));
@@ -652,4 +659,122 @@ fn replace_marked(readme: &str, name: &str, text: &str) -> Result<String, String
 /// `<!-- /results:fitted -->`.
 pub fn rewrite_readme_fits(readme: &str, fits: &[Fit]) -> Result<String, String> {
     replace_marked(readme, "results:fitted", &fits_table(fits))
+}
+
+// ---- Fronts: `nearfield pareto` runs of scripts/pareto-book.sh in
+// ---- docs/src/pareto/SCENE-AOV/pareto.json (and its pareto.svg).
+
+pub use crate::pareto::{MethodFront as FrontMethod, Point as FrontPoint};
+
+/// What `nearfield pareto` writes (the fields the book shows); `dir` is its folder's name.
+#[derive(Clone, Debug, Deserialize)]
+pub struct Front {
+    #[serde(skip)]
+    pub dir: String,
+    pub scene: String,
+    pub aov: String,
+    pub size: [u32; 2],
+    pub radius: f32,
+    pub frames: u32,
+    pub spp: u32,
+    pub adapter: String,
+    pub timing: String,
+    pub none_ms: f64,
+    pub methods: Vec<FrontMethod>,
+    pub command: String,
+}
+
+/// Reads docs/src/pareto/*/pareto.json below `root`, in folder order.
+pub fn read_fronts(root: &std::path::Path) -> Result<Vec<Front>, String> {
+    let dir = root.join("docs/src/pareto");
+    let Ok(entries) = std::fs::read_dir(&dir) else {
+        return Ok(Vec::new());
+    };
+    let mut names: Vec<String> = entries
+        .filter_map(|e| e.ok())
+        .filter(|e| e.path().join("pareto.json").is_file())
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    let mut fronts = Vec::new();
+    for name in names {
+        let path = dir.join(&name).join("pareto.json");
+        let text =
+            std::fs::read_to_string(&path).map_err(|e| format!("{}: {e}", path.display()))?;
+        let mut f: Front =
+            serde_json::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))?;
+        f.dir = name;
+        fronts.push(f);
+    }
+    Ok(fronts)
+}
+
+/// docs/src/generated/pareto.md: per scene and AOV the plot, and per technique its default,
+/// the configurations on its front and how far the default is from it.
+fn fronts_page(fronts: &[Front]) -> String {
+    let mut out = String::from(
+        "<!-- generated from docs/src/pareto/*/pareto.json, measured by scripts/pareto-book.sh; do not edit -->\n\n",
+    );
+    for f in fronts {
+        let scene = crate::pareto::short_scene(&f.scene);
+        let _ = writeln!(out, "### {scene}: `{}`\n", f.aov);
+        let _ = writeln!(
+            out,
+            "![{} error against time on {scene}](pareto/{}/pareto.svg)\n",
+            f.aov, f.dir
+        );
+        let _ = writeln!(
+            out,
+            "{}×{}, R = {} m, {} frame{}, reference {} spp; {} time per frame on {} (`none`: {:.1} ms).\n",
+            f.size[0],
+            f.size[1],
+            f.radius,
+            f.frames,
+            if f.frames == 1 { "" } else { "s" },
+            f.spp,
+            f.timing,
+            f.adapter,
+            f.none_ms
+        );
+        out += "| technique | default: ms, rel. error | its front (ms, rel. error) | default vs front |\n|---|---|---|---|\n";
+        for m in &f.methods {
+            let d = &m.points[0];
+            let mut front: Vec<&FrontPoint> =
+                m.points.iter().filter(|p| p.technique_front).collect();
+            front.sort_by(|a, b| a.ms.total_cmp(&b.ms));
+            let list: Vec<String> = front
+                .iter()
+                .map(|p| {
+                    format!(
+                        "{}{} ({:.1}, {:.4})",
+                        if p.front { "**" } else { "" },
+                        p.label,
+                        p.ms,
+                        p.error
+                    ) + if p.front { "**" } else { "" }
+                })
+                .collect();
+            let _ = writeln!(
+                out,
+                "| {} | {:.1}, {:.4} | {} | {} |",
+                m.name,
+                d.ms,
+                d.error,
+                list.join("; "),
+                if m.default_slack <= 0.0 {
+                    "on its front".to_string()
+                } else if m.default_near_front {
+                    format!("near (+{:.1} % time)", 100.0 * m.default_slack)
+                } else {
+                    format!("off: +{:.0} % time", 100.0 * m.default_slack)
+                }
+            );
+        }
+        let _ = writeln!(
+            out,
+            "\nBold: on the front of all techniques. Command: `{}`\n",
+            f.command
+        );
+    }
+    out
 }

@@ -61,6 +61,54 @@ pub struct CompareArgs {
     /// red: too bright, grey: excluded), labelled with its range.
     #[arg(long, requires = "strip")]
     pub strip_errors: bool,
+    /// Also measure an image made elsewhere, NAME=FILE.exr (repeatable; RGB of the AOV at the
+    /// image size, e.g. another engine's AO from `peers/bevy_ssao`), with the same mask and
+    /// metrics as the techniques, beside them in the report.
+    #[arg(long = "image", value_name = "NAME=FILE.exr")]
+    pub images: Vec<String>,
+}
+
+/// `--image NAME=FILE.exr`: the name and the image, which must have `size`.
+fn read_images(specs: &[String], size: (u32, u32)) -> Result<Vec<(String, Vec<[f32; 4]>)>> {
+    let mut out: Vec<(String, Vec<[f32; 4]>)> = Vec::new();
+    for spec in specs {
+        let (name, path) = spec
+            .split_once('=')
+            .filter(|(n, p)| !n.trim().is_empty() && !p.trim().is_empty())
+            .ok_or_else(|| BadInput(format!("--image {spec}: expected NAME=FILE.exr")))?;
+        let name = name.trim().to_string();
+        if !name
+            .chars()
+            .all(|c| c.is_ascii_alphanumeric() || "-_.".contains(c))
+            || name.starts_with('.')
+        {
+            return Err(BadInput(format!(
+                "--image {spec}: the name may hold letters, digits, '-', '_' and '.' only"
+            ))
+            .into());
+        }
+        if out.iter().any(|(n, _)| *n == name) || nearfield_render::technique::find(&name).is_ok() {
+            return Err(BadInput(format!(
+                "--image {spec}: the name {name} is taken (by another image or a technique)"
+            ))
+            .into());
+        }
+        let path = std::path::Path::new(path.trim());
+        let img = exr_io::read(path).map_err(|e| BadInput(e.to_string()))?;
+        if (img.width, img.height) != size {
+            return Err(BadInput(format!(
+                "{}: image is {}x{}, the comparison is {}x{}",
+                path.display(),
+                img.width,
+                img.height,
+                size.0,
+                size.1
+            ))
+            .into());
+        }
+        out.push((name, img.value));
+    }
+    Ok(out)
 }
 
 /// `--region X0,Y0,X1,Y1` inside an image of `size`.
@@ -134,6 +182,7 @@ pub fn run(args: CompareArgs) -> Result<()> {
         }
         None => None,
     };
+    let images = read_images(&args.images, size)?;
     if let Some(p) = &args.strip {
         if p.extension().and_then(|e| e.to_str()) != Some("png") {
             return Err(BadInput(format!("--strip {}: must be a .png file", p.display())).into());
@@ -199,6 +248,55 @@ pub fn run(args: CompareArgs) -> Result<()> {
         "frames",
         true,
     );
+    // One image's metrics, PNGs and strip panels: a technique's AOV or an --image.
+    let measure = |method: &str,
+                   pixels: &[[f32; 4]],
+                   mask: &Mask,
+                   convergence: Vec<ConvergencePoint>,
+                   panels: &mut Vec<Panel>|
+     -> Result<MethodReport> {
+        let mut m = metrics::metrics(pixels, &reference.value, mask);
+        let srgb = image_ops::tonemap(pixels, w, h);
+        m.flip = Some(metrics::flip_mean(&srgb, &ref_srgb, mask));
+        if args.strip.is_some() {
+            panels.push(Panel {
+                image: srgb.clone(),
+                title: method.to_string(),
+                subtitle: format!("relative error {:.3}", m.relative_error),
+            });
+        }
+        let errors = metrics::signed_errors(pixels, &reference.value, mask);
+        let range = image_ops::error_range(&errors, &mask.valid);
+        let image = format!("{method}.png");
+        let heat = format!("{method}-error.png");
+        png(srgb, args.out.join(&image))?;
+        let heatmap = image_ops::heatmap(&errors, &mask.valid, w, h, range);
+        if args.strip_errors {
+            panels.push(Panel {
+                image: heatmap.clone(),
+                title: format!("{method} − reference"),
+                subtitle: format!("blue −{range:.3} … red +{range:.3}"),
+            });
+        }
+        png(heatmap, args.out.join(&heat))?;
+        progress.suspend(|| println!(
+            "{method:<10} pixels {:>8}  bias {:+.5}  MAE {:.5}  RMSE {:.5}  rel {:.4}  FLIP {:.4}",
+            m.pixels,
+            m.bias,
+            m.mae,
+            m.rmse,
+            m.relative_error,
+            m.flip.unwrap_or(0.0)
+        ));
+        Ok(MethodReport {
+            name: method.to_string(),
+            metrics: m,
+            error_range: range,
+            image,
+            heatmap: heat,
+            convergence,
+        })
+    };
     for method in &methods {
         progress.set_message(method);
         let mut r = Renderer::new(
@@ -254,50 +352,22 @@ pub fn run(args: CompareArgs) -> Result<()> {
                 region,
             ),
         };
-        let mut m = metrics::metrics(&value.pixels, &reference.value, &mask);
-        let srgb = image_ops::tonemap(&value.pixels, w, h);
-        m.flip = Some(metrics::flip_mean(&srgb, &ref_srgb, &mask));
-        if args.strip.is_some() {
-            panels.push(Panel {
-                image: srgb.clone(),
-                title: method.clone(),
-                subtitle: format!("relative error {:.3}", m.relative_error),
-            });
-        }
-        let errors = metrics::signed_errors(&value.pixels, &reference.value, &mask);
-        let range = image_ops::error_range(&errors, &mask.valid);
-        let image = format!("{method}.png");
-        let heat = format!("{method}-error.png");
-        png(srgb, args.out.join(&image))?;
-        let heatmap = image_ops::heatmap(&errors, &mask.valid, w, h, range);
-        if args.strip_errors {
-            panels.push(Panel {
-                image: heatmap.clone(),
-                title: format!("{method} − reference"),
-                subtitle: format!("blue −{range:.3} … red +{range:.3}"),
-            });
-        }
-        png(heatmap, args.out.join(&heat))?;
-        progress.suspend(|| println!(
-            "{method:<10} pixels {:>8}  bias {:+.5}  MAE {:.5}  RMSE {:.5}  rel {:.4}  FLIP {:.4}",
-            m.pixels,
-            m.bias,
-            m.mae,
-            m.rmse,
-            m.relative_error,
-            m.flip.unwrap_or(0.0)
-        ));
-        reports.push(MethodReport {
-            name: method.clone(),
-            metrics: m,
-            error_range: range,
-            image,
-            heatmap: heat,
+        reports.push(measure(
+            method,
+            &value.pixels,
+            &mask,
             convergence,
-        });
+            &mut panels,
+        )?);
         last_mask = Some(mask);
     }
     progress.finish();
+    // Images made elsewhere: the last technique's mask (same scene, camera and reference).
+    if let Some(mask) = &last_mask {
+        for (name, pixels) in &images {
+            reports.push(measure(name, pixels, mask, Vec::new(), &mut panels)?);
+        }
+    }
     if let Some(path) = &args.strip {
         panels.push(Panel {
             image: ref_srgb.clone(),

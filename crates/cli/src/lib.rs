@@ -10,8 +10,10 @@
 pub mod bench;
 pub mod book;
 pub mod compare;
+pub mod export;
 pub mod fit;
 pub mod options;
+pub mod pareto;
 pub mod reference;
 pub mod render;
 pub mod view;
@@ -43,6 +45,10 @@ enum Command {
     Bench(bench::BenchArgs),
     /// Fit a technique's numeric settings against the reference; held-out scenes measured.
     Fit(fit::FitArgs),
+    /// Error against time of every technique's presets and counts: pareto.json and pareto.svg.
+    Pareto(pareto::ParetoArgs),
+    /// Write a scene (a built-in or a file) and its camera as glTF 2.0 (.glb or .gltf).
+    Export(export::ExportArgs),
     /// Interactive viewer: every technique, setting and AOV live, A/B split, timings.
     View(view::ViewArgs),
 }
@@ -145,6 +151,8 @@ pub fn main() -> ExitCode {
         Command::Compare(a) => compare::run(a),
         Command::Bench(a) => bench::run(a),
         Command::Fit(a) => fit::run(a),
+        Command::Pareto(a) => pareto::run(a),
+        Command::Export(a) => export::run(a),
         Command::View(a) => view::run(a),
     };
     match result {

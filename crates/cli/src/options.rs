@@ -195,6 +195,34 @@ pub struct TechniqueOpts {
 }
 
 impl TechniqueOpts {
+    /// The technique options of a command that measures against the reference at one finite
+    /// radius (`fit`, `pareto`): `--radius` (finite), `--set`, `--seed`, defaults elsewhere;
+    /// with the parsed parameters and the radius.
+    pub fn measured(
+        radius: &str,
+        set: &[String],
+        seed: u32,
+    ) -> Result<(Self, nearfield_render::TechniqueParams, f32)> {
+        let technique = TechniqueOpts {
+            samples: None,
+            radius: Some(radius.to_string()),
+            set: set.to_vec(),
+            exposure: 0.0,
+            tonemap: "aces".into(),
+            seed,
+            shadow_size: 2048,
+        };
+        let params = technique.params()?;
+        let radius = params.radius.expect("given");
+        if radius.is_infinite() {
+            return Err(BadInput(
+                "--radius inf: screen-space techniques need a finite near-field radius".into(),
+            )
+            .into());
+        }
+        Ok((technique, params, radius))
+    }
+
     pub fn params(&self) -> Result<nearfield_render::TechniqueParams> {
         if let Some(s) = self.samples
             && !(1..=1024).contains(&s)

@@ -237,6 +237,30 @@ fn every_bad_input_exits_2_with_one_line() {
         (vec!["fit".into(), "magic".into(), "--params".into(), "strength".into(), "--scenes".into(), "builtin:cornell".into()], "unknown technique"),
         (fit(&["--params", "strength", "--scenes", "/nonexistent/scene.glb", "--holdout", "none", "--size", "16x16"]), "scene.glb"),
         (fit(&["--params", "strength", "--scenes", "builtin:nosuch", "--holdout", "none", "--size", "16x16"]), "nosuch"),
+        // pareto: the sweep is checked before anything is loaded.
+        (pareto(&["--methods", "magic"]), "unknown technique"),
+        (pareto(&["--methods", "gtao:nosuch=1"]), "nosuch"),
+        (pareto(&["--methods", "gtao:slices=0"]), "slices"),
+        (pareto(&["--methods", "none"]), "empty sweep"),
+        (pareto(&["--methods", ","]), "no technique"),
+        (pareto(&["--methods", "gtao", "--vary", "steps="]), "empty sweep"),
+        (pareto(&["--methods", "gtao", "--vary", "steps"]), "KEY=V1,V2"),
+        (pareto(&["--methods", "gtao", "--vary", "nosuch=1,2"]), "empty sweep"),
+        (pareto(&["--methods", "gtao", "--vary", "steps=1", "--vary", "steps=2"]), "named twice"),
+        (pareto(&["--methods", "gtao", "--radius", "inf"]), "finite"),
+        (pareto(&["--methods", "gtao", "--timed", "0"]), "--timed 0"),
+        (pareto(&["--methods", "gtao", "--frames", "0"]), "--frames 0"),
+        (pareto(&["--methods", "gtao", "--aov", "motion"]), "motion"),
+        (pareto(&["--methods", "gtao", "--size", "0x10"]), "--size"),
+        (pareto(&["/nonexistent/scene.glb", "--methods", "gtao", "--size", "16x16"]), "scene.glb"),
+        // export and compare --image.
+        (args(&["export", "builtin:cornell", "--out", "/tmp/x.obj"]), ".glb or .gltf"),
+        (args(&["export", "builtin:cornell", "--out", "/nonexistent/dir/x.glb"]), "does not exist"),
+        (args(&["export", "builtin:nosuch", "--out", "/tmp/nearfield-x.glb"]), "nosuch"),
+        (args(&["compare", "--methods", "gtao", "--image", "noequals"]), "NAME=FILE.exr"),
+        (args(&["compare", "--methods", "gtao", "--image", "gtao=x.exr"]), "is taken"),
+        (args(&["compare", "--methods", "gtao", "--image", "a/b=x.exr"]), "may hold"),
+        (args(&["compare", "--methods", "gtao", "--image", "peer=/nonexistent/ao.exr"]), "ao.exr"),
     ];
     for (args, needle) in cases {
         let args: Vec<&str> = args.iter().map(String::as_str).collect();
@@ -254,6 +278,19 @@ fn every_bad_input_exits_2_with_one_line() {
             "{args:?}: '{needle}' not in:\n{stderr}"
         );
     }
+}
+
+/// `pareto builtin:cornell ARGS…`.
+fn pareto(a: &[&str]) -> Vec<String> {
+    ["pareto", "builtin:cornell"]
+        .iter()
+        .chain(a)
+        .map(|s| s.to_string())
+        .collect()
+}
+
+fn args(a: &[&str]) -> Vec<String> {
+    a.iter().map(|s| s.to_string()).collect()
 }
 
 /// `fit ssdo ARGS…`.

@@ -1,6 +1,9 @@
 //! `nearfield reference` and `nearfield compare` end to end: the cache is reused, and on a scene
 //! whose answer is exact (a lone plane: ao = 1 everywhere for GPU `none` and the reference) the
-//! report's metrics are exactly zero.
+//! report's metrics are exactly zero. Also `nearfield pareto` (a front that agrees with
+//! `compare`), `compare --image` (an image measured beside the techniques gets the technique's
+//! own numbers when it is that technique's AOV) and `nearfield export` (an exported built-in
+//! renders the same depth).
 
 use std::process::Command;
 
@@ -254,4 +257,242 @@ fn report_works_in_a_browser_from_any_folder() {
         100.0 * light as f64 / n as f64
     );
     assert!(dark * 200 > n && light * 2 > n, "the page looks blank");
+}
+
+#[test]
+fn pareto_writes_a_front_that_compare_agrees_with() {
+    let dir = std::env::temp_dir().join(format!("nearfield-pareto-{}", std::process::id()));
+    let cache = dir.join("cache");
+    std::fs::create_dir_all(&dir).unwrap();
+    let out = dir.join("front");
+    let (code, stdout, err) = run(
+        &[
+            "pareto",
+            "builtin:boxes",
+            "--size",
+            "64x36",
+            "--methods",
+            "gtao,ssao",
+            "--vary",
+            "slices=1,3",
+            "--vary",
+            "samples=4",
+            "--radius",
+            "1",
+            "--spp",
+            "16",
+            "--warmup",
+            "1",
+            "--timed",
+            "2",
+            "--out",
+            out.to_str().unwrap(),
+        ],
+        &cache,
+    );
+    if !gpu_available(&err) {
+        return;
+    }
+    assert_eq!(code, 0, "{err}");
+    assert!(stdout.contains("gtao:slices=1"), "{stdout}");
+    let json: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(out.join("pareto.json")).unwrap()).unwrap();
+    let methods = json["methods"].as_array().unwrap();
+    assert_eq!(methods.len(), 2);
+    // gtao: default, slices=1, slices=3; ssao (no slices setting): default, samples=4.
+    let specs: Vec<&str> = methods
+        .iter()
+        .flat_map(|m| m["points"].as_array().unwrap())
+        .map(|p| p["spec"].as_str().unwrap())
+        .collect();
+    assert_eq!(
+        specs,
+        [
+            "gtao",
+            "gtao:slices=1",
+            "gtao:slices=3",
+            "ssao",
+            "ssao:samples=4"
+        ]
+    );
+    let mut fronts = 0;
+    for m in methods {
+        for p in m["points"].as_array().unwrap() {
+            let (ms, e) = (p["ms"].as_f64().unwrap(), p["error"].as_f64().unwrap());
+            assert!(ms > 0.0 && e.is_finite() && e >= 0.0, "{p}");
+            fronts += p["front"].as_bool().unwrap() as u32;
+        }
+        assert!(m["default_slack"].as_f64().unwrap() >= 0.0);
+    }
+    assert!(fronts >= 1);
+    let svg = std::fs::read_to_string(out.join("pareto.svg")).unwrap();
+    assert_eq!(
+        svg.matches("<title>").count(),
+        5,
+        "one dot per configuration"
+    );
+    // The errors are compare's.
+    let cmp = dir.join("cmp");
+    let (code, _, err) = run(
+        &[
+            "compare",
+            "builtin:boxes",
+            "--size",
+            "64x36",
+            "--methods",
+            "gtao:slices=1",
+            "--radius",
+            "1",
+            "--spp",
+            "16",
+            "--out",
+            cmp.to_str().unwrap(),
+        ],
+        &cache,
+    );
+    assert_eq!(code, 0, "{err}");
+    let metrics: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(cmp.join("metrics.json")).unwrap()).unwrap();
+    let want = metrics["methods"][0]["metrics"]["relative_error"]
+        .as_f64()
+        .unwrap();
+    let got = methods[0]["points"][1]["error"].as_f64().unwrap();
+    assert!((got - want).abs() < 1e-9, "pareto {got} vs compare {want}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn an_image_measured_beside_the_techniques_gets_their_numbers() {
+    let dir = std::env::temp_dir().join(format!("nearfield-image-{}", std::process::id()));
+    let cache = dir.join("cache");
+    std::fs::create_dir_all(&dir).unwrap();
+    // gtao's ao as a file, then measured as an --image beside gtao itself.
+    let exr = dir.join("gtao-ao.exr");
+    let (code, _, err) = run(
+        &[
+            "render",
+            "builtin:cornell",
+            "--size",
+            "64x36",
+            "--method",
+            "gtao",
+            "--radius",
+            "1",
+            "--aov",
+            "ao",
+            "-o",
+            exr.to_str().unwrap(),
+        ],
+        &cache,
+    );
+    if !gpu_available(&err) {
+        return;
+    }
+    assert_eq!(code, 0, "{err}");
+    let out = dir.join("cmp");
+    let image = "other=gtao-ao.exr";
+    let (code, stdout, err) = Command::new(env!("CARGO_BIN_EXE_nearfield"))
+        .current_dir(&dir)
+        .args([
+            "compare",
+            "builtin:cornell",
+            "--size",
+            "64x36",
+            "--methods",
+            "gtao",
+            "--radius",
+            "1",
+            "--spp",
+            "16",
+            "--image",
+            image,
+            "--out",
+            "cmp",
+        ])
+        .env("NEARFIELD_CACHE", &cache)
+        .output()
+        .map(|o| {
+            (
+                o.status.code().unwrap_or(-1),
+                String::from_utf8_lossy(&o.stdout).into_owned(),
+                String::from_utf8_lossy(&o.stderr).into_owned(),
+            )
+        })
+        .unwrap();
+    assert_eq!(code, 0, "{err}");
+    assert!(stdout.contains("other"), "{stdout}");
+    let metrics: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(out.join("metrics.json")).unwrap()).unwrap();
+    let m = metrics["methods"].as_array().unwrap();
+    assert_eq!(m.len(), 2);
+    assert_eq!(m[1]["name"], "other");
+    let (a, b) = (
+        m[0]["metrics"]["relative_error"].as_f64().unwrap(),
+        m[1]["metrics"]["relative_error"].as_f64().unwrap(),
+    );
+    assert!(
+        a > 0.0 && (a - b).abs() < 1e-6,
+        "gtao {a}, its own image {b}"
+    );
+    assert!(out.join("other.png").is_file() && out.join("other-error.png").is_file());
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn export_writes_gltf_that_loads_back() {
+    let dir = std::env::temp_dir().join(format!("nearfield-export-cli-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let glb = dir.join("cornell.glb");
+    let (code, _, err) = run(
+        &["export", "builtin:cornell", "--out", glb.to_str().unwrap()],
+        &dir,
+    );
+    assert_eq!(code, 0, "{err}");
+    assert!(err.contains("28 triangles"), "{err}");
+    // The file renders like the built-in: the same depth from the same camera, to within the
+    // float rounding of the exported camera matrix.
+    let a = dir.join("a.exr");
+    let b = dir.join("b.exr");
+    for (scene, out) in [("builtin:cornell", &a), (glb.to_str().unwrap(), &b)] {
+        let (code, _, err) = run(
+            &[
+                "render",
+                scene,
+                "--size",
+                "48x27",
+                "--method",
+                "none",
+                "--aov",
+                "depth",
+                "-o",
+                out.to_str().unwrap(),
+            ],
+            &dir,
+        );
+        if !gpu_available(&err) {
+            return;
+        }
+        assert_eq!(code, 0, "{scene}: {err}");
+    }
+    let depth = |p: &std::path::Path| -> Vec<f32> {
+        let img = exr::prelude::read_first_rgba_layer_from_file(
+            p,
+            |r, _| vec![0f32; r.width() * r.height()],
+            |v: &mut Vec<f32>, pos, (d, _, _, _): (f32, f32, f32, f32)| {
+                v[pos.y() * 48 + pos.x()] = d
+            },
+        )
+        .unwrap();
+        img.layer_data.channel_data.pixels
+    };
+    let (da, db) = (depth(&a), depth(&b));
+    let covered = da.iter().filter(|d| **d > 0.0).count();
+    assert!(covered > 48 * 27 / 5, "{covered} covered pixels");
+    let worst = da
+        .iter()
+        .zip(&db)
+        .map(|(x, y)| (x - y).abs())
+        .fold(0f32, f32::max);
+    assert!(worst < 1e-3, "depth differs by up to {worst} m");
+    let _ = std::fs::remove_dir_all(&dir);
 }

@@ -53,9 +53,7 @@ pub fn pass_layouts() -> Vec<bindings::PassLayout> {
         s3ho::shade::pass_layout(),
         horizon::split::pass_layout(),
         horizon::search::pass_layout(),
-        horizon::merge::pass_layout(),
         horizon::accumulate::pass_layout(),
-        horizon::outputs::pass_layout(),
         vbgi::bitmask::pass_layout(),
         vbgi::back::pass_layout(),
     ];

@@ -15,6 +15,7 @@ pub mod builtin;
 pub mod camera;
 pub mod environment;
 pub mod error;
+pub mod export;
 pub mod light;
 pub mod limits;
 pub mod load;

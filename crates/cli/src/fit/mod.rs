@@ -447,23 +447,7 @@ pub fn run(args: FitArgs) -> Result<()> {
     if !(args.tolerance.is_finite() && args.tolerance >= 0.0) {
         return Err(BadInput(format!("--tolerance {}: must be ≥ 0", args.tolerance)).into());
     }
-    let technique = TechniqueOpts {
-        samples: None,
-        radius: Some(args.radius.clone()),
-        set: args.set.clone(),
-        exposure: 0.0,
-        tonemap: "aces".into(),
-        seed: args.seed,
-        shadow_size: 2048,
-    };
-    let params = technique.params()?;
-    let radius = params.radius.expect("given");
-    if radius.is_infinite() {
-        return Err(BadInput(
-            "--radius inf: screen-space techniques need a finite near-field radius".into(),
-        )
-        .into());
-    }
+    let (technique, params, radius) = TechniqueOpts::measured(&args.radius, &args.set, args.seed)?;
     let settings = technique.settings(size)?;
     let desc = nearfield_render::technique::find(&args.method)?;
     nearfield_render::technique::check_spec(&args.method, &params)?;

@@ -42,10 +42,14 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         return;
     }
     let n = normalize(nw.xyz);
+    // Positions in view space (no matrix per tap); the centre's normal there for the plane test.
+    let n_view = (frame.view_from_world * vec4<f32>(n, 0.0)).xyz;
     let z = textureLoad(gb_view_depth, pixel, 0).r;
-    let x = world_position(pixel, z);
+    let x = view_position(pixel, z);
     let size = vec2<i32>(frame.size);
     let sigma = max(f32(blur.radius) * 0.5, 0.5);
+    let spatial = -1.0 / (2.0 * sigma * sigma);
+    let plane = -1.0 / (blur.depth_sigma * z);
     var sum = vec4<f32>(0.0);
     var weight = 0.0;
     for (var k = -blur.radius; k <= blur.radius; k++) {
@@ -57,9 +61,8 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         if qn.w == 0.0 {
             continue;
         }
-        let qx = world_position(vec2<u32>(q), textureLoad(gb_view_depth, q, 0).r);
-        let w = exp(-f32(k * k) / (2.0 * sigma * sigma))
-            * exp(-abs(dot(qx - x, n)) / (blur.depth_sigma * z))
+        let qx = view_position(vec2<u32>(q), textureLoad(gb_view_depth, q, 0).r);
+        let w = exp(f32(k * k) * spatial + abs(dot(qx - x, n_view)) * plane)
             * pow(max(0.0, dot(normalize(qn.xyz), n)), blur.normal_power);
         sum += textureLoad(source, q, 0) * w;
         weight += w;

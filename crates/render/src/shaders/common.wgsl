@@ -166,7 +166,10 @@ fn history_taps(prev_geometry: texture_2d<f32>, prev: vec2<f32>, x: vec3<f32>, n
         let o = tap_offset(k);
         let q = t.base + o;
         t.weights[k] = 0.0;
-        if any(q < vec2<i32>(0)) || any(q >= vec2<i32>(frame.size)) {
+        // A tap of bilinear weight below 1e-3 is not fetched (it would move the mean by less than
+        // that; a still camera lands on pixel centres, where three of the four weigh ~0).
+        let w = select(1.0 - f.x, f.x, o.x == 1) * select(1.0 - f.y, f.y, o.y == 1);
+        if w < 1e-3 || any(q < vec2<i32>(0)) || any(q >= vec2<i32>(frame.size)) {
             continue;
         }
         let g = textureLoad(prev_geometry, q, 0);
@@ -177,7 +180,6 @@ fn history_taps(prev_geometry: texture_2d<f32>, prev: vec2<f32>, x: vec3<f32>, n
         if !same_surface(x, n, depth, pw, g.xyz, max_plane, min_cos) {
             continue;
         }
-        let w = select(1.0 - f.x, f.x, o.x == 1) * select(1.0 - f.y, f.y, o.y == 1);
         t.weights[k] = w;
         t.total += w;
     }

@@ -1,8 +1,9 @@
-//! The `accumulate` kernel of gtao/hbil (accumulate.wgsl): the temporal running mean.
+//! The `accumulate` kernel of gtao/hbil/vbgi (accumulate.wgsl): the temporal running mean and
+//! the AOVs from it.
 
 use super::GEOMETRY_FORMAT;
 use crate::bindings::{PassLayout, kind};
-use crate::targets::HDR_FORMAT;
+use crate::targets::{AO_FORMAT, HDR_FORMAT};
 use crate::util;
 
 pub fn source() -> String {
@@ -11,6 +12,7 @@ pub fn source() -> String {
         util::ENV_WGSL,
         include_str!("params.wgsl"),
         include_str!("accumulate.wgsl"),
+        include_str!("resolve.wgsl"),
     ])
 }
 
@@ -45,6 +47,22 @@ crate::bind_group! {
         acc_far: view = kind::write(HDR_FORMAT),
         /// This frame's geometry, for the next frame.
         acc_geometry: view = kind::write(GEOMETRY_FORMAT),
+        /// Base colour ρ (rgba8unorm).
+        gb_albedo: view = kind::TEXTURE,
+        /// F0 / metallic / roughness (rgba8unorm).
+        gb_material: view = kind::TEXTURE,
+        /// Emitted radiance (rgba16float).
+        gb_emissive: view = kind::TEXTURE,
+        /// (1/π) Σ E_l with shadows (rgba16float).
+        light_irradiance: view = kind::TEXTURE,
+        /// `ao` (r32float).
+        out_ao: view = kind::write(AO_FORMAT),
+        /// `env-irradiance` (rgba16float).
+        out_env: view = kind::write(HDR_FORMAT),
+        /// `indirect-irradiance` (rgba16float).
+        out_indirect: view = kind::write(HDR_FORMAT),
+        /// The diffuse radiance the next frame gathers (rgba16float).
+        out_feedback: view = kind::write(HDR_FORMAT),
     }
 }
 

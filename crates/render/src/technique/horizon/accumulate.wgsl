@@ -1,4 +1,4 @@
-// accumulate.wgsl — the temporal running mean with disocclusion rejection.
+// accumulate.wgsl — the temporal running mean with disocclusion rejection, and the AOVs from it.
 // Derivations and sources: technique/horizon/mod.rs.
 
 // accumulate: running mean over up to `max_history` frames of the bent cone (xyz bent normal,
@@ -8,7 +8,33 @@
 // rebuilt from last frame's depth and camera: near this point's tangent plane (reject_depth ×
 // depth), with a normal within acos(reject_normal), and within a few pixel footprints of it.
 // No passing tap (or no history: first frame, camera cut, temporal off) restarts the mean at
-// this frame's value.
+// this frame's value. The accumulated values then give the AOVs in the same invocation:
+//
+// The AOVs and the diffuse radiance for the next frame:
+//   ao                   accumulated cone .w
+//   env-irradiance       far = 0 (gtao):   ao × E_SH(n)/π
+//                        far = 1 (sh):     SH irradiance through the bent cone (Sec. 2.2.4),
+//                                          aperture cos α = 1 − ao (Eq. 12) or, `matched`,
+//                                          cos α = √(1 − ao). Deviation: Eq. 12 equates the
+//                                          cone's solid angle with 2π ao, which holds for the
+//                                          uniformly weighted AO of Eq. 1, but the AO here is
+//                                          the cosine-weighted one of Eq. 9; a cone about the
+//                                          normal has cosine-weighted visibility sin² α, so
+//                                          Eq. 12 makes the cone too wide (ao = ½: 60° where
+//                                          45° holds ½) and a uniform sky too bright (0.75
+//                                          for ao = ½). `matched` takes the cone whose
+//                                          cosine-weighted visibility is ao: exact for a
+//                                          uniform environment.
+//                        far = 2 (envmap): pre-convolved map at the bent normal × F0(ao),
+//                                          F0(a) = a (1 + (1 − a)^0.75 / 2) (Sec. 2.2.3)
+//                        far = 3 (slices): the environment integrated over each slice's
+//                                          visible arcs (horizon pass), accumulated like ao —
+//                                          directional, so light from one side (a sun) is
+//                                          shadowed by the horizons that hide it
+//   indirect-irradiance  accumulated E_near × (1 − F0) with F0 = mix(0.04, ρ, metallic) when
+//                        `fresnel` is on (Eq. 19)
+//   feedback             L_d = emission + (1 − metallic) ρ (light + env + indirect) irradiance
+//                        (Eq. 17), gathered by the next frame
 
 @group(1) @binding(0) var<uniform> params: HorizonParams;
 @group(1) @binding(1) var gb_normal: texture_2d<f32>;
@@ -24,6 +50,14 @@
 @group(1) @binding(11) var acc_near: texture_storage_2d<rgba16float, write>;
 @group(1) @binding(12) var acc_far: texture_storage_2d<rgba16float, write>;
 @group(1) @binding(13) var acc_geometry: texture_storage_2d<rgba32float, write>;
+@group(1) @binding(14) var gb_albedo: texture_2d<f32>;
+@group(1) @binding(15) var gb_material: texture_2d<f32>;
+@group(1) @binding(16) var gb_emissive: texture_2d<f32>;
+@group(1) @binding(17) var light_irradiance: texture_2d<f32>;
+@group(1) @binding(18) var out_ao: texture_storage_2d<r32float, write>;
+@group(1) @binding(19) var out_env: texture_storage_2d<rgba16float, write>;
+@group(1) @binding(20) var out_indirect: texture_storage_2d<rgba16float, write>;
+@group(1) @binding(21) var out_feedback: texture_storage_2d<rgba16float, write>;
 
 @compute @workgroup_size(8, 8, 1)
 fn accumulate(@builtin(global_invocation_id) id: vec3<u32>) {
@@ -31,47 +65,13 @@ fn accumulate(@builtin(global_invocation_id) id: vec3<u32>) {
     if !in_bounds(pixel) {
         return;
     }
-    let nw = textureLoad(gb_normal, pixel, 0);
-    let depth = textureLoad(gb_view_depth, pixel, 0).r;
-    if nw.w == 0.0 || depth <= 0.0 {
-        textureStore(acc_cone, pixel, vec4<f32>(0.0));
-        textureStore(acc_near, pixel, vec4<f32>(0.0));
-        textureStore(acc_geometry, pixel, vec4<f32>(0.0));
-        textureStore(acc_far, pixel, vec4<f32>(0.0));
-        return;
+    var far = vec4<f32>(0.0);
+    if FAR {
+        far = textureLoad(raw_far, pixel, 0);
     }
-    let n = normalize(nw.xyz);
-    let x = world_position(pixel, depth);
-    var cone = textureLoad(raw_cone, pixel, 0);
-    var far = textureLoad(raw_far, pixel, 0);
-    var near = vec4<f32>(textureLoad(raw_near, pixel, 0).rgb, 1.0);
-    if params.temporal == 1u && frame.history_valid == 1u {
-        let taps = history_taps(prev_geometry, to_screen(frame.prev_clip_from_world, x), x, n, depth, params.reject_depth, params.reject_normal);
-        var sum_cone = vec4<f32>(0.0);
-        var sum_near = vec4<f32>(0.0);
-        var sum_far = vec4<f32>(0.0);
-        for (var k = 0u; k < 4u; k++) {
-            let w = taps.weights[k];
-            if w > 0.0 {
-                let q = taps.base + tap_offset(k);
-                sum_cone += w * textureLoad(prev_cone, q, 0);
-                sum_near += w * textureLoad(prev_near, q, 0);
-                sum_far += w * textureLoad(prev_far, q, 0);
-            }
-        }
-        let weight = taps.total;
-        if weight > 1e-3 {
-            let hist_cone = sum_cone / weight;
-            let hist_near = sum_near / weight;
-            let count = min(hist_near.w + 1.0, params.max_history);
-            let a = 1.0 / count;
-            cone = mix(hist_cone, cone, a);
-            far = mix(sum_far / weight, far, a);
-            near = vec4<f32>(mix(hist_near.rgb, near.rgb, a), count);
-        }
+    var near = vec3<f32>(0.0);
+    if NEAR {
+        near = textureLoad(raw_near, pixel, 0).rgb;
     }
-    textureStore(acc_cone, pixel, cone);
-    textureStore(acc_near, pixel, near);
-    textureStore(acc_geometry, pixel, vec4<f32>(n, depth));
-    textureStore(acc_far, pixel, far);
+    resolve(pixel, textureLoad(raw_cone, pixel, 0), near, far);
 }

@@ -1,12 +1,13 @@
 //! `gtao` and `hbil`: horizon-based ambient occlusion (Jimenez et al. 2016) and horizon-based
 //! indirect lighting (Mayaux 2018). The formulas, sources and deviations follow below;
-//! each pass is one `.rs` + one `.wgsl` here: [`split`], [`search`], [`merge`], [`accumulate`],
-//! [`outputs`] (`params.wgsl` is shared).
+//! each pass is one `.rs` + one `.wgsl` here: [`split`], [`search`], [`accumulate`]
+//! (`params.wgsl` is shared).
 //!
 //! Frame (hbil; gtao skips the radiance steps):
 //!   reproject (scatter or gather last frame's diffuse radiance) → push/pull (fill holes) →
-//!   split (4×4 deinterleave, with interleaving) → horizon search → merge → bilateral blur →
-//!   accumulate (temporal, disocclusion-rejected) → outputs (ao, env-irradiance through the bent
+//!   split (4×4 deinterleave, with interleaving) → horizon search (straight to full resolution) →
+//!   bilateral blur → accumulate (temporal, disocclusion-rejected) and, in the same kernel, the
+//!   outputs (ao, env-irradiance through the bent
 //!   cone, indirect-irradiance, and the diffuse radiance the next frame gathers).
 //! On the first frame and after a camera cut the source radiance is this frame's direct
 //! radiance (DESIGN.md's L_o: one bounce); afterwards it is last frame's diffuse radiance, so
@@ -18,9 +19,8 @@
 //!   split     deinterleave depth, normal and source radiance into 4×4 quarter-resolution layers
 //!             (HBIL Sec. 3.3; only with interleaving)
 //!   horizon   the horizon search: AO, bent normal and near-field irradiance per pixel
-//!   merge     re-interleave the layers' results to full resolution (only with interleaving)
 //!   accumulate  temporal accumulation with disocclusion rejection (history ping-pong)
-//!   outputs   ao, env-irradiance (far field through the bent cone), indirect-irradiance and the
+//!             and from it the AOVs: ao, env-irradiance (far field through the bent cone), indirect-irradiance and the
 //!             diffuse radiance kept for the next frame (HBIL Eq. 17)
 //!
 //! Horizon search (HBIL Sec. 1.1–1.3, 2.1). At the surface point x (normal n) the local camera
@@ -72,8 +72,6 @@
 //! neither the running mean nor an edge-stopping filter removes.)
 
 pub mod accumulate;
-pub mod merge;
-pub mod outputs;
 pub mod params;
 pub mod search;
 pub mod split;
@@ -122,11 +120,10 @@ pub const HBIL: TechniqueDesc = TechniqueDesc {
 };
 
 /// The 4×4 deinterleaved layers (with interleaving): split by radiance source (direct side 0,
-/// side 1, reprojected), search and merge.
+/// side 1, reprojected) and search.
 struct Split {
     split_bg: [wgpu::BindGroup; 3],
     search_bg: wgpu::BindGroup,
-    merge_bg: wgpu::BindGroup,
     layer_size: (u32, u32),
 }
 
@@ -173,9 +170,7 @@ struct Horizon {
     source: Source,
     split_step: ComputeStep,
     search_step: ComputeStep,
-    merge_step: ComputeStep,
     accumulate_step: ComputeStep,
-    outputs_step: ComputeStep,
     /// With interleaving.
     split: Option<Split>,
     /// Without interleaving, the search's bind group by radiance source (direct side 0, side 1,
@@ -184,7 +179,6 @@ struct Horizon {
     reprojection: Option<Reprojection>,
     blur: Option<(BilateralBlur, Vec<BlurChain>)>,
     accumulate_bg: PingPong<wgpu::BindGroup>,
-    outputs_bg: PingPong<wgpu::BindGroup>,
     extras: PingPong<Vec<(&'static str, wgpu::Texture)>>,
     _textures: Vec<wgpu::Texture>,
     /// `HorizonParams` of [`Self::settings`].
@@ -387,7 +381,6 @@ pub fn build(
     };
     let mut textures = Vec::new();
     let split_layout = split::SplitBindings::layout(device);
-    let merge_layout = merge::MergeBindings::layout(device);
     let mut full_bg = Vec::new();
     let split = if settings.interleaved {
         let layer_size = (p.layer_width, p.layer_height);
@@ -395,16 +388,8 @@ pub fn build(
             |label: &str, format| super::layered_texture(device, layer_size, 16, label, format);
         let s_geometry = layered("split geometry", GEOMETRY_FORMAT);
         let s_radiance = layered("split radiance", HDR_FORMAT);
-        let l_cone = layered("split cone", HDR_FORMAT);
-        let l_near = layered("split near", HDR_FORMAT);
-        let l_far = layered("split far", HDR_FORMAT);
-        let (vg, vr, vc, vnear, vfar) = (
-            array_view(&s_geometry),
-            array_view(&s_radiance),
-            array_view(&l_cone),
-            array_view(&l_near),
-            array_view(&l_far),
-        );
+        let (vg, vr) = (array_view(&s_geometry), array_view(&s_radiance));
+        let (vc, vnear, vfar) = (view(&raw_cone), view(&raw_near), view(&raw_far));
         let split_bg = |radiance: &wgpu::TextureView| {
             split::SplitBindings {
                 params: &params,
@@ -422,20 +407,11 @@ pub fn build(
                 split_bg(source_views[1]),
                 split_bg(source_views[2]),
             ],
-            merge_bg: merge::MergeBindings {
-                layered_cone: &vc,
-                layered_near: &vnear,
-                layered_far: &vfar,
-                merged_cone: &view(&raw_cone),
-                merged_near: &view(&raw_near),
-                merged_far: &view(&raw_far),
-            }
-            .bind_group(device, &merge_layout),
             // Depth is read from the geometry's w; `in_depth` only has to be bound.
             search_bg: search_bg(&vg, &vg, &vr, [&vc, &vnear, &vfar]),
             layer_size,
         };
-        textures.extend([s_geometry, s_radiance, l_cone, l_near, l_far]);
+        textures.extend([s_geometry, s_radiance]);
         Some(s)
     } else {
         let as_array = |t: &wgpu::Texture| array_view(t);
@@ -443,7 +419,7 @@ pub fn build(
             as_array(i.view_depth.texture()),
             as_array(i.normal.texture()),
         );
-        let (cone, near, far) = (as_array(&raw_cone), as_array(&raw_near), as_array(&raw_far));
+        let (cone, near, far) = (view(&raw_cone), view(&raw_near), view(&raw_far));
         let source_textures = [
             i.direct_radiance[0].texture(),
             i.direct_radiance[1].texture(),
@@ -513,27 +489,16 @@ pub fn build(
             acc_near: &view(&hist_near[side]),
             acc_far: &view(&hist_far[side]),
             acc_geometry: &hist_geo_views[side],
-        }
-        .bind_group(device, &accumulate_layout)
-    });
-    let outputs_layout = outputs::OutputsBindings::layout(device);
-    let outputs_bg = PingPong::from_fn(|side| {
-        outputs::OutputsBindings {
-            params: &params,
-            gb_normal: i.normal,
             gb_albedo: i.albedo,
             gb_material: i.material,
             gb_emissive: i.emission,
             light_irradiance: o.light_irradiance,
-            final_cone: &view(&hist_cone[side]),
-            final_near: &view(&hist_near[side]),
-            final_far: &view(&hist_far[side]),
             out_ao: o.ao,
             out_env: o.env_irradiance,
             out_indirect: o.indirect_irradiance,
             out_feedback: &feedback_views[side],
         }
-        .bind_group(device, &outputs_layout)
+        .bind_group(device, &accumulate_layout)
     });
     let extras = PingPong::from_fn(|side| {
         let mut e = vec![
@@ -553,8 +518,14 @@ pub fn build(
         ("SLICES", settings.slices as f64),
         ("STEPS", settings.steps as f64),
     ];
-    if let Some(b) = bitmask {
-        counts.push(("SECTORS", b.sectors as f64));
+    // What the kernels compute besides the cone (params.wgsl's NEAR and FAR).
+    let work = [
+        ("NEAR", f64::from(u8::from(hbil))),
+        ("FAR", f64::from(u8::from(p.far == 3))),
+    ];
+    match bitmask {
+        Some(b) => counts.push(("SECTORS", b.sectors as f64)),
+        None => counts.extend(work),
     }
     let step = |label: &'static str, source: String, entry: &str, layout, constants: &[_]| {
         let module = crate::passes::shader_module(device, label, &source);
@@ -596,25 +567,16 @@ pub fn build(
         source: settings.source,
         split_step: step("split", split::source(), "split", &split_layout, &[]),
         search_step: step(name, search_source, search_entry, &search_layout, &counts),
-        merge_step: step("merge", merge::source(), "merge", &merge_layout, &[]),
         accumulate_step: step(
             "accumulate",
             accumulate::source(),
             "accumulate",
             &accumulate_layout,
-            &[],
-        ),
-        outputs_step: step(
-            "outputs",
-            outputs::source(),
-            "outputs",
-            &outputs_layout,
-            &[],
+            &work,
         ),
         split,
         full_bg,
         accumulate_bg,
-        outputs_bg,
         extras,
         reprojection,
         blur: blur.map(|(b, chains, tex)| {
@@ -719,8 +681,6 @@ impl Technique for Horizon {
                     self.search_step
                         .dispatch(&mut pass, &s.search_bg, (gx, gy * 16, 1));
                 }
-                self.merge_step
-                    .encode(encoder, profiler, &s.merge_bg, self.size);
             }
             None => self
                 .search_step
@@ -745,8 +705,6 @@ impl Technique for Horizon {
             self.accumulate_bg.current(frame.index),
             (gx, gy, 1),
         );
-        self.outputs_step
-            .dispatch(&mut pass, self.outputs_bg.current(frame.index), (gx, gy, 1));
     }
 
     fn update(&mut self, queue: &wgpu::Queue, tp: &TechniqueParams) -> Result<bool, RenderError> {

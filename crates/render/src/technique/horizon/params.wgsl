@@ -40,6 +40,11 @@ struct HorizonParams {
 override SLICES: u32 = 2u;
 // Samples per side of a slice.
 override STEPS: u32 = 16u;
+// What a pipeline computes besides the bent cone (fixed per pipeline, so gtao's kernels carry
+// none of hbil's work): near-field light (hbil, vbgi), the far field through the slices' arcs
+// (`far=slices`).
+override NEAR: bool = true;
+override FAR: bool = true;
 
 
 const BAYER4: array<u32, 16> = array<u32, 16>(0u, 8u, 2u, 10u, 12u, 4u, 14u, 6u, 3u, 11u, 1u, 9u, 15u, 7u, 13u, 5u);

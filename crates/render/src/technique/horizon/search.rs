@@ -10,6 +10,7 @@ pub fn source() -> String {
         util::ENV_WGSL,
         include_str!("params.wgsl"),
         include_str!("search.wgsl"),
+        include_str!("march.wgsl"),
         include_str!("slice.wgsl"),
     ])
 }
@@ -26,11 +27,11 @@ crate::bind_group! {
         /// Radiance source (rgba16float array).
         in_radiance: view = kind::TEXTURE_ARRAY,
         /// Raw bent cone (xyz bent normal, w ao).
-        out_cone: view = kind::write_array(HDR_FORMAT),
+        out_cone: view = kind::write(HDR_FORMAT),
         /// Raw near-field irradiance.
-        out_near: view = kind::write_array(HDR_FORMAT),
+        out_near: view = kind::write(HDR_FORMAT),
         /// Raw far field through the slices' visible arcs.
-        out_far: view = kind::write_array(HDR_FORMAT),
+        out_far: view = kind::write(HDR_FORMAT),
     }
 }
 

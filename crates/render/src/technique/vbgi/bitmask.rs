@@ -30,11 +30,11 @@ crate::bind_group! {
         /// View depth of the second depth layer (r32float array; 0 where there is none).
         in_back: view = kind::TEXTURE_ARRAY_UNFILTERABLE,
         /// Raw bent cone (xyz bent normal, w ao).
-        out_cone: view = kind::write_array(HDR_FORMAT),
+        out_cone: view = kind::write(HDR_FORMAT),
         /// Raw near-field irradiance.
-        out_near: view = kind::write_array(HDR_FORMAT),
+        out_near: view = kind::write(HDR_FORMAT),
         /// Raw far field through the unoccupied sectors.
-        out_far: view = kind::write_array(HDR_FORMAT),
+        out_far: view = kind::write(HDR_FORMAT),
     }
 }
 

@@ -28,9 +28,9 @@ const CONTINUITY: f32 = 0.25;
 @group(1) @binding(3) var in_normal: texture_2d_array<f32>;
 @group(1) @binding(4) var in_radiance: texture_2d_array<f32>;
 @group(1) @binding(5) var in_back: texture_2d_array<f32>;
-@group(1) @binding(6) var out_cone: texture_storage_2d_array<rgba16float, write>;
-@group(1) @binding(7) var out_near: texture_storage_2d_array<rgba16float, write>;
-@group(1) @binding(8) var out_far: texture_storage_2d_array<rgba16float, write>;
+@group(1) @binding(6) var out_cone: texture_storage_2d<rgba16float, write>;
+@group(1) @binding(7) var out_near: texture_storage_2d<rgba16float, write>;
+@group(1) @binding(8) var out_far: texture_storage_2d<rgba16float, write>;
 
 // S(θ) = ∫_0^θ (n′·ω(t)) |sin t| dt = sign(θ) G(θ) (G: slice_g).
 fn slice_s(theta: f32, np: vec2<f32>) -> f32 {
@@ -121,12 +121,15 @@ fn bitmask(@builtin(global_invocation_id) id: vec3<u32>) {
         return;
     }
     let pixel = layer_pixel(texel, layer);
+    if !in_bounds(pixel) {
+        return;
+    }
     let centre = geometry(vec2<i32>(texel), layer);
     let depth = centre.w;
-    if !in_bounds(pixel) || depth <= 0.0 {
-        textureStore(out_cone, texel, layer, vec4<f32>(0.0, 0.0, 0.0, 1.0));
-        textureStore(out_near, texel, layer, vec4<f32>(0.0));
-        textureStore(out_far, texel, layer, vec4<f32>(0.0));
+    if depth <= 0.0 {
+        textureStore(out_cone, pixel, vec4<f32>(0.0, 0.0, 0.0, 1.0));
+        textureStore(out_near, pixel, vec4<f32>(0.0));
+        textureStore(out_far, pixel, vec4<f32>(0.0));
         return;
     }
     let far_lod = max(frame.env_radiance_mips - 5.0, 0.0);
@@ -331,7 +334,7 @@ fn bitmask(@builtin(global_invocation_id) id: vec3<u32>) {
     let norm = max(unoccluded, 1e-6);
     ao = clamp(ao / norm, 0.0, 1.0);
     let b = select(n, normalize(bent), dot(bent, bent) > 1e-12);
-    textureStore(out_cone, texel, layer, vec4<f32>(b, ao));
-    textureStore(out_near, texel, layer, vec4<f32>(near / norm, 1.0));
-    textureStore(out_far, texel, layer, vec4<f32>(far / norm, 1.0));
+    textureStore(out_cone, pixel, vec4<f32>(b, ao));
+    textureStore(out_near, pixel, vec4<f32>(near / norm, 1.0));
+    textureStore(out_far, pixel, vec4<f32>(far / norm, 1.0));
 }

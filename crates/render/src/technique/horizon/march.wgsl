@@ -1,0 +1,160 @@
+// march.wgsl — the horizon search of one pixel (gtao/hbil): slices, their two sides' horizons,
+// ao, bent normal, near-field light and the far field through the visible arcs. The including
+// module declares `params`, `in_depth`, `in_normal` and `in_radiance` (search.wgsl's names).
+// Derivations and sources: technique/horizon/mod.rs.
+
+// What one side of a slice march needs.
+struct March {
+    texel: vec2<f32>,
+    layer: u32,
+    x: vec3<f32>,
+    dir: vec2<f32>,
+    omega_o: vec3<f32>,
+    slice_normal: vec3<f32>,
+    np: vec2<f32>,
+    r_layer: f32,
+    step_jitter: f32,
+    fade_width: f32,
+}
+
+// The side's horizon angle (x) and its near-field irradiance (yzw, NEAR only).
+fn march_side(m: March, side_sign: f32, theta_init: f32, cos_init: f32) -> vec4<f32> {
+    let layer_size = vec2<i32>(i32(params.layer_width), i32(params.layer_height));
+    var cos_max = cos_init;
+    var theta = theta_init;
+    var near = vec3<f32>(0.0);
+    var radiance = vec3<f32>(0.0);
+    let r2 = params.radius * params.radius;
+    for (var j = 0u; j < STEPS; j++) {
+        let t = m.r_layer * pow((f32(j) + m.step_jitter) / f32(STEPS), params.step_power);
+        let pos = m.texel + 0.5 + side_sign * m.dir * max(t, 1.0);
+        let q = vec2<i32>(floor(pos));
+        if any(q < vec2<i32>(0)) || any(q >= layer_size) {
+            break;
+        }
+        let qg = geometry(q, m.layer);
+        let qd = qg.w;
+        if qd <= 0.0 {
+            continue;
+        }
+        // The sample's normal in view space (the plane test needs no unit normal).
+        let qn = to_view(qg.xyz);
+        let q_centre = view_dir(layer_to_full(vec2<f32>(q) + 0.5, m.layer)) * qd;
+        // The texel centre is off the slice line by up to half a texel: slide along the
+        // sample's tangent plane to the point seen exactly on the line (exact on planes).
+        let on_line = view_on_slice_line(pos, m.layer, q_centre, qn);
+        if on_line.w == 0.0 {
+            continue;
+        }
+        let v = on_line.xyz - m.x;
+        let d2 = dot(v, v);
+        if d2 >= r2 || d2 < 1e-12 {
+            continue;
+        }
+        let dist = sqrt(d2);
+        let vs = v - dot(v, m.slice_normal) * m.slice_normal;
+        let cos_s = dot(vs, m.omega_o) * inverseSqrt(max(dot(vs, vs), 1e-18));
+        let fade = clamp((params.radius - dist) / m.fade_width, 0.0, 1.0);
+        let cos_h = mix(cos_init, cos_s, fade);
+        if NEAR {
+            let accept = smoothstep(params.reject_a, params.reject_b, -dot(normalize(qn), v / dist));
+            radiance = mix(radiance, textureLoad(in_radiance, q, m.layer, 0).rgb, accept);
+        }
+        if cos_h > cos_max {
+            if NEAR {
+                let theta_new = side_sign * acos(clamp(cos_h, -1.0, 1.0));
+                near += radiance * max(slice_g(theta, m.np) - slice_g(theta_new, m.np), 0.0);
+                theta = theta_new;
+            }
+            cos_max = cos_h;
+        }
+    }
+    if !NEAR && cos_max > cos_init {
+        // Only the final horizon matters without near-field light: one acos per side.
+        theta = side_sign * acos(clamp(cos_max, -1.0, 1.0));
+    }
+    return vec4<f32>(theta, near);
+}
+
+// One pixel's results: bent cone (xyz world bent normal, w ao), near-field irradiance, far field.
+struct Horizon {
+    cone: vec4<f32>,
+    near: vec3<f32>,
+    far: vec4<f32>,
+}
+
+// The search at layer texel `texel` of `layer` (full-resolution `pixel`, in the image), whose
+// geometry `centre` (xyz normal, w view depth > 0) was read by the caller.
+fn search_pixel(texel: vec2<u32>, layer: u32, pixel: vec2<u32>, centre: vec4<f32>) -> Horizon {
+    let depth = centre.w;
+    // Environment mip of about 32×16 texels (11°) for the arc integration.
+    let far_lod = max(frame.env_radiance_mips - 5.0, 0.0);
+    let n = normalize(to_view(centre.xyz));
+    let x = view_dir(vec2<f32>(pixel) + 0.5) * depth;
+    let lf = view_local_frame(x);
+
+    var m: March;
+    m.texel = vec2<f32>(texel);
+    m.layer = layer;
+    m.x = x;
+    m.omega_o = lf.o;
+    m.r_layer = march_reach(depth);
+    m.step_jitter = fract(noise(pixel) + golden(frame.frame_index + 7u));
+    m.fade_width = max(params.falloff * params.radius, 1e-6);
+    let cell = cell_index(pixel);
+    let frame_jitter = golden(frame.frame_index);
+
+    var ao = 0.0;
+    var unoccluded = 0.0;
+    var bent = vec3<f32>(0.0);
+    var near = vec3<f32>(0.0);
+    var far = vec3<f32>(0.0);
+    for (var k = 0u; k < SLICES; k++) {
+        let phi = slice_phi(k, SLICES, cell, frame_jitter);
+        let d = cos(phi) * lf.x + sin(phi) * lf.y;
+        let np = vec2<f32>(dot(n, d), dot(n, lf.o));
+        // Normal of the slice plane: samples snapped to texel centres are projected back into it.
+        m.slice_normal = cross(d, lf.o);
+        m.np = np;
+        m.dir = view_screen_dir(x, d);
+        let gamma = atan2(np.x, np.y);
+        // side 0: front (+dir, θ ≥ 0), side 1: back (−dir, θ ≤ 0).
+        let init1 = min(gamma + 0.5 * PI, PI);
+        let init0 = max(gamma - 0.5 * PI, -PI);
+        unoccluded += dot(np, slice_gxy(init1) + slice_gxy(init0));
+        let front = march_side(m, 1.0, init1, cos(init1));
+        let back = march_side(m, -1.0, init0, cos(init0));
+        near += front.yzw + back.yzw;
+        let t1 = front.x;
+        let t0 = back.x;
+        if FAR && params.far == 3u {
+            // The visible arcs [θ0, 0] and [0, θ1], each in far_steps pieces of equal angle:
+            // L_env at the piece's middle × ∫ (n′·ω) |sin θ| dθ over the piece.
+            let d_world = to_world(d);
+            let o_world = to_world(lf.o);
+            for (var side = 0u; side < 2u; side++) {
+                let end = select(t1, t0, side == 1u);
+                for (var s = 0u; s < params.far_steps; s++) {
+                    let a = end * f32(s) / f32(params.far_steps);
+                    let b = end * f32(s + 1u) / f32(params.far_steps);
+                    let mid = 0.5 * (a + b);
+                    let w = abs(slice_g(b, np) - slice_g(a, np));
+                    far += env_radiance_at(sin(mid) * d_world + cos(mid) * o_world, far_lod) * w;
+                }
+            }
+        }
+        let g = slice_gxy(t1) + slice_gxy(t0);
+        ao += dot(np, g);
+        bent += d * g.x + lf.o * g.y;
+    }
+    // Ratio estimator: divide by the same slices' value for an open hemisphere (their mean is 1
+    // over all φ), so that a plane gives exactly 1 with any slice count.
+    let norm = max(unoccluded, 1e-6);
+    ao = clamp(ao / norm, 0.0, 1.0);
+    let b = select(n, normalize(bent), dot(bent, bent) > 1e-12);
+    var r: Horizon;
+    r.cone = vec4<f32>(to_world(b), ao);
+    r.near = near / norm;
+    r.far = vec4<f32>(far / norm, 1.0);
+    return r;
+}
