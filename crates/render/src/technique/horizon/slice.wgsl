@@ -21,13 +21,7 @@ fn layer_pixel(texel: vec2<u32>, layer: u32) -> vec2<u32> {
 // w = 0 when the ray through `pos` misses that plane (it passes above a horizon line: the texel
 // centre is not what the slice sees there, and the sample is skipped).
 fn on_slice_line(pos: vec2<f32>, layer: u32, centre: vec3<f32>, n: vec3<f32>) -> vec4<f32> {
-    let scale = f32(params.scale);
-    let full = (pos - 0.5) * scale + vec2<f32>(f32(layer % params.scale), f32(layer / params.scale)) + 0.5;
-    let uv = full * frame.inv_size;
-    let ndc = vec2<f32>(2.0 * uv.x - 1.0, 1.0 - 2.0 * uv.y);
-    let t = frame.tan_half_fov;
-    let dir_view = vec3<f32>(ndc.x * t * frame.aspect, ndc.y * t, -1.0);
-    let r = (frame.world_from_view * vec4<f32>(dir_view, 0.0)).xyz;
+    let r = to_world(view_dir(layer_to_full(pos, layer)));
     let eye = frame.camera_position.xyz;
     let denom = dot(n, r);
     let along = dot(n, centre - eye) / denom;
