@@ -15,6 +15,8 @@ pub struct BenchArgs {
     pub scene: SceneOpts,
     #[command(flatten)]
     pub technique: TechniqueOpts,
+    #[command(flatten)]
+    pub far: crate::far::FarOpts,
     /// Techniques to time, comma-separated (default: every registered one).
     #[arg(long)]
     pub methods: Option<String>,
@@ -112,7 +114,9 @@ pub fn run(args: BenchArgs) -> Result<()> {
     let params = args.technique.params()?;
     let size = crate::options::parse_size(&args.scene.size)?;
     let settings = args.technique.settings(size)?;
+    args.far.precheck()?;
     let loaded = args.scene.load()?;
+    let volume = args.far.resolve(&args.scene, &loaded, None)?;
     let ctx = GpuContext::new(args.scene.adapter.as_deref())?;
     let info = ctx.adapter_info();
     // Every method's renderer is made and warmed first; then the timed frames go round the
@@ -143,6 +147,7 @@ pub fn run(args: BenchArgs) -> Result<()> {
             &params,
             settings,
         )?;
+        r.set_far_field(volume.as_ref())?;
         loaded.report_sun();
         for i in 0..args.warmup {
             crate::options::orbit_frame(&mut r, i, args.orbit);

@@ -22,6 +22,8 @@ pub struct CompareArgs {
     pub technique: TechniqueOpts,
     #[command(flatten)]
     pub reference: ReferenceOpts,
+    #[command(flatten)]
+    pub far: crate::far::FarOpts,
     /// Techniques, comma-separated (default: every registered one).
     #[arg(long)]
     pub methods: Option<String>,
@@ -183,6 +185,7 @@ pub fn run(args: CompareArgs) -> Result<()> {
         None => None,
     };
     let images = read_images(&args.images, size)?;
+    args.far.precheck()?;
     if let Some(p) = &args.strip {
         if p.extension().and_then(|e| e.to_str()) != Some("png") {
             return Err(BadInput(format!("--strip {}: must be a .png file", p.display())).into());
@@ -196,6 +199,9 @@ pub fn run(args: CompareArgs) -> Result<()> {
     // The reference sees what the last frame sees.
     loaded.camera = first_camera.orbit(args.orbit * (args.frames - 1) as f32);
     let ctx = GpuContext::new(args.scene.adapter.as_deref())?;
+    let volume = args
+        .far
+        .resolve(&args.scene, &loaded, Some(args.aov.as_str()))?;
     let (reference, ref_info): (ReferenceImage, ReferenceInfo) = match reference_file {
         Some((img, p)) => (
             img,
@@ -308,6 +314,7 @@ pub fn run(args: CompareArgs) -> Result<()> {
             &params,
             settings,
         )?;
+        r.set_far_field(volume.as_ref())?;
         loaded.report_sun();
         let still = args.orbit == 0.0 && args.frames > 1;
         let mut convergence = Vec::new();
@@ -362,6 +369,25 @@ pub fn run(args: CompareArgs) -> Result<()> {
         last_mask = Some(mask);
     }
     progress.finish();
+    // The volume alone: its radiance through the exact visibility V_R, on the CPU (a row named
+    // `volume`), so that its error shows apart from any technique's estimate of V_R.
+    if let (Some(mask), Some(v), Aov::FarIrradiance) = (&last_mask, &volume, gpu_aov) {
+        let img = nearfield_reference::render_volume_far(
+            &loaded.scene,
+            &loaded.env,
+            &loaded.camera,
+            &ref_settings,
+            v,
+            false,
+        );
+        reports.push(measure(
+            "volume",
+            &img.value,
+            mask,
+            Vec::new(),
+            &mut panels,
+        )?);
+    }
     // Images made elsewhere: the last technique's mask (same scene, camera and reference).
     if let Some(mask) = &last_mask {
         for (name, pixels) in &images {
@@ -397,8 +423,17 @@ pub fn run(args: CompareArgs) -> Result<()> {
         silhouette_pixels: mask.silhouette_pixels,
         depth_checked: mask.depth_checked,
         reference_noise: metrics::rms_stderr(&reference.stderr, &mask),
+        reference_relative_noise: metrics::relative_stderr(
+            &reference.stderr,
+            &reference.value,
+            &mask,
+        ),
         methods: reports,
     };
+    eprintln!(
+        "nearfield: the reference's relative noise Σσ/Σref is {:.4}",
+        report.reference_relative_noise
+    );
     nearfield_eval::report::write(&args.out, &report)
         .with_context(|| format!("cannot write the report into {}", args.out.display()))?;
     eprintln!(

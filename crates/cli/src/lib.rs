@@ -11,6 +11,7 @@ pub mod bench;
 pub mod book;
 pub mod compare;
 pub mod export;
+pub mod far;
 pub mod fit;
 pub mod options;
 pub mod pareto;
@@ -49,6 +50,8 @@ enum Command {
     Pareto(pareto::ParetoArgs),
     /// Write a scene (a built-in or a file) and its camera as glTF 2.0 (.glb or .gltf).
     Export(export::ExportArgs),
+    /// Bake the scene's probe volume, the far field beyond R (cached; --volume reads the file).
+    Bake(far::BakeArgs),
     /// Interactive viewer: every technique, setting and AOV live, A/B split, timings.
     View(view::ViewArgs),
 }
@@ -153,6 +156,7 @@ pub fn main() -> ExitCode {
         Command::Fit(a) => fit::run(a),
         Command::Pareto(a) => pareto::run(a),
         Command::Export(a) => export::run(a),
+        Command::Bake(a) => far::run(a),
         Command::View(a) => view::run(a),
     };
     match result {

@@ -31,6 +31,8 @@ pub struct ParetoArgs {
     #[command(flatten)]
     pub scene: SceneOpts,
     #[command(flatten)]
+    pub far: crate::far::FarOpts,
+    #[command(flatten)]
     pub reference: ReferenceOpts,
     /// Techniques to sweep, comma-separated, each a name or NAME:key=value+… (the sweep varies
     /// settings on top of those). Default: every technique but `none`.
@@ -430,7 +432,11 @@ pub fn run(args: ParetoArgs) -> Result<()> {
     let ref_settings = args.reference.settings(ref_aov, size, radius, args.seed)?;
     std::fs::create_dir_all(&args.out)
         .with_context(|| format!("cannot create {}", args.out.display()))?;
+    args.far.precheck()?;
     let loaded = args.scene.load()?;
+    let volume = args
+        .far
+        .resolve(&args.scene, &loaded, Some(args.aov.as_str()))?;
     for n in &notes {
         eprintln!("{n}");
     }
@@ -465,6 +471,7 @@ pub fn run(args: ParetoArgs) -> Result<()> {
             &params,
             settings,
         )?;
+        r.set_far_field(volume.as_ref())?;
         time_frames(&mut r, args.warmup, args.timed, gpu)?
     };
     progress.inc(1);
@@ -472,7 +479,7 @@ pub fn run(args: ParetoArgs) -> Result<()> {
     let mut fronts = Vec::new();
     let mut truth = Some(truth);
     for (method, configs) in &sweeps {
-        let renderer = Renderer::new(
+        let mut renderer = Renderer::new(
             &ctx,
             &loaded.scene,
             &loaded.env,
@@ -481,6 +488,7 @@ pub fn run(args: ParetoArgs) -> Result<()> {
             &params,
             settings,
         )?;
+        renderer.set_far_field(volume.as_ref())?;
         let mut target = Target {
             name: method.clone(),
             renderer,

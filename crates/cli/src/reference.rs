@@ -120,7 +120,7 @@ impl ReferenceOpts {
 
 /// A fingerprint of the scene's content (geometry, materials, lights), so that a changed file
 /// or built-in scene never meets a stale cache entry.
-fn scene_fingerprint(scene: &nearfield_scene::Scene) -> u64 {
+pub fn scene_fingerprint(scene: &nearfield_scene::Scene) -> u64 {
     use std::hash::{Hash, Hasher};
     let mut h = std::collections::hash_map::DefaultHasher::new();
     for m in &scene.meshes {

@@ -13,6 +13,8 @@ pub struct RenderArgs {
     pub scene: SceneOpts,
     #[command(flatten)]
     pub technique: TechniqueOpts,
+    #[command(flatten)]
+    pub far: crate::far::FarOpts,
     /// Near-field technique (every one is listed in the book's Techniques; `none` = no occlusion).
     #[arg(long, default_value = "none")]
     pub method: String,
@@ -106,6 +108,7 @@ pub fn run(args: RenderArgs) -> Result<()> {
     let params = args.technique.params()?;
     let size = crate::options::parse_size(&args.scene.size)?;
     let settings = args.technique.settings(size)?;
+    args.far.precheck()?;
     let loaded = args.scene.load()?;
     let ctx = GpuContext::new(args.scene.adapter.as_deref())?;
     let mut renderer = Renderer::new(
@@ -117,6 +120,9 @@ pub fn run(args: RenderArgs) -> Result<()> {
         &params,
         settings,
     )?;
+    let far_aov = (aov != Some(Aov::Final)).then_some(args.aov.as_str());
+    let volume = args.far.resolve(&args.scene, &loaded, far_aov)?;
+    renderer.set_far_field(volume.as_ref())?;
     if aov.is_none() && !renderer.extra_names().contains(&args.aov.as_str()) {
         let mut known = Aov::names();
         known.extend(renderer.extra_names());

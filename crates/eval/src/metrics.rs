@@ -209,6 +209,20 @@ pub fn rms_stderr(stderr: &[[f32; 3]], mask: &Mask) -> f64 {
     (s / n.max(1) as f64).sqrt()
 }
 
+/// The reference's relative noise over the mask: Σ σ / Σ |reference| (mean of RGB), on the scale
+/// of the relative error. A perfect estimate would show a relative error of about 0.8 × this
+/// (the mean absolute deviation of a normal distribution is √(2/π) σ).
+pub fn relative_stderr(stderr: &[[f32; 3]], reference: &[[f32; 4]], mask: &Mask) -> f64 {
+    let (mut s, mut r) = (0.0f64, 0.0f64);
+    for ((e, v), &ok) in stderr.iter().zip(reference).zip(&mask.valid) {
+        if ok {
+            s += (e[0] as f64 + e[1] as f64 + e[2] as f64) / 3.0;
+            r += mean_rgb(v).abs();
+        }
+    }
+    if r > 0.0 { s / r } else { 0.0 }
+}
+
 /// Mean FLIP over the mask, from two sRGB images of the same size (nv-flip, default viewing
 /// conditions: 67 pixels per degree).
 pub fn flip_mean(test: &image::RgbImage, reference: &image::RgbImage, mask: &Mask) -> f64 {

@@ -130,6 +130,9 @@ pub struct Report {
     /// RMS of the reference's per-pixel standard error (mean of RGB) over the compared pixels:
     /// errors below this are the reference's own noise.
     pub reference_noise: f64,
+    /// The reference's relative noise: Σ σ / Σ |reference| over the compared pixels, on the scale
+    /// of the relative error (a perfect estimate shows about 0.8 × this).
+    pub reference_relative_noise: f64,
     pub methods: Vec<MethodReport>,
 }
 
@@ -308,7 +311,8 @@ th[data-sort]{{cursor:pointer}}th.asc::after{{content:" ▲"}}th.desc::after{{co
 <p>{w}×{hh} pixels, near-field radius {radius}, adapter {adapter}. Reference: {refpath}{spp}.
 Metrics over pixels that both images see as surface, outside a {border}-pixel border band, excluding {sil} silhouette pixels
 (view depth differing by more than {tol}%, dilated by 1){nodepth}. Error e = method − reference on the mean of RGB.
-The reference's own noise (RMS standard error over these pixels) is {noise:.5}.</p>
+The reference's own noise (RMS standard error over these pixels) is {noise:.5}; relative to
+the reference, Σσ/Σref = {rel_noise:.4}.</p>
 <p>Click a column's heading to sort by it. Under each method: <b>1</b> / <b>2</b> / <b>3</b> (or the slider, or the buttons) flip one image between the method, the reference and the signed error; <b>space</b> swaps method and reference; a click zooms ×4 there, another click zooms back.</p>
 <table id="metrics"><thead><tr><th data-sort="text">method</th><th data-sort="num">pixels</th><th data-sort="num">bias</th><th data-sort="num">MAE</th><th data-sort="num">RMSE</th><th data-sort="num">relative error</th><th data-sort="num">FLIP</th></tr></thead><tbody>"#,
         scene = escape(&report.scene),
@@ -326,6 +330,7 @@ The reference's own noise (RMS standard error over these pixels) is {noise:.5}.<
         sil = report.silhouette_pixels,
         tol = report.mask.depth_tolerance * 100.0,
         noise = report.reference_noise,
+        rel_noise = report.reference_relative_noise,
         nodepth = if report.depth_checked {
             ""
         } else {

@@ -29,11 +29,12 @@
 
 use crate::env_sampling::EnvDistribution;
 use crate::irradiance::IrradianceMap;
+use crate::lights::Lights;
 use crate::sampling::{Pcg32, cosine_hemisphere, pixel_seed, r2, r2_offset};
 use crate::tracer::{Hit, Tracer, offset_origin};
 use crate::{PixelResult, ReferenceAov, ReferenceSettings, Senders};
 use glam::{Vec2, Vec3};
-use nearfield_scene::{Camera, Environment, Light, LightKind, Scene};
+use nearfield_scene::{Camera, Environment, Scene};
 use std::f32::consts::PI;
 
 pub struct Context<'a> {
@@ -46,9 +47,7 @@ pub struct Context<'a> {
     env_dist: Option<EnvDistribution>,
     scene_radius: f32,
     /// The scene's lights and the environment's sun (a disc light), if split out.
-    lights: Vec<Light>,
-    /// Some light is a disc (needs sampling).
-    has_disc: bool,
+    lights: Lights,
 }
 
 /// Running mean and variance (Welford).
@@ -89,13 +88,6 @@ impl<'a> Context<'a> {
                 settings.aov,
                 ReferenceAov::IndirectIrradiance | ReferenceAov::Diffuse
             );
-        let lights: Vec<Light> = scene
-            .lights
-            .iter()
-            .copied()
-            .chain(env.sun_light())
-            .collect();
-        let has_disc = lights.iter().any(|l| disc_radius(l) > 0.0);
         Context {
             tracer: Tracer::new(scene),
             scene,
@@ -105,7 +97,10 @@ impl<'a> Context<'a> {
             irradiance: needs_irradiance.then(|| IrradianceMap::new(env)),
             env_dist: if matches!(
                 settings.aov,
-                ReferenceAov::EnvIrradiance | ReferenceAov::Diffuse | ReferenceAov::Radiance
+                ReferenceAov::EnvIrradiance
+                    | ReferenceAov::Diffuse
+                    | ReferenceAov::Radiance
+                    | ReferenceAov::FarIrradiance
             ) || (settings.aov == ReferenceAov::IndirectIrradiance
                 && settings.senders == Senders::Physical)
             {
@@ -114,8 +109,7 @@ impl<'a> Context<'a> {
                 None
             },
             scene_radius: scene.bounds().radius(),
-            lights,
-            has_disc,
+            lights: Lights::new(scene, env),
         }
     }
 
@@ -123,7 +117,7 @@ impl<'a> Context<'a> {
     /// stratified directions over each disc light.
     fn light_irradiance(&self, hit: &Hit, x: u32, y: u32, rays: &mut u64) -> (Vec3, Vec3) {
         let eye = self.camera.eye;
-        if !self.has_disc {
+        if !self.lights.has_disc {
             return (
                 self.light_irradiance_from(hit, eye, Vec2::ZERO, rays),
                 Vec3::ZERO,
@@ -150,6 +144,7 @@ impl<'a> Context<'a> {
                 .unwrap_or(Vec3::ZERO);
             let lights: Vec3 = self
                 .lights
+                .lights
                 .iter()
                 .map(|l| l.irradiance(hit.p, hit.ns))
                 .sum::<Vec3>()
@@ -162,6 +157,136 @@ impl<'a> Context<'a> {
         let env = self.shadowed_env(hit, from, rng.next_vec2(), rng.next_vec2(), rays);
         let lights = self.light_irradiance_from(hit, from, rng.next_vec2(), rays);
         emission + albedo * (env + lights)
+    }
+
+    /// One path-traced estimate of the radiance leaving `hit` towards `from` (the previous path
+    /// vertex), emission included, the path having used `segments` segments so far (the one that
+    /// reached `hit` included): next-event estimation of the lights and of the environment
+    /// (balance heuristic against the cosine-weighted continuation), Russian roulette from the
+    /// fourth segment, at most `max_depth` segments in all.
+    fn outgoing_radiance(
+        &self,
+        hit: &Hit,
+        from: Vec3,
+        segments: u32,
+        rng: &mut Pcg32,
+        rays: &mut u64,
+    ) -> Vec3 {
+        let s = &self.settings;
+        let mut l = self.scene.emission(hit.material, hit.uv);
+        let mut throughput = Vec3::ONE;
+        let mut hit = *hit;
+        let mut segments = segments;
+        let mut from = from;
+        while segments < s.max_depth {
+            let rho = self.scene.base_color(hit.material, hit.uv).truncate();
+            // Next-event estimation: one more segment, to each light (a disc: one direction
+            // over it) …
+            l += throughput * rho * self.light_irradiance_from(&hit, from, rng.next_vec2(), rays);
+            // … and to the environment, drawn from its energy and weighted by the balance
+            // heuristic against the cosine-weighted continuation below.
+            if let Some(d) = &self.env_dist {
+                let (we, pe) = d.sample(self.env, rng.next_vec2());
+                let cos = we.dot(hit.ns);
+                if pe > 0.0 && cos > 0.0 && we.dot(hit.ng) > 0.0 {
+                    *rays += 1;
+                    let o = offset_origin(&hit, we, from, self.scene_radius);
+                    if !self.tracer.occluded(o, we, f32::INFINITY) {
+                        let pc = cos / PI;
+                        l += throughput * rho * self.env.radiance(we) * (pc / (pc + pe));
+                    }
+                }
+            }
+            let w = cosine_hemisphere(hit.ns, rng.next_vec2());
+            if w.dot(hit.ng) <= 0.0 {
+                break;
+            }
+            throughput *= rho;
+            segments += 1;
+            *rays += 1;
+            let o = offset_origin(&hit, w, from, self.scene_radius);
+            match self.tracer.closest(o, w, f32::INFINITY, false) {
+                None => {
+                    l += throughput * self.env.radiance(w) * self.cosine_weight(w, hit.ns);
+                    break;
+                }
+                Some(next) => {
+                    l += throughput * self.scene.emission(next.material, next.uv);
+                    from = hit.p;
+                    hit = next;
+                }
+            }
+            if segments >= 4 {
+                let p = throughput.max_element().min(0.95);
+                if p <= 0.0 || rng.next_f32() >= p {
+                    break;
+                }
+                throughput /= p;
+            }
+        }
+        l
+    }
+
+    /// The balance-heuristic weight of a cosine-weighted direction `w` about `n` that reached
+    /// the environment, against drawing it from the map's energy (1 without that strategy).
+    fn cosine_weight(&self, w: Vec3, n: Vec3) -> f32 {
+        match &self.env_dist {
+            Some(d) => {
+                let pc = w.dot(n).max(0.0) / PI;
+                pc / (pc + d.pdf(self.env, w))
+            }
+            None => 1.0,
+        }
+    }
+
+    /// `far-irradiance` at the primary hit: (1/π) ∫ V_R L_far cos θ dω. A cosine-weighted
+    /// direction that meets nothing within R brings the environment if it escapes (balance
+    /// heuristic against a direction drawn from the map's energy, which brings the environment
+    /// where nothing at all is in the way) or the path-traced radiance leaving the surface it
+    /// meets beyond R; within R it brings nothing.
+    fn far_irradiance(&self, x: u32, y: u32, hit: &Hit) -> (Vec3, Vec3, u64) {
+        let s = &self.settings;
+        let seed = pixel_seed(x, y, s.seed);
+        let offset = r2_offset(seed);
+        let env_offset = r2_offset(seed ^ 0x6a09_e667);
+        let mut rng = Pcg32::new(seed as u64, 0xda3e_39cb_94b9_5bdb);
+        let mut stats = Stats::default();
+        let mut rays = 0u64;
+        let eye = self.camera.eye;
+        for i in 0..s.spp {
+            let mut e = Vec3::ZERO;
+            let w = cosine_hemisphere(hit.ns, r2(i, offset));
+            if w.dot(hit.ng) > 0.0 {
+                rays += 1;
+                let o = offset_origin(hit, w, eye, self.scene_radius);
+                match self.tracer.closest(o, w, f32::INFINITY, false) {
+                    None => e += self.env.radiance(w) * self.cosine_weight(w, hit.ns),
+                    Some(far) if far.t >= s.radius => {
+                        e += self.outgoing_radiance(&far, hit.p, 2, &mut rng, &mut rays);
+                    }
+                    Some(_) => {}
+                }
+            }
+            if let Some(d) = &self.env_dist {
+                let (we, pe) = d.sample(self.env, r2(i, env_offset));
+                let cos = we.dot(hit.ns);
+                if pe > 0.0 && cos > 0.0 && we.dot(hit.ng) > 0.0 {
+                    rays += 1;
+                    let o = offset_origin(hit, we, eye, self.scene_radius);
+                    if !self.tracer.occluded(o, we, f32::INFINITY) {
+                        e += self.env.radiance(we) * (cos / PI) / (cos / PI + pe);
+                    }
+                }
+            }
+            stats.push(e);
+        }
+        (stats.mean, stats.stderr(), rays)
+    }
+
+    /// [`Lights::irradiance`] at `hit`, shadow rays pushed towards `from`.
+    fn light_irradiance_from(&self, hit: &Hit, from: Vec3, u: Vec2, rays: &mut u64) -> Vec3 {
+        self.lights
+            .irradiance(&self.tracer, self.scene_radius, hit, from, u, rays)
     }
 
     /// One estimate of (1/π) ∫ L_env V_∞ cos θ dω at `hit`: a cosine-weighted direction (from
@@ -204,6 +329,53 @@ impl<'a> Context<'a> {
         e
     }
 
+    /// `far-irradiance` at pixel (x, y) with the probe volume's radiance in place of the
+    /// path-traced one, and the exact visibility: (1/π) ∫ V_R(ω) L_vol(P, ω) cos θ dω from
+    /// cosine-weighted directions. It measures the volume alone, without any technique's
+    /// estimate of V_R.
+    pub fn volume_pixel(
+        &self,
+        x: u32,
+        y: u32,
+        volume: &nearfield_scene::probes::ProbeVolume,
+    ) -> PixelResult {
+        let s = &self.settings;
+        let dir = self.camera.primary_ray(x, y, s.size);
+        let Some(hit) = self
+            .tracer
+            .closest(self.camera.eye, dir, f32::INFINITY, true)
+        else {
+            return PixelResult {
+                rays: 1,
+                ..Default::default()
+            };
+        };
+        let depth = hit.t * dir.dot(self.camera.forward());
+        let sh = volume.sh_at(hit.p, hit.ns, -dir);
+        let offset = r2_offset(pixel_seed(x, y, s.seed));
+        let mut stats = Stats::default();
+        let mut rays = 1u64;
+        for i in 0..s.spp {
+            let w = cosine_hemisphere(hit.ns, r2(i, offset));
+            let mut e = Vec3::ZERO;
+            if w.dot(hit.ng) > 0.0 {
+                rays += 1;
+                let o = offset_origin(&hit, w, self.camera.eye, self.scene_radius);
+                if s.radius == 0.0 || !self.tracer.occluded(o, w, s.radius) {
+                    e = nearfield_scene::sh::evaluate(&sh, w);
+                }
+            }
+            stats.push(e);
+        }
+        PixelResult {
+            value: stats.mean.max(Vec3::ZERO),
+            alpha: 1.0,
+            stderr: stats.stderr(),
+            depth,
+            rays,
+        }
+    }
+
     pub fn pixel(&self, x: u32, y: u32) -> PixelResult {
         let s = &self.settings;
         let dir = self.camera.primary_ray(x, y, s.size);
@@ -241,6 +413,10 @@ impl<'a> Context<'a> {
                 return done(e, se, rays);
             }
             ReferenceAov::Radiance => return self.path_trace(x, y, &hit, depth),
+            ReferenceAov::FarIrradiance => {
+                let (e, se, n) = self.far_irradiance(x, y, &hit);
+                return done(e, se, rays + n);
+            }
             _ => {}
         }
         let seed = pixel_seed(x, y, s.seed);
@@ -350,66 +526,7 @@ impl<'a> Context<'a> {
         let mut rays = 1u64;
         let mut rng = Pcg32::new(pixel_seed(x, y, s.seed) as u64, 0x5851_f42d_4c95_7f2d);
         for _ in 0..s.spp {
-            let mut l = self.scene.emission(primary.material, primary.uv);
-            let mut throughput = Vec3::ONE;
-            let mut hit = *primary;
-            let mut segments = 1;
-            let mut from = self.camera.eye;
-            while segments < s.max_depth {
-                let rho = self.scene.base_color(hit.material, hit.uv).truncate();
-                // Next-event estimation: one more segment, to each light (a disc: one direction
-                // over it) …
-                l += throughput
-                    * rho
-                    * self.light_irradiance_from(&hit, from, rng.next_vec2(), &mut rays);
-                // … and to the environment, drawn from its energy and weighted by the balance
-                // heuristic against the cosine-weighted continuation below.
-                if let Some(d) = &self.env_dist {
-                    let (we, pe) = d.sample(self.env, rng.next_vec2());
-                    let cos = we.dot(hit.ns);
-                    if pe > 0.0 && cos > 0.0 && we.dot(hit.ng) > 0.0 {
-                        rays += 1;
-                        let o = offset_origin(&hit, we, from, self.scene_radius);
-                        if !self.tracer.occluded(o, we, f32::INFINITY) {
-                            let pc = cos / PI;
-                            l += throughput * rho * self.env.radiance(we) * (pc / (pc + pe));
-                        }
-                    }
-                }
-                let w = cosine_hemisphere(hit.ns, rng.next_vec2());
-                if w.dot(hit.ng) <= 0.0 {
-                    break;
-                }
-                throughput *= rho;
-                segments += 1;
-                rays += 1;
-                let o = offset_origin(&hit, w, from, self.scene_radius);
-                match self.tracer.closest(o, w, f32::INFINITY, false) {
-                    None => {
-                        let weight = match &self.env_dist {
-                            Some(d) => {
-                                let pc = w.dot(hit.ns).max(0.0) / PI;
-                                pc / (pc + d.pdf(self.env, w))
-                            }
-                            None => 1.0,
-                        };
-                        l += throughput * self.env.radiance(w) * weight;
-                        break;
-                    }
-                    Some(next) => {
-                        l += throughput * self.scene.emission(next.material, next.uv);
-                        from = hit.p;
-                        hit = next;
-                    }
-                }
-                if segments >= 4 {
-                    let p = throughput.max_element().min(0.95);
-                    if p <= 0.0 || rng.next_f32() >= p {
-                        break;
-                    }
-                    throughput /= p;
-                }
-            }
+            let l = self.outgoing_radiance(primary, self.camera.eye, 1, &mut rng, &mut rays);
             stats.push(l);
         }
         PixelResult {
@@ -420,65 +537,4 @@ impl<'a> Context<'a> {
             rays,
         }
     }
-
-    /// (1/π) Σ_l E_l at `hit` with shadow rays whose origins are pushed towards `from` (the
-    /// camera, or the previous path vertex): exact for punctual lights; a disc light gives one
-    /// unbiased sample from `u`, a direction uniform over the disc's solid angle Ω, weighted
-    /// L·(ω·n)·Ω = E_n (ω·n) · 2/(1 + cos r) (E_n its normal irradiance, r its radius).
-    fn light_irradiance_from(&self, hit: &Hit, from: Vec3, u: Vec2, rays: &mut u64) -> Vec3 {
-        let mut e = Vec3::ZERO;
-        for light in &self.lights {
-            let radius = disc_radius(light);
-            if radius > 0.0 {
-                let (centre, _) = light.direction_from(hit.p);
-                let l = uniform_cone(centre, radius.cos(), u);
-                let cos = l.dot(hit.ns);
-                if cos <= 0.0 || l.dot(hit.ng) <= 0.0 {
-                    continue;
-                }
-                *rays += 1;
-                let o = offset_origin(hit, l, from, self.scene_radius);
-                if !self.tracer.occluded(o, l, f32::INFINITY) {
-                    e += light.normal_irradiance(hit.p) * (cos * 2.0 / (1.0 + radius.cos()));
-                }
-                continue;
-            }
-            let (l, dist) = light.direction_from(hit.p);
-            if l.dot(hit.ns) <= 0.0 || l.dot(hit.ng) <= 0.0 {
-                continue;
-            }
-            let irr = light.irradiance(hit.p, hit.ns);
-            if irr.max_element() <= 0.0 {
-                continue;
-            }
-            let o = offset_origin(hit, l, from, self.scene_radius);
-            let tmax = if dist.is_finite() {
-                (hit.p + l * dist - o).length() * (1.0 - 1e-4)
-            } else {
-                f32::INFINITY
-            };
-            *rays += 1;
-            if !self.tracer.occluded(o, l, tmax) {
-                e += irr;
-            }
-        }
-        e / PI
-    }
-}
-
-/// Angular radius of a disc light (0 for punctual lights).
-fn disc_radius(l: &Light) -> f32 {
-    match l.kind {
-        LightKind::Directional { angular_radius, .. } => angular_radius.max(0.0),
-        _ => 0.0,
-    }
-}
-
-/// A direction uniform over the cone of half-angle acos(`cos_max`) about the unit `axis`.
-fn uniform_cone(axis: Vec3, cos_max: f32, u: Vec2) -> Vec3 {
-    let cos = 1.0 - u.x * (1.0 - cos_max);
-    let sin = (1.0 - cos * cos).max(0.0).sqrt();
-    let phi = 2.0 * PI * u.y;
-    let (t, b) = crate::sampling::orthonormal_basis(axis);
-    (t * (sin * phi.cos()) + b * (sin * phi.sin()) + axis * cos).normalize()
 }

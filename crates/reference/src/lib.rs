@@ -8,11 +8,13 @@
 //! (see [`tracer`]). Hemisphere integrals use cosine-weighted samples around the shading normal;
 //! directions below the geometric tangent plane count as blocked (the surface itself is there).
 
+pub mod bake;
 pub mod cache;
 pub mod env_sampling;
 pub mod exr_io;
 pub mod integrate;
 pub mod irradiance;
+pub mod lights;
 pub mod sampling;
 pub mod tracer;
 
@@ -35,6 +37,8 @@ pub enum ReferenceAov {
     Diffuse,
     /// Path-traced image (Lambertian, environment + lights + emission).
     Radiance,
+    /// (1/π) ∫ V_R L_far cos θ dω: what arrives from beyond R, path-traced to full depth.
+    FarIrradiance,
     /// Base colour ρ.
     Albedo,
     /// Shading normal.
@@ -44,13 +48,14 @@ pub enum ReferenceAov {
 }
 
 impl ReferenceAov {
-    pub const ALL: [ReferenceAov; 9] = [
+    pub const ALL: [ReferenceAov; 10] = [
         ReferenceAov::Ao,
         ReferenceAov::EnvIrradiance,
         ReferenceAov::LightIrradiance,
         ReferenceAov::IndirectIrradiance,
         ReferenceAov::Diffuse,
         ReferenceAov::Radiance,
+        ReferenceAov::FarIrradiance,
         ReferenceAov::Albedo,
         ReferenceAov::Normal,
         ReferenceAov::Depth,
@@ -64,6 +69,7 @@ impl ReferenceAov {
             ReferenceAov::IndirectIrradiance => "indirect-irradiance",
             ReferenceAov::Diffuse => "diffuse",
             ReferenceAov::Radiance => "radiance",
+            ReferenceAov::FarIrradiance => "far-irradiance",
             ReferenceAov::Albedo => "albedo",
             ReferenceAov::Normal => "normal",
             ReferenceAov::Depth => "depth",
@@ -174,6 +180,32 @@ pub fn render(
     progress: bool,
 ) -> ReferenceImage {
     let ctx = integrate::Context::new(scene, env, camera, settings);
+    render_rows(settings, progress, |x, y| ctx.pixel(x, y))
+}
+
+/// `far-irradiance` lit by a probe volume with the exact visibility V_R
+/// ([`integrate::Context::volume_pixel`]): the volume measured alone.
+pub fn render_volume_far(
+    scene: &Scene,
+    env: &Environment,
+    camera: &Camera,
+    settings: &ReferenceSettings,
+    volume: &nearfield_scene::probes::ProbeVolume,
+    progress: bool,
+) -> ReferenceImage {
+    let settings = ReferenceSettings {
+        aov: ReferenceAov::FarIrradiance,
+        ..*settings
+    };
+    let ctx = integrate::Context::new(scene, env, camera, &settings);
+    render_rows(&settings, progress, |x, y| ctx.volume_pixel(x, y, volume))
+}
+
+fn render_rows(
+    settings: &ReferenceSettings,
+    progress: bool,
+    pixel: impl Fn(u32, u32) -> PixelResult + Sync,
+) -> ReferenceImage {
     let (w, h) = settings.size;
     let bar = nearfield_scene::progress::Progress::new(
         &format!("reference {}", settings.aov.name()),
@@ -184,7 +216,7 @@ pub fn render(
     let rows: Vec<Vec<PixelResult>> = (0..h)
         .into_par_iter()
         .map(|y| {
-            let row = (0..w).map(|x| ctx.pixel(x, y)).collect();
+            let row = (0..w).map(|x| pixel(x, y)).collect();
             bar.inc(1);
             row
         })

@@ -317,7 +317,8 @@ pub fn ao_image(ctx: &GpuContext, method: &str) -> Result<(Vec<f32>, Vec<f32>), 
         bytemuck::bytes_of(&frame),
         wgpu::BufferUsages::UNIFORM,
     );
-    let frame_group = FrameGroup::new(device, &frame_buffer, &gpu_env);
+    let far = nearfield_render::far::GpuFarField::sky(device, queue);
+    let frame_group = FrameGroup::new(device, &frame_buffer, &gpu_env, &far);
 
     // The technique, on the engine's images.
     let inputs = NearFieldInputs {

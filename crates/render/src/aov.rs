@@ -28,17 +28,21 @@ pub enum Aov {
     Motion,
     /// Specular radiance (lights + prefiltered environment).
     Specular,
-    /// Outgoing diffuse radiance kept for the next frame: emission + ρ (light + unoccluded env
-    /// irradiance).
+    /// Outgoing diffuse radiance kept for the next frame: emission + ρ (light + the far field's
+    /// irradiance: the unoccluded sky's SH, or the probe volume's).
     DirectRadiance,
     /// emission + ρ × (env + light + indirect irradiance): the Lambertian part of `radiance`,
     /// the quantity the reference's path tracer (Lambertian surfaces) computes for `radiance`.
     Lambertian,
+    /// (1/π) ∫ V_R L_far cos θ dω: what arrives from beyond R. The technique's far-field term —
+    /// the same image as `env-irradiance`, whose light is the open sky with `--far sky` and the
+    /// probe volume with `--far volume`.
+    FarIrradiance,
 }
 
 impl Aov {
     /// Every AOV, in the order of their shader ids.
-    pub const ALL: [Aov; 14] = [
+    pub const ALL: [Aov; 15] = [
         Aov::Final,
         Aov::Radiance,
         Aov::Albedo,
@@ -53,6 +57,7 @@ impl Aov {
         Aov::Specular,
         Aov::DirectRadiance,
         Aov::Lambertian,
+        Aov::FarIrradiance,
     ];
 
     pub fn name(self) -> &'static str {
@@ -71,6 +76,7 @@ impl Aov {
             Aov::Specular => "specular",
             Aov::DirectRadiance => "direct-radiance",
             Aov::Lambertian => "lambertian",
+            Aov::FarIrradiance => "far-irradiance",
         }
     }
 

@@ -234,8 +234,8 @@ macro_rules! bind_group {
 }
 
 crate::bind_group! {
-    /// Group 0 of every pass of the frame: the frame's uniforms and the environment
-    /// (common.wgsl, env.wgsl).
+    /// Group 0 of every pass of the frame: the frame's uniforms, the environment and the far
+    /// field (common.wgsl, env.wgsl, far.wgsl).
     pub struct FrameBindings: VERTEX | FRAGMENT | COMPUTE {
         /// `Frame` (common.wgsl): camera matrices of this and last frame, image size,
         /// projection, environment parameters, post settings, counts.
@@ -250,6 +250,11 @@ crate::bind_group! {
         env_sh: buffer = kind::UNIFORM,
         /// The pre-convolved diffuse map E(n)/π, lat-long rgba16float.
         env_irradiance_map: view = kind::TEXTURE,
+        /// The far field ([`crate::far`], far.wgsl): row 0 the grid (`FarGrid`: sky or probe
+        /// volume), then per probe its offset and state and order-2 SH radiance (rgba32float).
+        far_probes: view = kind::TEXTURE_UNFILTERABLE,
+        /// The probes' octahedral distance moments (rg16float atlas).
+        far_visibility: view = kind::TEXTURE,
     }
 }
 

@@ -10,6 +10,7 @@ pub mod aov;
 pub mod bindings;
 pub mod context;
 pub mod error;
+pub mod far;
 pub mod frame;
 pub mod gpu_env;
 pub mod gpu_scene;

@@ -5,6 +5,7 @@
 use crate::RenderError;
 use crate::aov::{Aov, AovImage};
 use crate::context::GpuContext;
+use crate::far::{FarMode, GpuFarField};
 use crate::frame::{CameraMatrices, FrameInputs, FrameUniforms, PostUniforms, Tonemap};
 use crate::gpu_env::GpuEnvironment;
 use crate::gpu_scene::GpuScene;
@@ -49,6 +50,8 @@ pub struct Renderer {
     queue: wgpu::Queue,
     pub scene: GpuScene,
     pub env: GpuEnvironment,
+    /// The far field: the open sky, or a probe volume ([`Self::set_far_field`]).
+    pub far: GpuFarField,
     pub targets: FrameTargets,
     frame_buffer: wgpu::Buffer,
     /// Group 0 of every pass: the frame's uniforms and the environment.
@@ -118,7 +121,8 @@ impl Renderer {
         });
         let shadows = ShadowPass::new(&device, &gpu_scene, settings.shadows);
         gpu_scene.write_lights(&queue, &shadows.light_layers);
-        let frame_group = FrameGroup::new(&device, &frame_buffer, &gpu_env);
+        let far = GpuFarField::sky(&device, &queue);
+        let frame_group = FrameGroup::new(&device, &frame_buffer, &gpu_env, &far);
         let gbuffer = GBufferPass::new(&device, &frame_group, &gpu_scene);
         let passes = Passes::new(
             &device,
@@ -141,6 +145,7 @@ impl Renderer {
             queue,
             scene: gpu_scene,
             env: gpu_env,
+            far,
             targets,
             frame_buffer,
             frame_group,
@@ -277,7 +282,7 @@ impl Renderer {
         );
         let old_group = std::mem::replace(
             &mut self.frame_group,
-            FrameGroup::new(&self.device, &self.frame_buffer, &self.env),
+            FrameGroup::new(&self.device, &self.frame_buffer, &self.env, &self.far),
         );
         let (spec, params) = (self.technique_spec.clone(), self.technique_params.clone());
         if let Err(e) = self.rebuild_passes(&spec, &params) {
@@ -292,6 +297,40 @@ impl Renderer {
         }
         self.gbuffer.set_frame(&self.frame_group);
         Ok(())
+    }
+
+    /// Sets the far field of the next frames: a probe volume (baked for this scene and
+    /// environment by `nearfield bake`), or `None` for the open sky. Passes are rebuilt; the
+    /// history is discarded.
+    pub fn set_far_field(
+        &mut self,
+        volume: Option<&nearfield_scene::probes::ProbeVolume>,
+    ) -> Result<(), RenderError> {
+        self.check_device()?;
+        let scopes = ErrorScopes::push(&self.device);
+        let far = match volume {
+            Some(v) => GpuFarField::volume(&self.device, &self.queue, v),
+            None => GpuFarField::sky(&self.device, &self.queue),
+        };
+        scopes.pop()?;
+        let old_far = std::mem::replace(&mut self.far, far);
+        let old_group = std::mem::replace(
+            &mut self.frame_group,
+            FrameGroup::new(&self.device, &self.frame_buffer, &self.env, &self.far),
+        );
+        let (spec, params) = (self.technique_spec.clone(), self.technique_params.clone());
+        if let Err(e) = self.rebuild_passes(&spec, &params) {
+            self.far = old_far;
+            self.frame_group = old_group;
+            return Err(e);
+        }
+        self.gbuffer.set_frame(&self.frame_group);
+        Ok(())
+    }
+
+    /// The far field the frames use.
+    pub fn far_mode(&self) -> FarMode {
+        self.far.mode
     }
 
     /// Multiplies the environment's radiance by `intensity` (≥ 0) for the next frames.

@@ -4,6 +4,8 @@
 pub const COMMON_WGSL: &str = include_str!("shaders/common.wgsl");
 /// Shared WGSL: environment bindings (group 0), lat-long lookups and SH irradiance.
 pub const ENV_WGSL: &str = include_str!("shaders/env.wgsl");
+/// Shared WGSL (after [`ENV_WGSL`]): the far field, sky or probe volume (group 0).
+pub const FAR_WGSL: &str = include_str!("shaders/far.wgsl");
 /// Shared WGSL: light table, shadow maps and light irradiance (names the bindings its passes
 /// declare).
 pub const LIGHTS_WGSL: &str = include_str!("shaders/lights.wgsl");

@@ -149,7 +149,7 @@ fn host_and_shader_structs_agree() {
             &source,
             "SsdoParams",
             size_of::<SsdoParams>(),
-            &offsets!(SsdoParams: radius, _pad0, mode, technique, lod, contrast, scale, fade,
+            &offsets!(SsdoParams: radius, sample_light, mode, technique, lod, contrast, scale, fade,
                 strength, distance_clamp, pattern, light_samples, layers, cameras, light_segment,
                 vpl_mode, vpl_count, vpl_clamp, near, _pad1),
         );

@@ -12,6 +12,7 @@
 //! | `gap` | a thin floating slab (6 cm) 0.25 m above a floor under the sky, seen from above: points of the gap under it lie behind it from the camera (SSDO Fig. 5) |
 //! | `columns` | a white column hiding a pink column behind it from the camera, on a floor under the sky and a sun from the right (SSDO Fig. 7) |
 //! | `contact` | a 4 cm cube and a 2 cm rod on a 6 m plane under a low sun: the shadow map's bias loses their contact shadows (SSDO Fig. 9) |
+//! | `two-rooms` | two 3 × 2.5 × 3 m rooms side by side, a 20 cm wall between them; the left one is open to the sky, the right one closed (no light reaches it): the far field's leak test |
 
 use crate::{Camera, EnvSource, Light, LightKind, Material, Mesh, Scene, SceneError};
 use glam::{Quat, Vec2, Vec3};
@@ -27,6 +28,7 @@ pub const NAMES: &[&str] = &[
     "gap",
     "columns",
     "contact",
+    "two-rooms",
 ];
 
 /// Builds the named built-in scene.
@@ -41,6 +43,7 @@ pub fn scene(name: &str) -> Result<Scene, SceneError> {
         "gap" => gap(),
         "columns" => columns(),
         "contact" => contact(),
+        "two-rooms" => two_rooms(),
         _ => {
             return Err(SceneError::UnknownBuiltin {
                 name: name.into(),
@@ -372,6 +375,38 @@ fn closed_box() -> Scene {
     }];
     b.finish(
         Camera::new(Vec3::new(-1.0, 1.6, 1.8), Vec3::new(0.3, 0.8, -1.5), 70.0),
+        EnvSource::Sky,
+    )
+}
+
+/// Two rooms side by side along x, sharing a 20 cm wall (x = ±0.1): the left one
+/// (x ∈ [−3.2, −0.1]) has no ceiling and sees the sky and its sun, the right one
+/// (x ∈ [0.1, 3.2]) is closed on every side, so that no light reaches it. A probe volume must
+/// not carry the lit room's light through the wall.
+fn two_rooms() -> Scene {
+    let mut b = Builder::new("two-rooms");
+    let walls = b.material(Material::diffuse("walls", Vec3::splat(0.7)));
+    let floor = b.material(Material::diffuse("floor", Vec3::new(0.6, 0.55, 0.5)));
+    let (x, y, z, t) = (3.2, 2.5, 1.5, 0.1);
+    let v = Vec3::new;
+    b.floor(floor, Vec2::new(-x, -z), Vec2::new(x, z), 0.0, false);
+    // The dark room's ceiling, facing down.
+    b.floor(walls, Vec2::new(t, -z), Vec2::new(x, z), y, true);
+    // Inward-facing outer walls: −Z faces +Z, +Z faces −Z, −X faces +X, +X faces −X.
+    b.quad(
+        walls,
+        [v(-x, 0., -z), v(x, 0., -z), v(x, y, -z), v(-x, y, -z)],
+    );
+    b.quad(walls, [v(x, 0., z), v(-x, 0., z), v(-x, y, z), v(x, y, z)]);
+    b.quad(
+        walls,
+        [v(-x, 0., z), v(-x, 0., -z), v(-x, y, -z), v(-x, y, z)],
+    );
+    b.quad(walls, [v(x, 0., -z), v(x, 0., z), v(x, y, z), v(x, y, -z)]);
+    // The shared wall: a solid 2t thick, as tall as the rooms.
+    b.block(walls, Vec2::ZERO, Vec3::new(2.0 * t, y, 2.0 * z), 0.0, 0.0);
+    b.finish(
+        Camera::new(Vec3::new(-2.9, 1.6, 1.2), Vec3::new(-0.1, 0.8, -0.6), 70.0),
         EnvSource::Sky,
     )
 }

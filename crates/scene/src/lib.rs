@@ -21,6 +21,7 @@ pub mod limits;
 pub mod load;
 pub mod material;
 pub mod mesh;
+pub mod probes;
 pub mod progress;
 pub mod sh;
 pub mod sky;

@@ -83,6 +83,8 @@ pub struct FitArgs {
     pub adapter: Option<String>,
     #[command(flatten)]
     pub reference: ReferenceOpts,
+    #[command(flatten)]
+    pub far: crate::far::FarOpts,
     /// Output JSON.
     #[arg(long, default_value = "fit.json")]
     pub out: PathBuf,
@@ -496,6 +498,7 @@ pub fn run(args: FitArgs) -> Result<()> {
         .into());
     }
 
+    args.far.precheck()?;
     let ctx = GpuContext::new(args.adapter.as_deref())?;
     let load = |list: &[(String, SceneSpec)]| -> Result<Vec<Target>> {
         let mut targets = Vec::new();
@@ -529,7 +532,7 @@ pub fn run(args: FitArgs) -> Result<()> {
                 );
                 continue;
             }
-            let renderer = Renderer::new(
+            let mut renderer = Renderer::new(
                 &ctx,
                 &loaded.scene,
                 &loaded.env,
@@ -538,6 +541,8 @@ pub fn run(args: FitArgs) -> Result<()> {
                 &params,
                 settings,
             )?;
+            let volume = args.far.resolve(&opts, &loaded, Some(args.aov.as_str()))?;
+            renderer.set_far_field(volume.as_ref())?;
             targets.push(Target {
                 name: name.clone(),
                 renderer,

@@ -21,6 +21,8 @@ pub struct ViewArgs {
     pub scene: SceneOpts,
     #[command(flatten)]
     pub technique: TechniqueOpts,
+    #[command(flatten)]
+    pub far: crate::far::FarOpts,
     /// Technique of the view (A side); `name` or `name:key=value+…`.
     #[arg(long, default_value = "none")]
     pub method: String,
@@ -86,8 +88,13 @@ pub fn run(args: ViewArgs) -> Result<()> {
         .transpose()?;
     let size = crate::options::parse_size(&args.scene.size)?;
     let settings = args.technique.settings(size)?;
+    args.far.precheck()?;
     let loaded = args.scene.load()?;
     loaded.report_sun();
+    // The frame's far field as `render` has it for the image shown (baked or cached before the
+    // window opens; later changes rebake in the background).
+    let shown = (args.aov != "final").then_some(args.aov.as_str());
+    let volume = args.far.resolve(&args.scene, &loaded, shown)?;
     let env_name = args
         .scene
         .env
@@ -109,6 +116,7 @@ pub fn run(args: ViewArgs) -> Result<()> {
             b,
             aov: args.aov.clone(),
             sun: nearfield_scene::SunMode::parse(&args.scene.sun)?,
+            volume,
         },
         adapter: args.scene.adapter.clone(),
         vsync: !args.no_vsync,

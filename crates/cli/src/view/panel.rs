@@ -242,6 +242,26 @@ impl Panel {
         {
             req.changes.push(Change::EnvIntensity(intensity));
         }
+        // The far field: the sky, or the probe volume (baked in the background after a change).
+        ui.horizontal(|ui| {
+            ui.label("far field");
+            for (volume, name) in [(false, "sky"), (true, "volume")] {
+                if ui.selectable_label(s.far_volume == volume, name).clicked()
+                    && s.far_volume != volume
+                {
+                    req.changes.push(Change::Far(name.into()));
+                }
+            }
+            match (s.bake_progress(), s.volume_probes()) {
+                (Some(f), _) => {
+                    ui.label(format!("baking {:.0} %", f * 100.0));
+                }
+                (None, Some((n, active))) if s.far_volume => {
+                    ui.label(format!("{active} of {n} probes"));
+                }
+                _ => {}
+            }
+        });
         let mut rotation = s.env_rotation_deg;
         if ui
             .add(egui::Slider::new(&mut rotation, 0.0..=360.0).text("rotation (°)"))

@@ -1,7 +1,8 @@
 //! `nearfield view --script FILE`: a scripted session, one command per line (one per frame),
 //! `#` starts a comment. The commands are the changes of [`Change`] (same words as the panel)
-//! plus `wait N` (render N frames), `screenshot FILE.png`, `report` (print the live GPU object
-//! counts to stdout) and `quit`.
+//! plus `wait N` (render N frames), `bake-wait` (until a background bake of the probe volume is
+//! in the frame), `screenshot FILE.png`, `report` (print the live GPU object counts to stdout)
+//! and `quit`.
 
 use super::session::{Change, Side};
 use std::path::PathBuf;
@@ -10,6 +11,7 @@ use std::path::PathBuf;
 pub enum Command {
     Change(Change),
     Wait(u32),
+    BakeWait,
     Screenshot(PathBuf),
     Report,
     Quit,
@@ -88,6 +90,8 @@ fn parse_line(line: &str) -> Result<Command, String> {
         "save-camera" => Change::SaveCamera(PathBuf::from(one()?)),
         "orbit" => Change::Orbit(number(one()?, cmd)?),
         "frame" => Change::FrameScene,
+        "far" => Change::Far(one()?.to_string()),
+        "bake-wait" => return Ok(Command::BakeWait),
         "wait" => return Ok(Command::Wait(number(one()?, cmd)?)),
         "screenshot" => return Ok(Command::Screenshot(PathBuf::from(one()?))),
         "report" => return Ok(Command::Report),

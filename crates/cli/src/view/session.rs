@@ -5,10 +5,21 @@
 
 use super::technique_state::TechniqueState;
 use anyhow::Result;
+use nearfield_reference::bake::Monitor;
 use nearfield_render::passes::display::{DisplayMode, DisplayPass, DisplayPost, DisplaySide};
 use nearfield_render::{Aov, GpuContext, RenderSettings, Renderer, Tonemap};
+use nearfield_scene::probes::ProbeVolume;
 use nearfield_scene::{Camera, CameraFile, EnvSource, Environment, Scene, SceneSource, SunMode};
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+/// A bake under way in the background: what it is for ([`Session::far_key`]), how far it is,
+/// and the thread.
+struct Bake {
+    key: String,
+    monitor: Arc<Monitor>,
+    thread: std::thread::JoinHandle<Result<ProbeVolume, String>>,
+}
 
 /// Which side of the A/B view.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -54,6 +65,9 @@ pub enum Change {
     Orbit(f32),
     /// `frame`: the scene's default view.
     FrameScene,
+    /// `far sky|volume`: the far field. With `volume` the scene's probe volume is baked (or taken
+    /// from the cache) in the background; until it is ready the frame keeps its far field.
+    Far(String),
 }
 
 /// Live GPU objects of the device (wgpu's registry), for leak checks.
@@ -101,6 +115,11 @@ pub struct Session {
     pub display: DisplayPass,
     /// Per-pass GPU milliseconds of the last frame, per side.
     pub timings: (PassTimes, PassTimes),
+    /// The far field: the probe volume (`far volume`) or the sky.
+    pub far_volume: bool,
+    /// The volume the renderers use, and what it was baked for ([`Self::far_key`]).
+    volume: Option<(String, Arc<ProbeVolume>)>,
+    bake: Option<Bake>,
 }
 
 /// Everything a session starts from.
@@ -116,6 +135,9 @@ pub struct Start {
     pub aov: String,
     /// `--sun`: environments loaded later are split the same way.
     pub sun: SunMode,
+    /// The far field is the probe volume, and the volume to start with (baked for the scene and
+    /// environment as started, or `--volume`'s file); `None` with the sky.
+    pub volume: Option<ProbeVolume>,
 }
 
 impl Session {
@@ -152,9 +174,19 @@ impl Session {
             renderer_b: None,
             display,
             timings: Default::default(),
+            far_volume: start.volume.is_some(),
+            volume: None,
+            bake: None,
             scene: start.scene,
             ctx,
         };
+        if let Some(v) = start.volume {
+            let key = s.far_key();
+            s.renderer_a
+                .set_far_field(Some(&v))
+                .map_err(anyhow::Error::from)?;
+            s.volume = Some((key, Arc::new(v)));
+        }
         if start.b.is_some() {
             s.apply(Change::Split(Some(0.5))).map_err(crate::BadInput)?;
         }
@@ -236,7 +268,10 @@ impl Session {
                 self.display.resize(&self.ctx.device, (w, h));
                 Ok(())
             }
-            Change::Scene(name) => self.load_scene(&name),
+            Change::Scene(name) => {
+                self.load_scene(&name)?;
+                self.refresh_far()
+            }
             Change::Env(name) => {
                 let env = self.load_env(&name)?;
                 self.renderer_a
@@ -246,7 +281,7 @@ impl Session {
                     b.set_environment(&env).map_err(|e| e.to_string())?;
                 }
                 self.env_name = name;
-                Ok(())
+                self.refresh_far()
             }
             Change::EnvIntensity(k) => {
                 if !(k.is_finite() && (0.0..=1e6).contains(&k)) {
@@ -254,7 +289,7 @@ impl Session {
                 }
                 self.env_intensity = k;
                 self.for_each_renderer(|r| r.set_environment_intensity(k));
-                Ok(())
+                self.refresh_far()
             }
             Change::EnvRotation(deg) => {
                 if !deg.is_finite() {
@@ -263,7 +298,7 @@ impl Session {
                 self.env_rotation_deg = deg.rem_euclid(360.0);
                 let rad = self.env_rotation_deg.to_radians();
                 self.for_each_renderer(|r| r.set_environment_rotation(rad));
-                Ok(())
+                self.refresh_far()
             }
             Change::Exposure(ev) => {
                 if !(ev.is_finite() && (-20.0..=20.0).contains(&ev)) {
@@ -294,7 +329,7 @@ impl Session {
                     ));
                 }
                 self.for_each_renderer(|r| r.set_light_enabled(i, on));
-                Ok(())
+                self.refresh_far()
             }
             Change::Split(None) => {
                 self.split = None;
@@ -307,7 +342,7 @@ impl Session {
                 }
                 if self.renderer_b.is_none() {
                     let mut b = self.new_renderer(&self.b)?;
-                    self.copy_live_state(&mut b);
+                    self.copy_live_state(&mut b)?;
                     self.renderer_b = Some(b);
                 }
                 self.split = Some(f);
@@ -335,7 +370,143 @@ impl Session {
                 self.camera = self.scene.default_camera();
                 Ok(())
             }
+            Change::Far(mode) => {
+                self.far_volume = match mode.as_str() {
+                    "volume" => true,
+                    "sky" => false,
+                    _ => return Err(format!("far {mode}: expected sky or volume")),
+                };
+                self.refresh_far()
+            }
         }
+    }
+
+    /// What the volume must be baked for now: the scene, the environment (intensity and rotation
+    /// too) and which lights are on.
+    fn far_key(&self) -> String {
+        let lights: String = (0..self.renderer_a.lights().len())
+            .map(|i| {
+                if self.renderer_a.light_enabled(i) {
+                    '1'
+                } else {
+                    '0'
+                }
+            })
+            .collect();
+        format!(
+            "{}|{}|{}|{}|{lights}",
+            self.scene_name, self.env_name, self.env_intensity, self.env_rotation_deg
+        )
+    }
+
+    /// After a change the far field may depend on: with the sky, every renderer drops its volume;
+    /// with the volume, one that matches the session is used, or baked in the background (the
+    /// renderers keep the old one until the new one is ready).
+    fn refresh_far(&mut self) -> Result<(), String> {
+        if !self.far_volume {
+            if let Some(b) = self.bake.take() {
+                b.monitor
+                    .cancel
+                    .store(true, std::sync::atomic::Ordering::Relaxed);
+            }
+            self.volume = None;
+            return self.set_far_field(None);
+        }
+        let key = self.far_key();
+        if let Some((k, v)) = &self.volume
+            && *k == key
+        {
+            let v = v.clone();
+            return self.set_far_field(Some(&v));
+        }
+        if self.bake.as_ref().is_some_and(|b| b.key == key) {
+            return Ok(());
+        }
+        if let Some(b) = self.bake.take() {
+            b.monitor
+                .cancel
+                .store(true, std::sync::atomic::Ordering::Relaxed);
+        }
+        // What the bake sees: the scene's lights that are on, the sun if it is on.
+        let lights = self.renderer_a.lights().len();
+        let scene_lights = self.scene.lights.len();
+        let mut scene = self.scene.clone();
+        scene.lights = (0..scene_lights)
+            .filter(|&i| self.renderer_a.light_enabled(i))
+            .map(|i| self.scene.lights[i])
+            .collect();
+        let mut env = self.load_env(&self.env_name)?;
+        if lights > scene_lights && !self.renderer_a.light_enabled(lights - 1) {
+            env.sun = None;
+        }
+        let settings = crate::far::GridOpts::default()
+            .settings_for(&scene)
+            .map_err(|e| e.to_string())?;
+        let monitor = Arc::new(Monitor::default());
+        let (scene_name, env_name) = (self.scene_name.clone(), self.env_name.clone());
+        let m = monitor.clone();
+        let thread = std::thread::spawn(move || {
+            let input = crate::far::BakeInput {
+                scene_name: &scene_name,
+                scene: &scene,
+                env_name: &env_name,
+                env: &env,
+            };
+            crate::far::baked_from(&input, &settings, false, false, Some(&m))
+                .map(|(v, _)| v)
+                .map_err(|e| e.to_string())
+        });
+        self.bake = Some(Bake {
+            key,
+            monitor,
+            thread,
+        });
+        Ok(())
+    }
+
+    /// Every renderer's far field.
+    fn set_far_field(&mut self, volume: Option<&ProbeVolume>) -> Result<(), String> {
+        self.renderer_a
+            .set_far_field(volume)
+            .map_err(|e| e.to_string())?;
+        if let Some(b) = &mut self.renderer_b {
+            b.set_far_field(volume).map_err(|e| e.to_string())?;
+        }
+        Ok(())
+    }
+
+    /// Takes a finished background bake into the renderers; `wait` blocks until it finishes.
+    fn poll_bake(&mut self, wait: bool) -> Result<(), String> {
+        let finished = self.bake.as_ref().is_some_and(|b| b.thread.is_finished());
+        if !(finished || (wait && self.bake.is_some())) {
+            return Ok(());
+        }
+        let b = self.bake.take().expect("a bake");
+        let v = b
+            .thread
+            .join()
+            .map_err(|_| "the background bake failed".to_string())??;
+        let v = Arc::new(v);
+        self.set_far_field(Some(&v))?;
+        self.volume = Some((b.key, v));
+        Ok(())
+    }
+
+    /// Waits for a background bake (the script's `bake-wait`).
+    pub fn wait_bake(&mut self) -> Result<(), String> {
+        self.poll_bake(true)
+    }
+
+    /// How far the background bake is (0..=1), when one is under way.
+    pub fn bake_progress(&self) -> Option<f32> {
+        self.bake.as_ref().map(|b| b.monitor.fraction())
+    }
+
+    /// Probes of the volume in use, active ones.
+    pub fn volume_probes(&self) -> Option<(usize, usize)> {
+        self.volume
+            .as_ref()
+            .map(|(_, v)| (v.probes.len(), v.active_count()))
     }
 
     fn for_each_renderer(&mut self, mut f: impl FnMut(&mut Renderer)) {
@@ -386,11 +557,17 @@ impl Session {
         .map_err(|e| e.to_string())
     }
 
-    /// Light switches of side A onto a new renderer.
-    fn copy_live_state(&self, r: &mut Renderer) {
+    /// Light switches and the far field of side A onto a new renderer.
+    fn copy_live_state(&self, r: &mut Renderer) -> Result<(), String> {
         for i in 0..self.renderer_a.lights().len() {
             r.set_light_enabled(i, self.renderer_a.light_enabled(i));
         }
+        if let Some((_, v)) = &self.volume
+            && self.far_volume
+        {
+            r.set_far_field(Some(v)).map_err(|e| e.to_string())?;
+        }
+        Ok(())
     }
 
     /// Loads a scene; the environment and the camera become the scene's own.
@@ -439,6 +616,9 @@ impl Session {
 
     /// Renders one frame of each side and the display image; reads the per-pass timings.
     pub fn frame(&mut self) {
+        if let Err(e) = self.poll_bake(false) {
+            eprintln!("nearfield: view: {e}");
+        }
         let camera = self.camera;
         self.for_each_renderer(|r| {
             r.set_camera(camera);

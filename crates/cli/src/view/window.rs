@@ -265,6 +265,7 @@ impl Running {
         match cmd {
             Command::Change(c) => self.apply(c),
             Command::Wait(n) => self.wait = n,
+            Command::BakeWait => self.session.wait_bake().map_err(crate::BadInput)?,
             Command::Screenshot(path) => {
                 self.session.screenshot(&path)?;
                 eprintln!("nearfield: view: saved {}", path.display());

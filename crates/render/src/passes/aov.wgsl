@@ -7,6 +7,7 @@
 //   9 diffuse = ρ · (env-irradiance + light-irradiance + indirect-irradiance)
 //   10 motion (pixels, rg)  11 specular  12 direct-radiance (kept for the next frame)
 //   13 lambertian = emission + ρ · (env-irradiance + light-irradiance + indirect-irradiance)
+//   14 far-irradiance (the technique's far-field term: the env-irradiance image)
 
 @group(1) @binding(0) var gb_normal: texture_2d<f32>;
 @group(1) @binding(1) var gb_albedo: texture_2d<f32>;
@@ -46,7 +47,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         case 5u: {
             v = vec3<f32>(textureLoad(ao, pixel, 0).r);
         }
-        case 6u: {
+        case 6u, 14u: {
             v = textureLoad(env_irradiance, pixel, 0).rgb;
         }
         case 7u: {

@@ -11,7 +11,13 @@ use crate::util;
 pub const SHADER: &str = include_str!("direct_lighting.wgsl");
 
 pub fn source() -> String {
-    util::compose(&[util::COMMON_WGSL, util::ENV_WGSL, util::LIGHTS_WGSL, SHADER])
+    util::compose(&[
+        util::COMMON_WGSL,
+        util::ENV_WGSL,
+        util::FAR_WGSL,
+        util::LIGHTS_WGSL,
+        SHADER,
+    ])
 }
 
 crate::bind_group! {

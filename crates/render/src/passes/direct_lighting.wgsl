@@ -3,7 +3,9 @@
 // For a surface point P with normal n, base colour ρ, metallic m and roughness r:
 //   light_irradiance = (1/π) Σ_l E_l(P) · V_shadow        (the `light-irradiance` AOV)
 //   specular         = Σ_l f_GGX · E_l · V_shadow + prefiltered_env(R, r) · (F0·A + B)
-//   direct_radiance  = emission + ρ · (light_irradiance + env_irradiance_sh(n))
+//   direct_radiance  = emission + ρ · (light_irradiance + E_far(n))
+// E_far is the open sky's SH irradiance env_irradiance_sh(n), or with a probe volume the
+// volume's irradiance at P (far.wgsl).
 // E_l is the unshadowed irradiance of nearfield_scene::Light::irradiance (same falloff, same spot
 // cone and range window). f_GGX is Cook–Torrance with the GGX distribution, the height-correlated
 // Smith visibility and Schlick's Fresnel (Karis 2013), F0 = mix(0.04, ρ, m). (A, B) is Karis'
@@ -98,7 +100,14 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     let r = reflect(-v, n);
     let ab = env_brdf_approx(roughness, n_v);
     specular += env_specular_at(r, roughness) * (f0 * ab.x + ab.y);
-    let direct = emission + albedo * (light_irradiance + env_irradiance_sh(n));
+    // The senders' light: the far field, the open sky's SH irradiance or the probe volume's.
+    var far_e = vec3<f32>(0.0);
+    if far_volume() {
+        far_e = far_irradiance(far_sh_here(p, n), n);
+    } else {
+        far_e = env_irradiance_sh(n);
+    }
+    let direct = emission + albedo * (light_irradiance + far_e);
     textureStore(out_light_irradiance, pixel, vec4<f32>(light_irradiance, 1.0));
     textureStore(out_specular, pixel, vec4<f32>(specular, 1.0));
     textureStore(out_direct_radiance, pixel, vec4<f32>(direct, 1.0));

@@ -53,7 +53,8 @@ impl DisplayMode {
             | Aov::Diffuse
             | Aov::Specular
             | Aov::DirectRadiance
-            | Aov::Lambertian => DisplayMode::Colour,
+            | Aov::Lambertian
+            | Aov::FarIrradiance => DisplayMode::Colour,
         }
     }
 }

@@ -17,19 +17,25 @@ pub mod shadow;
 pub mod tonemap;
 
 use crate::bindings::FrameBindings;
+use crate::far::GpuFarField;
 use crate::gpu_env::GpuEnvironment;
 use crate::profiler::GpuProfiler;
 use crate::util;
 
 /// Group 0 of every pass of the frame ([`FrameBindings`]): its layout and bind group, made once
-/// per environment by the renderer.
+/// per environment and far field by the renderer.
 pub struct FrameGroup {
     pub layout: wgpu::BindGroupLayout,
     pub bind_group: wgpu::BindGroup,
 }
 
 impl FrameGroup {
-    pub fn new(device: &wgpu::Device, frame: &wgpu::Buffer, env: &GpuEnvironment) -> Self {
+    pub fn new(
+        device: &wgpu::Device,
+        frame: &wgpu::Buffer,
+        env: &GpuEnvironment,
+        far: &GpuFarField,
+    ) -> Self {
         let layout = FrameBindings::layout(device);
         let bind_group = FrameBindings {
             frame,
@@ -38,6 +44,8 @@ impl FrameGroup {
             env_sampler: &env.sampler,
             env_sh: &env.sh_buffer,
             env_irradiance_map: &env.irradiance_view,
+            far_probes: &far.probes_view,
+            far_visibility: &far.visibility_view,
         }
         .bind_group(device, &layout);
         FrameGroup { layout, bind_group }

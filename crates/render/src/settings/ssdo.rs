@@ -19,6 +19,19 @@ choice! {
 }
 
 choice! {
+    /// Where radiance mode's per-sample light L_in comes from (with `--far sky`; a probe volume
+    /// gives its own radiance).
+    pub enum SampleLight {
+        /// The environment's order-3 SH radiance, the sum scaled per channel so that an
+        /// unoccluded point gets the pre-convolved irradiance exactly (unbiased where nothing
+        /// occludes; see technique/ssdo/mod.rs).
+        Sh = "sh",
+        /// The box-filtered map at mip `lod` (the chapter's blurred lookup).
+        Mip = "mip",
+    }
+}
+
+choice! {
     /// Sample pattern.
     pub enum Pattern {
         /// The chapter's stratified elevation, golden-ratio azimuth, IGN rotation, random λ.
@@ -47,7 +60,8 @@ declare_settings! {
         mode: Mode = "visibility", choice, "", "`visibility`: luminance-weighted visible fraction × SH irradiance; `radiance`: Σ (1/π) L_in V cos θ Δω with Δω = 2π/N, L_in from the environment at `lod` (ssdo)";
         bounce: bool = "on", toggle, "", "one indirect bounce (ssdo)";
         pattern: Pattern = "interleaved", choice, "", "`chapter`: stratified elevation cos θ = 1 − α, golden-ratio azimuth 2π·α·(7N/9) + φ, φ from interleaved gradient noise, random λ; `interleaved`: the paper's M×N texture, 4×4 sets of N low-discrepancy samples, one set per pixel";
-        lod: f32 = "5", number(0, 16), "", "mip of the box-filtered environment read per sample (5: 32×16 for a 1k map)";
+        sample_light: SampleLight = "sh", choice, "", "radiance mode's L_in: `sh` the environment's SH radiance, scaled so that an open point gets the exact pre-convolved irradiance; `mip` the box-filtered map at `lod` (the chapter's; 7–15 % biased under a bright sky lobe); a probe volume gives its own radiance";
+        lod: f32 = "5", number(0, 16), "", "mip of the box-filtered environment read per sample (5: 32×16 for a 1k map): visibility mode's weights, and radiance mode's L_in with `sample_light=mip`";
         contrast: f32 = "1", number(0.1, 8), "", "exponent on the visibility (ssdo) or on 1 − scale·S (ssao)";
         scale: f32 = "1", number(0, 4), "", "SSAO's scale on the occluded fraction S";
         strength: f32 = "1", number(0, 16), "", "bounce strength (the patch-area correction the paper leaves to the user)";

@@ -11,6 +11,7 @@ pub fn source() -> String {
     util::compose(&[
         util::COMMON_WGSL,
         util::ENV_WGSL,
+        util::FAR_WGSL,
         util::LIGHTS_WGSL,
         include_str!("shade.wgsl"),
     ])

@@ -2,7 +2,8 @@
 // peeled layer or an additional camera, ρ × (unoccluded SH irradiance of the environment +
 // (1/π) Σ E_l · shadow-map visibility) + emission: the senders' outgoing diffuse radiance, an
 // estimate of DESIGN.md's physical direct light of x′ whose environment part is unoccluded (the
-// sun, split out with `--sun auto`, is a shadow-mapped light here).
+// sun, split out with `--sun auto`, is a shadow-mapped light here). With a probe volume the
+// environment part is the volume's irradiance (far.wgsl), as in direct_lighting.wgsl.
 
 struct ShadeParams {
     // Index in `layer_views` of this set's first layer, and the number of layers.
@@ -40,7 +41,12 @@ fn shade(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     let n = normalize(nw.xyz);
     let p = layer_position(layer_views[shade_params.first_view + k], pixel, depth);
-    var irradiance = env_irradiance_sh(n);
+    var irradiance = vec3<f32>(0.0);
+    if far_volume() {
+        irradiance = far_irradiance(far_sh_here(p, n), n);
+    } else {
+        irradiance = env_irradiance_sh(n);
+    }
     for (var li = 0u; li < frame.light_count; li++) {
         let l = lights[li];
         let inc = incident(l, p);

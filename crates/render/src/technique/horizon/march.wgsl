@@ -92,6 +92,14 @@ fn search_pixel(texel: vec2<u32>, layer: u32, pixel: vec2<u32>, centre: vec4<f32
     let n = normalize(to_view(centre.xyz));
     let x = view_dir(vec2<f32>(pixel) + 0.5) * depth;
     let lf = view_local_frame(x);
+    // The light of the visible arcs: the environment at a blurred mip, or the probe volume's
+    // radiance at this point.
+    let volume = FAR && params.far == 3u && far_volume();
+    var far_sh: FarSh;
+    if volume {
+        let xw = (frame.world_from_view * vec4<f32>(x, 1.0)).xyz;
+        far_sh = far_sh_here(xw, normalize(centre.xyz));
+    }
 
     var m: March;
     m.texel = vec2<f32>(texel);
@@ -139,7 +147,12 @@ fn search_pixel(texel: vec2<u32>, layer: u32, pixel: vec2<u32>, centre: vec4<f32
                     let b = end * f32(s + 1u) / f32(params.far_steps);
                     let mid = 0.5 * (a + b);
                     let w = abs(slice_g(b, np) - slice_g(a, np));
-                    far += env_radiance_at(sin(mid) * d_world + cos(mid) * o_world, far_lod) * w;
+                    let omega = sin(mid) * d_world + cos(mid) * o_world;
+                    if volume {
+                        far += far_radiance(far_sh, omega) * w;
+                    } else {
+                        far += env_radiance_at(omega, far_lod) * w;
+                    }
                 }
             }
         }

@@ -7,29 +7,50 @@ fn energy_compensation(a: f32) -> f32 {
     return a * (1.0 + pow(max(1.0 - a, 0.0), 0.75) * 0.5);
 }
 
-// The AOVs of one pixel (unit normal n) from its accumulated cone, near and far field.
-fn write_outputs(pixel: vec2<u32>, n: vec3<f32>, cone: vec4<f32>, near: vec4<f32>, far: vec4<f32>) {
-    let ao = clamp(cone.w, 0.0, 1.0);
-    let bent = select(n, normalize(cone.xyz), dot(cone.xyz, cone.xyz) > 1e-12);
-    var env = vec3<f32>(0.0);
+// The far field's irradiance through the bent cone: the environment (sky) or the probe volume at
+// world point x (its radiance SH in place of the environment's; the volume has no band 3).
+fn cone_far_field(x: vec3<f32>, n: vec3<f32>, bent: vec3<f32>, ao: f32, far: vec4<f32>) -> vec3<f32> {
+    let volume = far_volume() && params.far != 3u;
+    var f: FarSh;
+    if volume {
+        f = far_sh_here(x, n);
+    }
     switch params.far {
         case 1u: {
             let cos_alpha = select(1.0 - ao, sqrt(1.0 - ao), params.aperture == 1u);
-            env = env_irradiance_cone(bent, cos_alpha);
+            if volume {
+                return far_irradiance_cone(f, bent, cos_alpha);
+            }
+            return env_irradiance_cone(bent, cos_alpha);
         }
         case 2u: {
+            if volume {
+                return far_irradiance(f, bent) * energy_compensation(ao);
+            }
             let e = textureSampleLevel(env_irradiance_map, env_sampler, env_uv(bent), 0.0).rgb;
-            env = e * frame.env_intensity * energy_compensation(ao);
+            return e * frame.env_intensity * energy_compensation(ao);
         }
         case 3u: {
             if FAR {
-                env = far.rgb;
+                return max(far.rgb, vec3<f32>(0.0));
             }
+            return vec3<f32>(0.0);
         }
         default: {
-            env = ao * env_irradiance_sh(n);
+            if volume {
+                return ao * far_irradiance(f, n);
+            }
+            return ao * env_irradiance_sh(n);
         }
     }
+}
+
+// The AOVs of one pixel (world point x, unit normal n) from its accumulated cone, near and far
+// field.
+fn write_outputs(pixel: vec2<u32>, x: vec3<f32>, n: vec3<f32>, cone: vec4<f32>, near: vec4<f32>, far: vec4<f32>) {
+    let ao = clamp(cone.w, 0.0, 1.0);
+    let bent = select(n, normalize(cone.xyz), dot(cone.xyz, cone.xyz) > 1e-12);
+    let env = cone_far_field(x, n, bent, ao, far);
     textureStore(out_ao, pixel, vec4<f32>(ao, 0.0, 0.0, 0.0));
     textureStore(out_env, pixel, vec4<f32>(env, 1.0));
     if !NEAR {
@@ -107,5 +128,5 @@ fn resolve(pixel: vec2<u32>, raw_cone: vec4<f32>, raw_near: vec3<f32>, raw_far: 
     if FAR {
         textureStore(acc_far, pixel, far);
     }
-    write_outputs(pixel, n, cone, near, far);
+    write_outputs(pixel, x, n, cone, near, far);
 }

@@ -12,7 +12,7 @@ use crate::util;
 pub const SHADER: &str = include_str!("none.wgsl");
 
 pub fn source() -> String {
-    util::compose(&[util::COMMON_WGSL, util::ENV_WGSL, SHADER])
+    util::compose(&[util::COMMON_WGSL, util::ENV_WGSL, util::FAR_WGSL, SHADER])
 }
 
 crate::bind_group! {
@@ -20,9 +20,12 @@ crate::bind_group! {
     pub struct NoneBindings: COMPUTE {
         /// World normal (rgba16float, xyz unit).
         gb_normal: view = kind::TEXTURE,
+        /// View depth (r32float, m): where the probe volume is read.
+        gb_view_depth: view = kind::TEXTURE_UNFILTERABLE,
         /// `ao` (r32float): 1.
         out_ao: view = kind::write(AO_FORMAT),
-        /// `env-irradiance` (rgba16float): SH irradiance at the normal.
+        /// `env-irradiance` (rgba16float): the far field's irradiance at the normal (the sky's SH
+        /// or the probe volume).
         out_env_irradiance: view = kind::write(HDR_FORMAT),
         /// `indirect-irradiance` (rgba16float): 0.
         out_indirect_irradiance: view = kind::write(HDR_FORMAT),
@@ -72,6 +75,7 @@ fn create(
     let module = crate::passes::shader_module(device, "none", &source());
     let own = NoneBindings {
         gb_normal: i.normal,
+        gb_view_depth: i.view_depth,
         out_ao: o.ao,
         out_env_irradiance: o.env_irradiance,
         out_indirect_irradiance: o.indirect_irradiance,

@@ -30,12 +30,17 @@ fn cfg() -> SampleConfig {
 }
 
 // Irradiance (E, not /π) at a surface of normal n from the lights, unshadowed, plus the
-// environment through c[cos n] — the occluder's incident light for the indirect extension.
+// environment through c[cos n] (or, with a probe volume, the volume's irradiance at p) — the
+// occluder's incident light for the indirect extension.
 fn incident_at(n: vec3<f32>, p: vec3<f32>) -> vec3<f32> {
-    let cn = sh_cosine(n);
     var e = vec3<f32>(0.0);
-    for (var i = 0u; i < 9u; i++) {
-        e += env_sh[i].rgb * cn[i];
+    if far_volume() {
+        e = PI * far_irradiance(far_sh_here(p, n), n);
+    } else {
+        let cn = sh_cosine(n);
+        for (var i = 0u; i < 9u; i++) {
+            e += env_sh[i].rgb * cn[i];
+        }
     }
     for (var li = 0u; li < frame.light_count; li++) {
         let inc = incident(lights[li], p);

@@ -47,10 +47,23 @@ fn shade_pass(@builtin(global_invocation_id) id: vec3<u32>) {
     var env = vec3<f32>(0.0);
     var light = vec3<f32>(0.0);
     var ao = 1.0;
+    // The far field's radiance: the environment's SH (16 coefficients), or the probe volume's at
+    // this point (9; it has no band 3).
+    let volume = far_volume();
+    var far: FarSh;
+    if volume {
+        far = far_sh_here(here.p, here.n);
+    }
     if params.technique == 0u {
         let c = unpack16(textureLoad(in_coeffs0, pixel, 0), textureLoad(in_coeffs1, pixel, 0));
-        for (var i = 0u; i < 16u; i++) {
-            env += env_sh[i].rgb * c[i];
+        if volume {
+            for (var i = 0u; i < 9u; i++) {
+                env += far.c[i].rgb * c[i];
+            }
+        } else {
+            for (var i = 0u; i < 16u; i++) {
+                env += env_sh[i].rgb * c[i];
+            }
         }
         env /= PI;
         ao = clamp(c[0] / (PI * 0.2820948), 0.0, 1.0);
@@ -75,7 +88,11 @@ fn shade_pass(@builtin(global_invocation_id) id: vec3<u32>) {
         let cos_a = clamp(bc.w, 0.0, 1.0);
         let y = sh_basis(b);
         for (var i = 0u; i < 9u; i++) {
-            env += env_sh[i].rgb * (cone_band(band(i), cos_a) * y[i]);
+            var l = env_sh[i].rgb;
+            if volume {
+                l = far.c[i].rgb;
+            }
+            env += l * (cone_band(band(i), cos_a) * y[i]);
         }
         env = max(env / PI, vec3<f32>(0.0));
         for (var li = 0u; li < frame.light_count; li++) {

@@ -49,6 +49,14 @@ fn direct(@builtin(global_invocation_id) id: vec3<u32>) {
     var total_light = 0.0;
     var visible_light = 0.0;
     var l_dir = vec3<f32>(0.0);
+    // The light each unoccluded direction brings: the environment at a blurred mip, its SH
+    // radiance (radiance mode, `sample_light=sh`), or the probe volume's radiance at this point.
+    let volume = far_volume();
+    let sh_light = params.mode == 1u && params.sample_light == 0u;
+    var far: FarSh;
+    if volume && params.technique == 1u {
+        far = far_sh_here(here.p, here.n);
+    }
     for (var i = 0u; i < n; i++) {
         let s = sample_local(i, pixel, sample_config());
         let omega = normalize(tb.t * s.x + tb.b * s.y + here.n * s.z);
@@ -58,8 +66,18 @@ fn direct(@builtin(global_invocation_id) id: vec3<u32>) {
         ao_num += v * cos_theta;
         ao_den += cos_theta;
         if params.technique == 1u {
-            let l_in = env_radiance_at(omega, params.lod);
-            let w = luminance(l_in) * cos_theta;
+            var l_in = vec3<f32>(0.0);
+            if volume {
+                l_in = far_radiance(far, omega);
+            } else if sh_light {
+                let b = sh_basis(omega);
+                for (var k = 0u; k < 16u; k++) {
+                    l_in += env_sh[k].rgb * b[k];
+                }
+            } else {
+                l_in = env_radiance_at(omega, params.lod);
+            }
+            let w = max(luminance(l_in), 0.0) * cos_theta;
             total_light += w;
             visible_light += w * v;
             // (1/π) L_in V cos θ Δω with Δω = 2π/N.
@@ -80,7 +98,15 @@ fn direct(@builtin(global_invocation_id) id: vec3<u32>) {
         textureStore(out_a, pixel, vec4<f32>(vpl_environment(here), 1.0));
         return;
     }
-    textureStore(out_a, pixel, vec4<f32>(l_dir, visibility));
+    if sh_light && !volume {
+        // The SH's own irradiance misses the pre-convolved one by its band limit (a few percent
+        // under a sun lobe, on walls most): scale each channel so that an unoccluded point gets
+        // the pre-convolved irradiance exactly.
+        let exact = textureSampleLevel(env_irradiance_map, env_sampler, env_uv(here.n), 0.0).rgb * frame.env_intensity;
+        let band_limited = env_irradiance_sh(here.n);
+        l_dir *= select(vec3<f32>(1.0), exact / band_limited, band_limited > vec3<f32>(1e-4 * max(max(exact.r, exact.g), exact.b)));
+    }
+    textureStore(out_a, pixel, vec4<f32>(max(l_dir, vec3<f32>(0.0)), visibility));
 
     // Lights: points on a segment towards each light — of length R (paper Sec. 4) or the length
     // the shadow map's bias hides (light_segment=bias, Sec. 5 screen-space shadow correction);

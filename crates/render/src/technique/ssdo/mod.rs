@@ -279,6 +279,7 @@ fn create(
     let resolve_bg = resolve::ResolveBindings {
         params: &params,
         gb_normal: i.normal,
+        gb_view_depth: i.view_depth,
         in_a: blurred_a,
         in_b: blurred_b,
         out_env_irradiance: o.env_irradiance,

@@ -1,6 +1,7 @@
 //! `SsdoParams`: the GPU constants of every ssdo pass, a pure function of the settings.
 
 use super::{LightSegment, Mode, Pattern, Settings};
+use crate::settings::ssdo::SampleLight;
 use bytemuck::{Pod, Zeroable};
 
 impl Settings {
@@ -8,7 +9,7 @@ impl Settings {
     pub fn params(&self, ssdo: bool) -> SsdoParams {
         SsdoParams {
             radius: self.radius,
-            _pad0: 0,
+            sample_light: (self.sample_light == SampleLight::Mip) as u32,
             mode: (self.mode == Mode::Radiance) as u32,
             technique: ssdo as u32,
             lod: self.lod,
@@ -36,8 +37,9 @@ impl Settings {
 #[derive(Clone, Copy, Debug, Pod, Zeroable)]
 pub struct SsdoParams {
     pub radius: f32,
-    /// (Directions per pixel: the override `SAMPLES`.)
-    pub _pad0: u32,
+    /// Radiance mode's L_in: 0 the environment's SH, 1 the mip at `lod`. (Directions per pixel
+    /// are the override `SAMPLES`.)
+    pub sample_light: u32,
     pub mode: u32,
     pub technique: u32,
     pub lod: f32,

@@ -4,8 +4,9 @@
 struct SsdoParams {
     // Hemisphere radius R (m).
     radius: f32,
-    // (Directions per pixel: the override SAMPLES.)
-    _pad0: u32,
+    // Radiance mode's L_in: 0 the environment's SH radiance (scaled, see direct.wgsl), 1 the mip
+    // at `lod`. (Directions per pixel: the override SAMPLES.)
+    sample_light: u32,
     // 0 visibility mode, 1 radiance mode.
     mode: u32,
     // 0 ssao, 1 ssdo.

@@ -8,6 +8,7 @@ pub fn source() -> String {
     util::compose(&[
         util::COMMON_WGSL,
         util::ENV_WGSL,
+        util::FAR_WGSL,
         include_str!("params.wgsl"),
         include_str!("resolve.wgsl"),
     ])
@@ -20,6 +21,8 @@ crate::bind_group! {
         params: buffer = kind::UNIFORM,
         /// World normal (rgba16float).
         gb_normal: view = kind::TEXTURE,
+        /// View depth (r32float, m): where the probe volume is read.
+        gb_view_depth: view = kind::TEXTURE_UNFILTERABLE,
         /// Blurred (L_dir, visibility) (rgba16float).
         in_a: view = kind::TEXTURE,
         /// Blurred (ao, 0, 0, 1) (rgba16float).

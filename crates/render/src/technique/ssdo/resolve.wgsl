@@ -1,12 +1,14 @@
 // resolve.wgsl — ssdo/ssao `resolve`: the blurred `direct` results → env-irradiance
-// (visibility × SH irradiance in visibility mode; L_dir in radiance mode and for ssdo-vpl) and ao.
+// (visibility × the far field's irradiance — the sky's SH or the probe volume's — in visibility
+// mode; L_dir in radiance mode and for ssdo-vpl) and ao.
 
 @group(1) @binding(0) var<uniform> params: SsdoParams;
 @group(1) @binding(1) var gb_normal: texture_2d<f32>;
-@group(1) @binding(2) var in_a: texture_2d<f32>;
-@group(1) @binding(3) var in_b: texture_2d<f32>;
-@group(1) @binding(4) var out_env_irradiance: texture_storage_2d<rgba16float, write>;
-@group(1) @binding(5) var out_ao: texture_storage_2d<r32float, write>;
+@group(1) @binding(2) var gb_view_depth: texture_2d<f32>;
+@group(1) @binding(3) var in_a: texture_2d<f32>;
+@group(1) @binding(4) var in_b: texture_2d<f32>;
+@group(1) @binding(5) var out_env_irradiance: texture_storage_2d<rgba16float, write>;
+@group(1) @binding(6) var out_ao: texture_storage_2d<r32float, write>;
 
 @compute @workgroup_size(8, 8, 1)
 fn resolve(@builtin(global_invocation_id) id: vec3<u32>) {
@@ -21,7 +23,14 @@ fn resolve(@builtin(global_invocation_id) id: vec3<u32>) {
         return;
     }
     let a = textureLoad(in_a, pixel, 0);
-    var env = a.w * env_irradiance_sh(normalize(nw.xyz));
+    let n = normalize(nw.xyz);
+    var env = vec3<f32>(0.0);
+    if far_volume() {
+        let p = world_position(pixel, textureLoad(gb_view_depth, pixel, 0).r);
+        env = a.w * far_irradiance(far_sh_here(p, n), n);
+    } else {
+        env = a.w * env_irradiance_sh(n);
+    }
     if params.technique == 1u && (params.mode == 1u || params.vpl_mode == 1u) {
         env = a.rgb;
     }

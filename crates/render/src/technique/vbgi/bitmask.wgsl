@@ -135,6 +135,13 @@ fn bitmask(@builtin(global_invocation_id) id: vec3<u32>) {
     let far_lod = max(frame.env_radiance_mips - 5.0, 0.0);
     let n = normalize(centre.xyz);
     let x = world_position(pixel, depth);
+    // The light of the free sectors: the environment at a blurred mip, or the probe volume's
+    // radiance at this point.
+    let volume = params.far == 3u && far_volume();
+    var far_sh: FarSh;
+    if volume {
+        far_sh = far_sh_here(x, n);
+    }
     let eye = frame.camera_position.xyz;
     let forward = -normalize(frame.world_from_view[2].xyz);
     let lf = local_frame(x);
@@ -327,7 +334,11 @@ fn bitmask(@builtin(global_invocation_id) id: vec3<u32>) {
             let omega = sin(theta) * d + cos(theta) * omega_o;
             bent += omega * w;
             if params.far == 3u {
-                far += env_radiance_at(omega, far_lod) * w;
+                if volume {
+                    far += far_radiance(far_sh, omega) * w;
+                } else {
+                    far += env_radiance_at(omega, far_lod) * w;
+                }
             }
         }
     }

@@ -1,0 +1,194 @@
+//! The far field on the GPU (the book, "The far field"): the open sky beyond R, or a probe
+//! volume baked by `nearfield bake` (`nearfield_scene::probes::ProbeVolume`). Two bindings of
+//! group 0 that `shaders/far.wgsl` reads: the probe texture (its row 0 the grid, `FarGrid`) and
+//! the visibility atlas; with the sky they hold one dummy probe and `far_volume()` is false, so
+//! every pass computes what it computed before the volume existed.
+
+use bytemuck::{Pod, Zeroable};
+use nearfield_scene::probes::{ProbeVolume, SH_COEFFS, VIS_TILE};
+use wgpu::util::DeviceExt;
+
+/// Texels per probe in the probe texture: (offset xyz, active) and the 9 SH coefficients.
+pub const PROBE_TEXELS: u32 = 1 + SH_COEFFS as u32;
+/// Widest texture the far field makes (texels).
+const MAX_WIDTH: u32 = 8190;
+
+/// `FarGrid` in far.wgsl: texels 0..3 of the probe texture's row 0 (counts as floats).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable)]
+pub struct FarGridUniforms {
+    /// xyz: position of probe (0, 0, 0); w: 1 with a volume, 0 for the sky.
+    pub origin: [f32; 4],
+    /// xyz: spacing (m); w: the lookup's bias (m).
+    pub spacing: [f32; 4],
+    /// Probes per axis; w: probes per row of both textures (exact as f32 up to 2²⁴).
+    pub counts: [f32; 4],
+    /// Largest recorded distance (m), 1/atlas width, 1/atlas height, unused.
+    pub vis: [f32; 4],
+}
+
+/// Which far field a frame uses.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum FarMode {
+    /// The environment beyond R, unoccluded (each technique's own environment term).
+    #[default]
+    Sky,
+    /// A baked probe volume.
+    Volume,
+}
+
+/// The far field's GPU resources.
+pub struct GpuFarField {
+    pub mode: FarMode,
+    pub probes_view: wgpu::TextureView,
+    pub visibility_view: wgpu::TextureView,
+    /// Probes in the volume (0 for the sky).
+    pub probes: usize,
+}
+
+impl GpuFarField {
+    /// The open sky: one dummy probe, `far_volume()` false.
+    pub fn sky(device: &wgpu::Device, queue: &wgpu::Queue) -> Self {
+        let uniforms = FarGridUniforms {
+            origin: [0.0; 4],
+            spacing: [1.0, 1.0, 1.0, 0.0],
+            counts: [1.0; 4],
+            vis: [1.0, 1.0, 1.0, 0.0],
+        };
+        let probes = vec![[0f32; 4]; PROBE_TEXELS as usize];
+        let vis = vec![half::f16::ZERO; 2];
+        Self::upload(
+            device,
+            queue,
+            FarMode::Sky,
+            uniforms,
+            &probes,
+            PROBE_TEXELS,
+            &vis,
+            (1, 1),
+            0,
+        )
+    }
+
+    /// Uploads a baked volume.
+    pub fn volume(device: &wgpu::Device, queue: &wgpu::Queue, v: &ProbeVolume) -> Self {
+        let n = v.probes.len() as u32;
+        let row = n.clamp(1, MAX_WIDTH / VIS_TILE);
+        let rows = n.div_ceil(row);
+        let mut probes = vec![[0f32; 4]; (row * PROBE_TEXELS * rows) as usize];
+        for (i, p) in v.probes.iter().enumerate() {
+            let i = i as u32;
+            let start = ((i / row) * row * PROBE_TEXELS + (i % row) * PROBE_TEXELS) as usize;
+            probes[start] = [
+                p.offset.x,
+                p.offset.y,
+                p.offset.z,
+                if p.active { 1.0 } else { 0.0 },
+            ];
+            for (k, c) in p.sh.iter().enumerate() {
+                probes[start + 1 + k] = [c.x, c.y, c.z, 0.0];
+            }
+        }
+        let (aw, ah) = (row * VIS_TILE, rows * VIS_TILE);
+        let mut vis = vec![half::f16::ZERO; (aw * ah * 2) as usize];
+        let tile = (VIS_TILE * VIS_TILE) as usize;
+        for i in 0..v.probes.len() {
+            let (tx, ty) = ((i as u32 % row) * VIS_TILE, (i as u32 / row) * VIS_TILE);
+            for y in 0..VIS_TILE {
+                for x in 0..VIS_TILE {
+                    let m = v.visibility[i * tile + (y * VIS_TILE + x) as usize];
+                    let at = (((ty + y) * aw + tx + x) * 2) as usize;
+                    vis[at] = half::f16::from_f32(m[0]);
+                    vis[at + 1] = half::f16::from_f32(m[1]);
+                }
+            }
+        }
+        let g = &v.grid;
+        let uniforms = FarGridUniforms {
+            origin: [g.origin.x, g.origin.y, g.origin.z, 1.0],
+            spacing: [g.spacing.x, g.spacing.y, g.spacing.z, v.bias()],
+            counts: [
+                g.counts[0] as f32,
+                g.counts[1] as f32,
+                g.counts[2] as f32,
+                row as f32,
+            ],
+            vis: [v.max_distance, 1.0 / aw as f32, 1.0 / ah as f32, 0.0],
+        };
+        Self::upload(
+            device,
+            queue,
+            FarMode::Volume,
+            uniforms,
+            &probes,
+            row * PROBE_TEXELS,
+            &vis,
+            (aw, ah),
+            v.probes.len(),
+        )
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    fn upload(
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        mode: FarMode,
+        uniforms: FarGridUniforms,
+        probes: &[[f32; 4]],
+        probes_width: u32,
+        vis: &[half::f16],
+        vis_size: (u32, u32),
+        count: usize,
+    ) -> Self {
+        // Row 0: the grid; then the probes.
+        let mut texels = vec![[0f32; 4]; probes_width as usize];
+        texels[..4].copy_from_slice(&[
+            uniforms.origin,
+            uniforms.spacing,
+            uniforms.counts,
+            uniforms.vis,
+        ]);
+        texels.extend_from_slice(probes);
+        let probes_size = (probes_width, texels.len() as u32 / probes_width);
+        let texture = |label, size: (u32, u32), format, data: &[u8]| {
+            device
+                .create_texture_with_data(
+                    queue,
+                    &wgpu::TextureDescriptor {
+                        label: Some(label),
+                        size: wgpu::Extent3d {
+                            width: size.0,
+                            height: size.1,
+                            depth_or_array_layers: 1,
+                        },
+                        mip_level_count: 1,
+                        sample_count: 1,
+                        dimension: wgpu::TextureDimension::D2,
+                        format,
+                        usage: wgpu::TextureUsages::TEXTURE_BINDING,
+                        view_formats: &[],
+                    },
+                    wgpu::util::TextureDataOrder::LayerMajor,
+                    data,
+                )
+                .create_view(&Default::default())
+        };
+        let vis_bits: Vec<u16> = vis.iter().map(|h| h.to_bits()).collect();
+        GpuFarField {
+            mode,
+            probes_view: texture(
+                "far probes",
+                probes_size,
+                wgpu::TextureFormat::Rgba32Float,
+                bytemuck::cast_slice(&texels),
+            ),
+            visibility_view: texture(
+                "far visibility",
+                vis_size,
+                wgpu::TextureFormat::Rg16Float,
+                bytemuck::cast_slice(&vis_bits),
+            ),
+            probes: count,
+        }
+    }
+}

@@ -1,0 +1,182 @@
+// far.wgsl — the far field, prepended (after env.wgsl) to passes that light what lies beyond R.
+// Its bindings are group 0 (crate::bindings::FrameBindings); crate::far uploads them.
+//
+// With `--far sky` (far_volume() false) passes keep their own environment terms. With a probe
+// volume (nearfield_scene::probes, the book's "The far field") a point P with normal n seen from
+// v reads the 8 probes of its cell with DDGI's weights (McGuire et al. 2019): trilinear at
+// P' = P + bias (0.3 n + 0.7 v), a wrap-around backface term ((dir·n + 1)/2)² + 0.2, Chebyshev's
+// bound on the probe seeing P' cubed, weights below 0.2 crushed, switched-off probes skipped; the
+// normalised sum of their order-2 SH radiance is the far field at P. ProbeVolume::weights is the
+// same arithmetic on the CPU (a GPU test compares the two).
+
+// rgba32float. Row 0, texels 0..3: the grid (FarGrid below; counts as exact floats). From row 1:
+// FAR_TEXELS texels per probe, `counts.w` probes per row: (offset xyz, active), then 9 SH rgb.
+// (The grid rides in the texture rather than a uniform: one more uniform buffer in group 0
+// crashes lavapipe 22.3's pipelines with many bindings.)
+@group(0) @binding(6) var far_probes: texture_2d<f32>;
+// rg16float, a FAR_TILE² tile per probe (`counts.w` per row): (mean, mean²) of the distance /
+// max distance over an octahedral map with a one-texel border.
+@group(0) @binding(7) var far_visibility: texture_2d<f32>;
+
+struct FarGrid {
+    // xyz: position of probe (0, 0, 0) (m); w: 1 with a volume, 0 for the sky.
+    origin: vec4<f32>,
+    // xyz: spacing (m); w: the lookup's bias (m).
+    spacing: vec4<f32>,
+    // Probes per axis; w: probes per row of far_probes and far_visibility.
+    counts: vec4<u32>,
+    // x: largest recorded distance (m); yz: 1 / atlas size; w: unused.
+    vis: vec4<f32>,
+}
+
+fn far_grid() -> FarGrid {
+    var g: FarGrid;
+    g.origin = textureLoad(far_probes, vec2<u32>(0u, 0u), 0);
+    g.spacing = textureLoad(far_probes, vec2<u32>(1u, 0u), 0);
+    g.counts = vec4<u32>(textureLoad(far_probes, vec2<u32>(2u, 0u), 0));
+    g.vis = textureLoad(far_probes, vec2<u32>(3u, 0u), 0);
+    return g;
+}
+
+const FAR_TEXELS: u32 = 10u;
+const FAR_VIS_RES: f32 = 16.0;
+const FAR_TILE: u32 = 18u;
+
+// The radiance arriving at a point: order-2 SH (nearfield_scene::sh's basis), rgb.
+struct FarSh {
+    c: array<vec4<f32>, 9>,
+}
+
+fn far_volume() -> bool {
+    return textureLoad(far_probes, vec2<u32>(0u, 0u), 0).w > 0.5;
+}
+
+fn far_sign(v: vec2<f32>) -> vec2<f32> {
+    return select(vec2<f32>(-1.0), vec2<f32>(1.0), v >= vec2<f32>(0.0));
+}
+
+// Octahedral coordinates in [−1, 1]² of a unit direction (nearfield_scene::probes::oct_encode).
+fn far_oct_encode(d: vec3<f32>) -> vec2<f32> {
+    let p = d.xy / max(abs(d.x) + abs(d.y) + abs(d.z), 1e-20);
+    if d.z >= 0.0 {
+        return p;
+    }
+    return (vec2<f32>(1.0) - abs(p.yx)) * far_sign(p);
+}
+
+fn far_texel(g: FarGrid, index: u32, k: u32) -> vec4<f32> {
+    let row = g.counts.w;
+    return textureLoad(far_probes, vec2<u32>((index % row) * FAR_TEXELS + k, 1u + index / row), 0);
+}
+
+// (mean, mean²) of probe `index`'s distances towards unit `d`, in metres and metres².
+fn far_moments(g: FarGrid, index: u32, d: vec3<f32>) -> vec2<f32> {
+    let row = g.counts.w;
+    let tile = vec2<f32>(f32((index % row) * FAR_TILE), f32((index / row) * FAR_TILE));
+    let t = tile + (far_oct_encode(d) * 0.5 + 0.5) * FAR_VIS_RES + 1.0;
+    let m = textureSampleLevel(far_visibility, env_sampler, t * g.vis.yz, 0.0).xy;
+    let maxd = g.vis.x;
+    return vec2<f32>(m.x * maxd, m.y * maxd * maxd);
+}
+
+// The far field's radiance SH at world point `p` with unit normal `n`, seen from unit `v`.
+fn far_sh_at(p: vec3<f32>, n: vec3<f32>, v: vec3<f32>) -> FarSh {
+    var out: FarSh;
+    for (var k = 0u; k < 9u; k++) {
+        out.c[k] = vec4<f32>(0.0);
+    }
+    let far_grid = far_grid();
+    let counts = vec3<f32>(far_grid.counts.xyz);
+    let biased = p + far_grid.spacing.w * (0.3 * n + 0.7 * v);
+    let last = counts - 1.0;
+    let rel = clamp((biased - far_grid.origin.xyz) / far_grid.spacing.xyz, vec3<f32>(0.0), last);
+    let base = min(floor(rel), max(last - 1.0, vec3<f32>(0.0)));
+    let alpha = clamp(rel - base, vec3<f32>(0.0), vec3<f32>(1.0));
+    var total = 0.0;
+    for (var c = 0u; c < 8u; c++) {
+        let o = vec3<u32>(c & 1u, (c >> 1u) & 1u, (c >> 2u) & 1u);
+        let coords = min(vec3<u32>(base) + o, far_grid.counts.xyz - 1u);
+        let index = coords.x + far_grid.counts.x * (coords.y + far_grid.counts.y * coords.z);
+        let state = far_texel(far_grid, index, 0u);
+        if state.w < 0.5 {
+            continue;
+        }
+        let tri = mix(1.0 - alpha, alpha, vec3<f32>(o));
+        let trilinear = tri.x * tri.y * tri.z;
+        let pos = far_grid.origin.xyz + far_grid.spacing.xyz * vec3<f32>(coords) + state.xyz;
+        let to_probe_v = pos - p;
+        let to_probe = select(vec3<f32>(0.0), normalize(to_probe_v), dot(to_probe_v, to_probe_v) > 0.0);
+        let wrap = 0.5 * (dot(to_probe, n) + 1.0);
+        var w = wrap * wrap + 0.2;
+        let from_probe = biased - pos;
+        let dist = length(from_probe);
+        let m = far_moments(far_grid, index, from_probe / max(dist, 1e-12));
+        if dist > m.x {
+            let variance = max(abs(m.y - m.x * m.x), 1e-6 * far_grid.vis.x);
+            let cheb = variance / (variance + (dist - m.x) * (dist - m.x));
+            w *= cheb * cheb * cheb;
+        }
+        w = max(w, 1e-6);
+        if w < 0.2 {
+            w *= w * w / (0.2 * 0.2);
+        }
+        w *= trilinear;
+        for (var k = 0u; k < 9u; k++) {
+            out.c[k] += w * far_texel(far_grid, index, 1u + k);
+        }
+        total += w;
+    }
+    if total > 0.0 {
+        for (var k = 0u; k < 9u; k++) {
+            out.c[k] /= total;
+        }
+    }
+    return out;
+}
+
+// The far field at a surface point of the frame: world `p`, unit normal `n`, seen from the camera.
+fn far_sh_here(p: vec3<f32>, n: vec3<f32>) -> FarSh {
+    return far_sh_at(p, n, normalize(frame.camera_position.xyz - p));
+}
+
+// E(n)/π of the far field (Ramamoorthi & Hanrahan 2001, as env_irradiance_sh).
+fn far_irradiance(f: FarSh, n: vec3<f32>) -> vec3<f32> {
+    let b = sh_basis(n);
+    var e = f.c[0].rgb * b[0];
+    for (var i = 1u; i < 4u; i++) {
+        e += f.c[i].rgb * (b[i] * (2.0 / 3.0));
+    }
+    for (var i = 4u; i < 9u; i++) {
+        e += f.c[i].rgb * (b[i] * 0.25);
+    }
+    return max(e, vec3<f32>(0.0));
+}
+
+// Irradiance over π through the cone of half-angle acos(t) about unit `a` (env_irradiance_cone's
+// factors; the volume has no band 3).
+fn far_irradiance_cone(f: FarSh, a: vec3<f32>, t: f32) -> vec3<f32> {
+    let b = sh_basis(a);
+    let t2 = t * t;
+    let k = vec3<f32>(1.0 - t2, (2.0 / 3.0) * (1.0 - t2 * t), 0.25 * (1.0 + 2.0 * t2 - 3.0 * t2 * t2));
+    var e = f.c[0].rgb * (b[0] * k.x);
+    for (var i = 1u; i < 4u; i++) {
+        e += f.c[i].rgb * (b[i] * k.y);
+    }
+    for (var i = 4u; i < 9u; i++) {
+        e += f.c[i].rgb * (b[i] * k.z);
+    }
+    return max(e, vec3<f32>(0.0));
+}
+
+// Radiance from direction `d`, unclamped: order 2 rings (negative lobes beside a bright sky
+// opening), and a sum of weighted directions is only the SH's own integral when the negative
+// parts stay in it. Clamping each direction at 0 made hbil's and vbgi's Sponza images 26–28 %
+// too bright; callers clamp their sums.
+fn far_radiance(f: FarSh, d: vec3<f32>) -> vec3<f32> {
+    let b = sh_basis(d);
+    var l = vec3<f32>(0.0);
+    for (var i = 0u; i < 9u; i++) {
+        l += f.c[i].rgb * b[i];
+    }
+    return l;
+}
