@@ -261,6 +261,17 @@ fn every_bad_input_exits_2_with_one_line() {
         (args(&["compare", "--methods", "gtao", "--image", "gtao=x.exr"]), "is taken"),
         (args(&["compare", "--methods", "gtao", "--image", "a/b=x.exr"]), "may hold"),
         (args(&["compare", "--methods", "gtao", "--image", "peer=/nonexistent/ao.exr"]), "ao.exr"),
+        // The probe volume: grids beyond the budget, no rays, bad spacings, bad files.
+        (args(&["bake", "builtin:cornell", "--spacing", "0.001"]), "probe budget is 65536"),
+        (args(&["bake", "builtin:cornell", "--probes", "100,100,100"]), "probe budget is 65536"),
+        (args(&["bake", "builtin:cornell", "--probes", "0,2,2"]), "--probes 0,2,2"),
+        (args(&["bake", "builtin:cornell", "--rays", "0"]), "--rays 0"),
+        (args(&["bake", "builtin:cornell", "--spacing", "0"]), "--spacing 0"),
+        (args(&["bake", "builtin:cornell", "--spacing=-0.5"]), "--spacing -0.5"),
+        (args(&["bake", "builtin:cornell", "--spacing", "NaN"]), "--spacing NaN"),
+        (args(&["bake", "builtin:cornell", "--out", "/tmp/volume.png"]), ".nfv"),
+        (args(&["bake", "builtin:cornell", "--out", "/nonexistent/dir/v.nfv"]), "does not exist"),
+        (args(&["render", "builtin:cornell", "--size", "16x16", "--volume", "/nonexistent/v.nfv"]), "no such file"),
     ];
     for (args, needle) in cases {
         let args: Vec<&str> = args.iter().map(String::as_str).collect();
@@ -474,5 +485,104 @@ fn structurally_bad_files_exit_2_with_one_line_within_a_second() {
             "{args:?}: '{needle}' not in:\n{stderr}"
         );
         assert!(secs < 1.0, "{args:?}: took {secs:.2} s");
+    }
+}
+
+/// `--volume` files that cannot be read: a truncated file, another version, no volume at all,
+/// a directory. Each exits 2 with one line within a second and writes no image; a stale or
+/// damaged cache entry is baked again, never read.
+#[test]
+fn bad_volume_files_exit_2_and_stale_cache_entries_are_rebuilt() {
+    let d = scratch().join("volume");
+    std::fs::create_dir_all(&d).unwrap();
+    let cache = d.join("cache");
+    let run = |args: &[&str]| {
+        let out = Command::new(env!("CARGO_BIN_EXE_nearfield"))
+            .args(args)
+            .env("NEARFIELD_CACHE", &cache)
+            .output()
+            .expect("run nearfield");
+        (
+            out.status.code().unwrap_or(-1),
+            String::from_utf8_lossy(&out.stderr).into_owned(),
+        )
+    };
+    let good = d.join("good.nfv");
+    let bake = [
+        "bake",
+        "builtin:plane",
+        "--probes",
+        "3,2,3",
+        "--rays",
+        "8",
+        "--bounces",
+        "1",
+        "--out",
+        good.to_str().unwrap(),
+    ];
+    // The first bake writes the cache entry, the second reads it.
+    let (code, err) = run(&bake);
+    assert_eq!(code, 0, "{err}");
+    assert!(!err.contains("from the cache"), "{err}");
+    let bytes = std::fs::read(&good).unwrap();
+    let mut other_version = bytes.clone();
+    other_version[8..12].copy_from_slice(&2u32.to_le_bytes());
+    let cases = [
+        (
+            write(&d, "truncated.nfv", &bytes[..bytes.len() - 7]),
+            "truncated",
+        ),
+        (write(&d, "version.nfv", &other_version), "version 2"),
+        (
+            write(&d, "garbage.nfv", b"a probe volume, it says"),
+            "not a nearfield probe volume",
+        ),
+        (d.to_str().unwrap().to_string(), "volume"),
+    ];
+    for (file, needle) in cases {
+        let image = d.join("out.png");
+        let started = std::time::Instant::now();
+        let (code, err) = run(&[
+            "render",
+            "builtin:plane",
+            "--size",
+            "16x16",
+            "--volume",
+            &file,
+            "-o",
+            image.to_str().unwrap(),
+        ]);
+        let lines: Vec<&str> = err.lines().filter(|l| !l.trim().is_empty()).collect();
+        assert_eq!(code, 2, "{file}: exit {code}:\n{err}");
+        assert_eq!(lines.len(), 1, "{file}: one line:\n{err}");
+        assert!(err.contains(needle), "{file}: '{needle}' not in:\n{err}");
+        assert!(
+            started.elapsed().as_secs_f32() < 1.0,
+            "{file}: {:?}",
+            started.elapsed()
+        );
+        assert!(!image.exists(), "{file}: an image was written");
+    }
+    // A damaged cache entry is baked again, and the entry rewritten.
+    let (_, err) = run(&bake);
+    assert!(err.contains("from the cache"), "{err}");
+    let entries: Vec<_> = std::fs::read_dir(cache.join("volume"))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .collect();
+    assert_eq!(entries.len(), 1, "{entries:?}");
+    for damage in [&bytes[..100], &other_version[..]] {
+        std::fs::write(&entries[0], damage).unwrap();
+        let (code, err) = run(&bake);
+        assert_eq!(code, 0, "{err}");
+        assert!(
+            !err.contains("from the cache"),
+            "a damaged entry was read: {err}"
+        );
+        let (_, err) = run(&bake);
+        assert!(
+            err.contains("from the cache"),
+            "the entry was rebuilt: {err}"
+        );
     }
 }

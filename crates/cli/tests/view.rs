@@ -441,3 +441,48 @@ fn the_window_presents_the_pixels_render_writes() {
         "presented pixels differ by {worst} levels (> {PRESENTED_BOUND})"
     );
 }
+
+/// The viewer's far control: `far volume` bakes in the background and its frames then equal
+/// `render --far volume`; an environment change rebakes (the old volume stays until the new one
+/// is in the frame), after which the frames equal `render` of the new environment's volume.
+#[test]
+fn the_far_control_bakes_and_rebakes_in_the_background() {
+    if !have_xvfb() {
+        return;
+    }
+    let dir = scratch("far");
+    let (a, b) = (dir.join("a.png"), dir.join("b.png"));
+    let script = format!(
+        "far volume\nbake-wait\nwait 2\nscreenshot {}\nenv-intensity 2\nbake-wait\nwait 2\n\
+         screenshot {}\nquit\n",
+        a.display(),
+        b.display()
+    );
+    let path = dir.join("far.txt");
+    std::fs::write(&path, script).unwrap();
+    let cache = dir.join("cache");
+    let out = Command::new("xvfb-run")
+        .args(["-a", "-s", "-screen 0 1280x720x24"])
+        .arg(env!("CARGO_BIN_EXE_nearfield"))
+        .arg("view")
+        .args(SCENE)
+        .args(["--script", path.to_str().unwrap(), "--frames", "1000"])
+        .env("NEARFIELD_CACHE", &cache)
+        .output()
+        .expect("run xvfb-run");
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{err}");
+    assert!(err.contains("bak"), "the bake reports progress: {err}");
+    for (shot, intensity) in [(&a, "1"), (&b, "2")] {
+        let reference = dir.join(format!("render-{intensity}.png"));
+        render(
+            &[SCENE, &["--far", "volume", "--env-intensity", intensity]].concat(),
+            &reference,
+        );
+        let flip = flip_in(&rgb(shot), &rgb(&reference), 0, 320);
+        eprintln!("far volume, intensity {intensity}: FLIP(view, render) = {flip:.6}");
+        assert!(flip <= FLIP_BOUND, "intensity {intensity}: FLIP {flip}");
+    }
+    let flip = flip_in(&rgb(&a), &rgb(&b), 0, 320);
+    assert!(flip > 0.01, "the two volumes' images differ: FLIP {flip}");
+}

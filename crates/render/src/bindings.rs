@@ -255,6 +255,8 @@ crate::bind_group! {
         far_probes: view = kind::TEXTURE_UNFILTERABLE,
         /// The probes' octahedral distance moments (rg16float atlas).
         far_visibility: view = kind::TEXTURE,
+        /// The probes' octahedral E(n)/π (rgba16float atlas).
+        far_irradiance_atlas: view = kind::TEXTURE,
     }
 }
 

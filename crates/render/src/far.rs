@@ -1,11 +1,12 @@
 //! The far field on the GPU (the book, "The far field"): the open sky beyond R, or a probe
-//! volume baked by `nearfield bake` (`nearfield_scene::probes::ProbeVolume`). Two bindings of
-//! group 0 that `shaders/far.wgsl` reads: the probe texture (its row 0 the grid, `FarGrid`) and
-//! the visibility atlas; with the sky they hold one dummy probe and `far_volume()` is false, so
+//! volume baked by `nearfield bake` (`nearfield_scene::probes::ProbeVolume`). Three bindings
+//! of group 0 that `shaders/far.wgsl` reads: the probe texture (its row 0 the grid, `FarGrid`),
+//! the visibility atlas and the irradiance atlas (`ProbeVolume::irradiance_tile`, for passes
+//! that need only E(n)); with the sky they hold one dummy probe and `far_volume()` is false, so
 //! every pass computes what it computed before the volume existed.
 
 use bytemuck::{Pod, Zeroable};
-use nearfield_scene::probes::{ProbeVolume, SH_COEFFS, VIS_TILE};
+use nearfield_scene::probes::{IRR_TILE, ProbeVolume, SH_COEFFS, VIS_TILE};
 use wgpu::util::DeviceExt;
 
 /// Texels per probe in the probe texture: (offset xyz, active) and the 9 SH coefficients.
@@ -13,7 +14,8 @@ pub const PROBE_TEXELS: u32 = 1 + SH_COEFFS as u32;
 /// Widest texture the far field makes (texels).
 const MAX_WIDTH: u32 = 8190;
 
-/// `FarGrid` in far.wgsl: texels 0..3 of the probe texture's row 0 (counts as floats).
+/// `FarGrid` in far.wgsl and the irradiance atlas's texel size: texels 0..4 of the probe
+/// texture's row 0 (counts as floats).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable)]
 pub struct FarGridUniforms {
@@ -25,6 +27,8 @@ pub struct FarGridUniforms {
     pub counts: [f32; 4],
     /// Largest recorded distance (m), 1/atlas width, 1/atlas height, unused.
     pub vis: [f32; 4],
+    /// 1 / the irradiance atlas's width and height, unused, unused (texel 4).
+    pub irr: [f32; 4],
 }
 
 /// Which far field a frame uses.
@@ -42,6 +46,7 @@ pub struct GpuFarField {
     pub mode: FarMode,
     pub probes_view: wgpu::TextureView,
     pub visibility_view: wgpu::TextureView,
+    pub irradiance_view: wgpu::TextureView,
     /// Probes in the volume (0 for the sky).
     pub probes: usize,
 }
@@ -54,9 +59,11 @@ impl GpuFarField {
             spacing: [1.0, 1.0, 1.0, 0.0],
             counts: [1.0; 4],
             vis: [1.0, 1.0, 1.0, 0.0],
+            irr: [1.0, 1.0, 0.0, 0.0],
         };
         let probes = vec![[0f32; 4]; PROBE_TEXELS as usize];
         let vis = vec![half::f16::ZERO; 2];
+        let irr = vec![half::f16::ZERO; 4];
         Self::upload(
             device,
             queue,
@@ -64,8 +71,8 @@ impl GpuFarField {
             uniforms,
             &probes,
             PROBE_TEXELS,
-            &vis,
-            (1, 1),
+            (&vis, (1, 1)),
+            (&irr, (1, 1)),
             0,
         )
     }
@@ -103,6 +110,18 @@ impl GpuFarField {
                 }
             }
         }
+        let (iw, ih) = (row * IRR_TILE, rows * IRR_TILE);
+        let mut irr = vec![half::f16::ZERO; (iw * ih * 4) as usize];
+        for i in 0..v.probes.len() {
+            let (tx, ty) = ((i as u32 % row) * IRR_TILE, (i as u32 / row) * IRR_TILE);
+            for (k, e) in v.irradiance_tile(i).into_iter().enumerate() {
+                let (x, y) = (k as u32 % IRR_TILE, k as u32 / IRR_TILE);
+                let at = (((ty + y) * iw + tx + x) * 4) as usize;
+                for c in 0..3 {
+                    irr[at + c] = half::f16::from_f32(e[c]);
+                }
+            }
+        }
         let g = &v.grid;
         let uniforms = FarGridUniforms {
             origin: [g.origin.x, g.origin.y, g.origin.z, 1.0],
@@ -114,6 +133,7 @@ impl GpuFarField {
                 row as f32,
             ],
             vis: [v.max_distance, 1.0 / aw as f32, 1.0 / ah as f32, 0.0],
+            irr: [1.0 / iw as f32, 1.0 / ih as f32, 0.0, 0.0],
         };
         Self::upload(
             device,
@@ -122,8 +142,8 @@ impl GpuFarField {
             uniforms,
             &probes,
             row * PROBE_TEXELS,
-            &vis,
-            (aw, ah),
+            (&vis, (aw, ah)),
+            (&irr, (iw, ih)),
             v.probes.len(),
         )
     }
@@ -136,17 +156,18 @@ impl GpuFarField {
         uniforms: FarGridUniforms,
         probes: &[[f32; 4]],
         probes_width: u32,
-        vis: &[half::f16],
-        vis_size: (u32, u32),
+        (vis, vis_size): (&[half::f16], (u32, u32)),
+        (irr, irr_size): (&[half::f16], (u32, u32)),
         count: usize,
     ) -> Self {
         // Row 0: the grid; then the probes.
         let mut texels = vec![[0f32; 4]; probes_width as usize];
-        texels[..4].copy_from_slice(&[
+        texels[..5].copy_from_slice(&[
             uniforms.origin,
             uniforms.spacing,
             uniforms.counts,
             uniforms.vis,
+            uniforms.irr,
         ]);
         texels.extend_from_slice(probes);
         let probes_size = (probes_width, texels.len() as u32 / probes_width);
@@ -173,7 +194,7 @@ impl GpuFarField {
                 )
                 .create_view(&Default::default())
         };
-        let vis_bits: Vec<u16> = vis.iter().map(|h| h.to_bits()).collect();
+        let bits = |h: &[half::f16]| -> Vec<u16> { h.iter().map(|h| h.to_bits()).collect() };
         GpuFarField {
             mode,
             probes_view: texture(
@@ -186,9 +207,39 @@ impl GpuFarField {
                 "far visibility",
                 vis_size,
                 wgpu::TextureFormat::Rg16Float,
-                bytemuck::cast_slice(&vis_bits),
+                bytemuck::cast_slice(&bits(vis)),
+            ),
+            irradiance_view: texture(
+                "far irradiance",
+                irr_size,
+                wgpu::TextureFormat::Rgba16Float,
+                bytemuck::cast_slice(&bits(irr)),
             ),
             probes: count,
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use nearfield_scene::probes::{IRR_RES, VIS_RES};
+
+    /// far.wgsl's layout constants are the Rust ones.
+    #[test]
+    fn far_wgsl_constants_match_the_volume_layout() {
+        let value = |name: &str| -> f32 {
+            let line = crate::util::FAR_WGSL
+                .lines()
+                .find(|l| l.starts_with(&format!("const {name}:")))
+                .unwrap_or_else(|| panic!("far.wgsl declares {name}"));
+            let v = line.split('=').nth(1).unwrap().trim().trim_end_matches(';');
+            v.trim_end_matches('u').parse().unwrap()
+        };
+        assert_eq!(value("FAR_TEXELS"), PROBE_TEXELS as f32);
+        assert_eq!(value("FAR_VIS_RES"), VIS_RES as f32);
+        assert_eq!(value("FAR_TILE"), VIS_TILE as f32);
+        assert_eq!(value("FAR_IRR_RES"), IRR_RES as f32);
+        assert_eq!(value("FAR_IRR_TILE"), IRR_TILE as f32);
     }
 }

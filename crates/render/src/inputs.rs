@@ -44,7 +44,10 @@ pub struct NearFieldInputs<'a> {
 pub struct NearFieldOutputs<'a> {
     /// `ao`: r32float, (1/π) ∫ V_R cos θ dω.
     pub ao: &'a wgpu::TextureView,
-    /// `env-irradiance`: rgba16float, (1/π) ∫ L_env V_R cos θ dω.
+    /// `env-irradiance`: rgba16float, (1/π) ∫ L_env V_R cos θ dω. It holds the direct pass's
+    /// unoccluded far field E_far(n)/π on entry (the sky's SH irradiance or the probe volume's):
+    /// `none` passes it on, every other technique overwrites it. An engine that runs `none`
+    /// writes its own unoccluded irradiance there first.
     pub env_irradiance: &'a wgpu::TextureView,
     /// `indirect-irradiance`: rgba16float, (1/π) ∫ (1 − V_R) L_o(x′) cos θ dω.
     pub indirect_irradiance: &'a wgpu::TextureView,

@@ -47,6 +47,9 @@ crate::bind_group! {
         out_specular: view = kind::write(HDR_FORMAT),
         /// This frame's direct radiance (rgba16float), one side of the ping-pong pair.
         out_direct_radiance: view = kind::write(HDR_FORMAT),
+        /// The far field's E(n)/π, unoccluded (rgba16float): what the senders are lit with, left
+        /// in the techniques' `env-irradiance` output on entry (`none` passes it on).
+        out_env_irradiance: view = kind::write(HDR_FORMAT),
     }
 }
 
@@ -84,6 +87,7 @@ pub fn new(
             out_light_irradiance: &targets.light_irradiance.view,
             out_specular: &targets.specular.view,
             out_direct_radiance: &targets.direct_radiance[side].view,
+            out_env_irradiance: &targets.env_irradiance.view,
         }
         .bind_group(device, &layout)
     });

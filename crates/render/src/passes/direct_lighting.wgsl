@@ -4,8 +4,10 @@
 //   light_irradiance = (1/π) Σ_l E_l(P) · V_shadow        (the `light-irradiance` AOV)
 //   specular         = Σ_l f_GGX · E_l · V_shadow + prefiltered_env(R, r) · (F0·A + B)
 //   direct_radiance  = emission + ρ · (light_irradiance + E_far(n))
+//   env_irradiance   = E_far(n)                            (on entry to the technique)
 // E_far is the open sky's SH irradiance env_irradiance_sh(n), or with a probe volume the
-// volume's irradiance at P (far.wgsl).
+// volume's irradiance at P (far.wgsl). It is left in the techniques' env-irradiance output,
+// which `none` passes on rather than looking the volume up a second time.
 // E_l is the unshadowed irradiance of nearfield_scene::Light::irradiance (same falloff, same spot
 // cone and range window). f_GGX is Cook–Torrance with the GGX distribution, the height-correlated
 // Smith visibility and Schlick's Fresnel (Karis 2013), F0 = mix(0.04, ρ, m). (A, B) is Karis'
@@ -28,6 +30,7 @@
 @group(1) @binding(9) var out_light_irradiance: texture_storage_2d<rgba16float, write>;
 @group(1) @binding(10) var out_specular: texture_storage_2d<rgba16float, write>;
 @group(1) @binding(11) var out_direct_radiance: texture_storage_2d<rgba16float, write>;
+@group(1) @binding(12) var out_env_irradiance: texture_storage_2d<rgba16float, write>;
 
 fn d_ggx(n_h: f32, a: f32) -> f32 {
     let a2 = a * a;
@@ -65,6 +68,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         textureStore(out_light_irradiance, pixel, vec4<f32>(0.0));
         textureStore(out_specular, pixel, vec4<f32>(0.0));
         textureStore(out_direct_radiance, pixel, vec4<f32>(0.0));
+        textureStore(out_env_irradiance, pixel, vec4<f32>(0.0));
         return;
     }
     let n = normalize(nw.xyz);
@@ -103,7 +107,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     // The senders' light: the far field, the open sky's SH irradiance or the probe volume's.
     var far_e = vec3<f32>(0.0);
     if far_volume() {
-        far_e = far_irradiance(far_sh_here(p, n), n);
+        far_e = far_irradiance_here(p, n);
     } else {
         far_e = env_irradiance_sh(n);
     }
@@ -111,4 +115,5 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     textureStore(out_light_irradiance, pixel, vec4<f32>(light_irradiance, 1.0));
     textureStore(out_specular, pixel, vec4<f32>(specular, 1.0));
     textureStore(out_direct_radiance, pixel, vec4<f32>(direct, 1.0));
+    textureStore(out_env_irradiance, pixel, vec4<f32>(far_e, 1.0));
 }

@@ -46,6 +46,7 @@ impl FrameGroup {
             env_irradiance_map: &env.irradiance_view,
             far_probes: &far.probes_view,
             far_visibility: &far.visibility_view,
+            far_irradiance_atlas: &far.irradiance_view,
         }
         .bind_group(device, &layout);
         FrameGroup { layout, bind_group }

@@ -9,7 +9,8 @@
 // normalised sum of their order-2 SH radiance is the far field at P. ProbeVolume::weights is the
 // same arithmetic on the CPU (a GPU test compares the two).
 
-// rgba32float. Row 0, texels 0..3: the grid (FarGrid below; counts as exact floats). From row 1:
+// rgba32float. Row 0, texels 0..3: the grid (FarGrid below; counts as exact floats); texel 4:
+// 1 / the irradiance atlas's size. From row 1:
 // FAR_TEXELS texels per probe, `counts.w` probes per row: (offset xyz, active), then 9 SH rgb.
 // (The grid rides in the texture rather than a uniform: one more uniform buffer in group 0
 // crashes lavapipe 22.3's pipelines with many bindings.)
@@ -17,6 +18,9 @@
 // rg16float, a FAR_TILE² tile per probe (`counts.w` per row): (mean, mean²) of the distance /
 // max distance over an octahedral map with a one-texel border.
 @group(0) @binding(7) var far_visibility: texture_2d<f32>;
+// rgba16float, a FAR_IRR_TILE² tile per probe (`counts.w` per row): E(n)/π over an octahedral
+// map of n with a one-texel border; 1 / its size in row 0's texel 4 of far_probes.
+@group(0) @binding(8) var far_irradiance_atlas: texture_2d<f32>;
 
 struct FarGrid {
     // xyz: position of probe (0, 0, 0) (m); w: 1 with a volume, 0 for the sky.
@@ -41,6 +45,13 @@ fn far_grid() -> FarGrid {
 const FAR_TEXELS: u32 = 10u;
 const FAR_VIS_RES: f32 = 16.0;
 const FAR_TILE: u32 = 18u;
+const FAR_IRR_RES: f32 = 12.0;
+const FAR_IRR_TILE: u32 = 14u;
+
+// 1 / the irradiance atlas's size.
+fn far_irr_texel() -> vec2<f32> {
+    return textureLoad(far_probes, vec2<u32>(4u, 0u), 0).xy;
+}
 
 // The radiance arriving at a point: order-2 SH (nearfield_scene::sh's basis), rgb.
 struct FarSh {
@@ -79,52 +90,88 @@ fn far_moments(g: FarGrid, index: u32, d: vec3<f32>) -> vec2<f32> {
     return vec2<f32>(m.x * maxd, m.y * maxd * maxd);
 }
 
+// One of the 8 probes around a lookup: its index and DDGI weight (0 when switched off).
+struct FarCorner {
+    index: u32,
+    w: f32,
+}
+
+// The cell of a lookup at world `p`, unit normal `n`, seen from unit `v`.
+struct FarCell {
+    grid: FarGrid,
+    p: vec3<f32>,
+    n: vec3<f32>,
+    biased: vec3<f32>,
+    base: vec3<f32>,
+    alpha: vec3<f32>,
+}
+
+fn far_cell(p: vec3<f32>, n: vec3<f32>, v: vec3<f32>) -> FarCell {
+    var cell: FarCell;
+    cell.grid = far_grid();
+    cell.p = p;
+    cell.n = n;
+    let counts = vec3<f32>(cell.grid.counts.xyz);
+    cell.biased = p + cell.grid.spacing.w * (0.3 * n + 0.7 * v);
+    let last = counts - 1.0;
+    let rel = clamp((cell.biased - cell.grid.origin.xyz) / cell.grid.spacing.xyz, vec3<f32>(0.0), last);
+    cell.base = min(floor(rel), max(last - 1.0, vec3<f32>(0.0)));
+    cell.alpha = clamp(rel - cell.base, vec3<f32>(0.0), vec3<f32>(1.0));
+    return cell;
+}
+
+// Corner `c` (bit 0: +x, 1: +y, 2: +z) of the cell with its unnormalised weight.
+fn far_corner(cell: FarCell, c: u32) -> FarCorner {
+    let g = cell.grid;
+    let o = vec3<u32>(c & 1u, (c >> 1u) & 1u, (c >> 2u) & 1u);
+    let coords = min(vec3<u32>(cell.base) + o, g.counts.xyz - 1u);
+    var out: FarCorner;
+    out.index = coords.x + g.counts.x * (coords.y + g.counts.y * coords.z);
+    out.w = 0.0;
+    let state = far_texel(g, out.index, 0u);
+    if state.w < 0.5 {
+        return out;
+    }
+    let tri = mix(1.0 - cell.alpha, cell.alpha, vec3<f32>(o));
+    let trilinear = tri.x * tri.y * tri.z;
+    let pos = g.origin.xyz + g.spacing.xyz * vec3<f32>(coords) + state.xyz;
+    let to_probe_v = pos - cell.p;
+    let to_probe = select(vec3<f32>(0.0), normalize(to_probe_v), dot(to_probe_v, to_probe_v) > 0.0);
+    let wrap = 0.5 * (dot(to_probe, cell.n) + 1.0);
+    var w = wrap * wrap + 0.2;
+    let from_probe = cell.biased - pos;
+    let dist = length(from_probe);
+    let m = far_moments(g, out.index, from_probe / max(dist, 1e-12));
+    if dist > m.x {
+        let variance = max(abs(m.y - m.x * m.x), 1e-6 * g.vis.x);
+        let cheb = variance / (variance + (dist - m.x) * (dist - m.x));
+        w *= cheb * cheb * cheb;
+    }
+    w = max(w, 1e-6);
+    if w < 0.2 {
+        w *= w * w / (0.2 * 0.2);
+    }
+    out.w = w * trilinear;
+    return out;
+}
+
 // The far field's radiance SH at world point `p` with unit normal `n`, seen from unit `v`.
 fn far_sh_at(p: vec3<f32>, n: vec3<f32>, v: vec3<f32>) -> FarSh {
     var out: FarSh;
     for (var k = 0u; k < 9u; k++) {
         out.c[k] = vec4<f32>(0.0);
     }
-    let far_grid = far_grid();
-    let counts = vec3<f32>(far_grid.counts.xyz);
-    let biased = p + far_grid.spacing.w * (0.3 * n + 0.7 * v);
-    let last = counts - 1.0;
-    let rel = clamp((biased - far_grid.origin.xyz) / far_grid.spacing.xyz, vec3<f32>(0.0), last);
-    let base = min(floor(rel), max(last - 1.0, vec3<f32>(0.0)));
-    let alpha = clamp(rel - base, vec3<f32>(0.0), vec3<f32>(1.0));
+    let cell = far_cell(p, n, v);
     var total = 0.0;
     for (var c = 0u; c < 8u; c++) {
-        let o = vec3<u32>(c & 1u, (c >> 1u) & 1u, (c >> 2u) & 1u);
-        let coords = min(vec3<u32>(base) + o, far_grid.counts.xyz - 1u);
-        let index = coords.x + far_grid.counts.x * (coords.y + far_grid.counts.y * coords.z);
-        let state = far_texel(far_grid, index, 0u);
-        if state.w < 0.5 {
+        let corner = far_corner(cell, c);
+        if corner.w <= 0.0 {
             continue;
         }
-        let tri = mix(1.0 - alpha, alpha, vec3<f32>(o));
-        let trilinear = tri.x * tri.y * tri.z;
-        let pos = far_grid.origin.xyz + far_grid.spacing.xyz * vec3<f32>(coords) + state.xyz;
-        let to_probe_v = pos - p;
-        let to_probe = select(vec3<f32>(0.0), normalize(to_probe_v), dot(to_probe_v, to_probe_v) > 0.0);
-        let wrap = 0.5 * (dot(to_probe, n) + 1.0);
-        var w = wrap * wrap + 0.2;
-        let from_probe = biased - pos;
-        let dist = length(from_probe);
-        let m = far_moments(far_grid, index, from_probe / max(dist, 1e-12));
-        if dist > m.x {
-            let variance = max(abs(m.y - m.x * m.x), 1e-6 * far_grid.vis.x);
-            let cheb = variance / (variance + (dist - m.x) * (dist - m.x));
-            w *= cheb * cheb * cheb;
-        }
-        w = max(w, 1e-6);
-        if w < 0.2 {
-            w *= w * w / (0.2 * 0.2);
-        }
-        w *= trilinear;
         for (var k = 0u; k < 9u; k++) {
-            out.c[k] += w * far_texel(far_grid, index, 1u + k);
+            out.c[k] += corner.w * far_texel(cell.grid, corner.index, 1u + k);
         }
-        total += w;
+        total += corner.w;
     }
     if total > 0.0 {
         for (var k = 0u; k < 9u; k++) {
@@ -132,6 +179,33 @@ fn far_sh_at(p: vec3<f32>, n: vec3<f32>, v: vec3<f32>) -> FarSh {
         }
     }
     return out;
+}
+
+// E(n)/π of the far field at world `p` with unit normal `n` seen from unit `v`: the same weights
+// as far_sh_at over each probe's pre-convolved octahedral irradiance (one bilinear fetch a probe
+// instead of 9 SH texels; ProbeVolume::irradiance_tile, within IRRADIANCE_TILE_ERROR of the SH).
+fn far_irradiance_at(p: vec3<f32>, n: vec3<f32>, v: vec3<f32>) -> vec3<f32> {
+    let cell = far_cell(p, n, v);
+    let row = cell.grid.counts.w;
+    let within = (far_oct_encode(n) * 0.5 + 0.5) * FAR_IRR_RES + 1.0;
+    var e = vec3<f32>(0.0);
+    var total = 0.0;
+    for (var c = 0u; c < 8u; c++) {
+        let corner = far_corner(cell, c);
+        if corner.w <= 0.0 {
+            continue;
+        }
+        let tile = vec2<f32>(f32((corner.index % row) * FAR_IRR_TILE), f32((corner.index / row) * FAR_IRR_TILE));
+        let uv = (tile + within) * far_irr_texel();
+        e += corner.w * textureSampleLevel(far_irradiance_atlas, env_sampler, uv, 0.0).rgb;
+        total += corner.w;
+    }
+    return max(e / max(total, 1e-20), vec3<f32>(0.0));
+}
+
+// far_irradiance_at at a surface point of the frame, seen from the camera.
+fn far_irradiance_here(p: vec3<f32>, n: vec3<f32>) -> vec3<f32> {
+    return far_irradiance_at(p, n, normalize(frame.camera_position.xyz - p));
 }
 
 // The far field at a surface point of the frame: world `p`, unit normal `n`, seen from the camera.

@@ -32,7 +32,7 @@ pub struct ProbeGrid {
 pub enum GridError {
     #[error("--spacing {0}: must be a finite number of metres > 0")]
     Spacing(f32),
-    #[error("--probes {0:?}: each count must be at least 1")]
+    #[error("--probes {},{},{}: each count must be at least 1", .0[0], .0[1], .0[2])]
     Counts([u32; 3]),
     #[error(
         "the grid has {count} probes ({}×{}×{}); the probe budget is {MAX_PROBES} (a larger --spacing or fewer --probes fit)",

@@ -43,7 +43,7 @@ fn shade(@builtin(global_invocation_id) id: vec3<u32>) {
     let p = layer_position(layer_views[shade_params.first_view + k], pixel, depth);
     var irradiance = vec3<f32>(0.0);
     if far_volume() {
-        irradiance = far_irradiance(far_sh_here(p, n), n);
+        irradiance = far_irradiance_here(p, n);
     } else {
         irradiance = env_irradiance_sh(n);
     }

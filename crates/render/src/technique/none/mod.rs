@@ -1,4 +1,5 @@
-//! `none`: no occlusion (ao = 1), unoccluded SH environment irradiance, no indirect light.
+//! `none`: no occlusion (ao = 1), the unoccluded far field's irradiance the direct pass left in
+//! `env-irradiance`, no indirect light.
 //! The baseline every other technique is compared with. See none.wgsl.
 
 use super::{Technique, TechniqueContext, TechniqueDesc, TechniqueParams};
@@ -20,12 +21,10 @@ crate::bind_group! {
     pub struct NoneBindings: COMPUTE {
         /// World normal (rgba16float, xyz unit).
         gb_normal: view = kind::TEXTURE,
-        /// View depth (r32float, m): where the probe volume is read.
-        gb_view_depth: view = kind::TEXTURE_UNFILTERABLE,
         /// `ao` (r32float): 1.
         out_ao: view = kind::write(AO_FORMAT),
-        /// `env-irradiance` (rgba16float): the far field's irradiance at the normal (the sky's SH
-        /// or the probe volume).
+        /// `env-irradiance` (rgba16float): on surfaces it keeps what it holds on entry (the far
+        /// field's unoccluded irradiance, the sky's SH or the probe volume's); 0 on background.
         out_env_irradiance: view = kind::write(HDR_FORMAT),
         /// `indirect-irradiance` (rgba16float): 0.
         out_indirect_irradiance: view = kind::write(HDR_FORMAT),
@@ -44,7 +43,7 @@ pub fn pass_layout() -> PassLayout {
 
 pub const DESC: TechniqueDesc = TechniqueDesc {
     name: "none",
-    summary: "no occlusion: ao = 1, unoccluded SH environment irradiance, no indirect light",
+    summary: "no occlusion: ao = 1, the unoccluded far field (sky SH or probe volume), no indirect light",
     create,
     check,
     settings: &[],
@@ -75,7 +74,6 @@ fn create(
     let module = crate::passes::shader_module(device, "none", &source());
     let own = NoneBindings {
         gb_normal: i.normal,
-        gb_view_depth: i.view_depth,
         out_ao: o.ao,
         out_env_irradiance: o.env_irradiance,
         out_indirect_irradiance: o.indirect_irradiance,

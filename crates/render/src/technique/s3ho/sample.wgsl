@@ -35,7 +35,7 @@ fn cfg() -> SampleConfig {
 fn incident_at(n: vec3<f32>, p: vec3<f32>) -> vec3<f32> {
     var e = vec3<f32>(0.0);
     if far_volume() {
-        e = PI * far_irradiance(far_sh_here(p, n), n);
+        e = PI * far_irradiance_here(p, n);
     } else {
         let cn = sh_cosine(n);
         for (var i = 0u; i < 9u; i++) {

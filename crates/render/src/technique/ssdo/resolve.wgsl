@@ -27,7 +27,7 @@ fn resolve(@builtin(global_invocation_id) id: vec3<u32>) {
     var env = vec3<f32>(0.0);
     if far_volume() {
         let p = world_position(pixel, textureLoad(gb_view_depth, pixel, 0).r);
-        env = a.w * far_irradiance(far_sh_here(p, n), n);
+        env = a.w * far_irradiance_here(p, n);
     } else {
         env = a.w * env_irradiance_sh(n);
     }
