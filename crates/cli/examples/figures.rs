@@ -7,6 +7,7 @@
 //! - each technique's failure strip (docs/src/img/failures/TECH.png);
 //! - the demo strip (docs/src/img/cornell-compare.png, the same command as `make demo`);
 //! - the vbgi page's crops (docs/src/img/crops-wall.png, crops-box.png);
+//! - the far field's Sponza strip (docs/src/img/sponza-far.png);
 //!
 //! into docs/src/generated/results.json, then the pages rendered from it (book_reference).
 //! Scratch output goes to target/figures/. `FIGURES_QUICK=1` runs smaller images and fewer
@@ -107,13 +108,15 @@ fn compare(id: &str, scene: &Scene, rest: &str) -> (String, Vec<MethodError>, St
 }
 
 fn main() {
-    // FIGURES_ONLY=crops remakes only the crops (they are not in results.json).
-    if std::env::var("FIGURES_ONLY").as_deref() == Ok("crops") {
-        crops();
-        return;
-    }
     let assets =
         PathBuf::from(std::env::var("NEARFIELD_ASSETS").unwrap_or("../shared/assets".into()));
+    // FIGURES_ONLY=crops or far remakes only the crops or the far-field strip (neither is in
+    // results.json).
+    match std::env::var("FIGURES_ONLY").as_deref() {
+        Ok("crops") => return crops(),
+        Ok("far") => return far_strip(&assets),
+        _ => {}
+    }
     let (size, spp, path_spp) = if quick() {
         ("96x54", 16, 32)
     } else {
@@ -305,6 +308,7 @@ fn main() {
     ));
 
     crops();
+    far_strip(&assets);
 
     let date = Command::new("date")
         .args(["-u", "+%Y-%m-%d"])
@@ -329,6 +333,32 @@ fn main() {
 
 /// The vbgi page's crops of the right wall and the short box's top at 1280×720 after 16
 /// frames: hbil, hbil with the svgf denoiser, vbgi.
+/// The far field's strip (docs/src/img/sponza-far.png): Sponza's arcade, `lambertian` of `none`
+/// and `vbgi` with the open sky beyond R, `vbgi` with the probe volume, and the path tracer
+/// (4608 spp, its standard error 4.9 % of its mean), all at one exposure (+8 EV).
+fn far_strip(assets: &Path) {
+    let Some(sponza) = scenes(assets).into_iter().find(|s| s.name == "sponza") else {
+        return;
+    };
+    let dir = Path::new("target/figures/far");
+    std::fs::create_dir_all(dir).expect("target/figures/far");
+    let view = format!("{} --size 160x90 --radius 1 --aov lambertian", sponza.args);
+    let mut images = String::new();
+    for (name, method, frames) in [("none-sky", "none", 1), ("vbgi-sky", "vbgi", 16)] {
+        let file = dir.join(format!("{name}.exr"));
+        nearfield(&words(&format!(
+            "render {view} --method {method} --frames {frames} --far sky -o {}",
+            file.display()
+        )));
+        images.push_str(&format!(" --image {name}={}", file.display()));
+    }
+    nearfield(&words(&format!(
+        "compare {view} --methods vbgi --frames 16 --far volume --spp 4608 --max-depth 32 \
+         --exposure 8{images} --strip docs/src/img/sponza-far.png --out {}",
+        dir.join("compare").display()
+    )));
+}
+
 fn crops() {
     let crops = Path::new("target/figures/crops");
     std::fs::create_dir_all(crops).expect("target/figures/crops");

@@ -56,7 +56,8 @@ pub struct CompareArgs {
     #[arg(long, default_value = "compare")]
     pub out: PathBuf,
     /// Also write one PNG strip of the methods' images and the reference side by side, each
-    /// labelled with its name and its relative error.
+    /// labelled with its name and its relative error (--image's images first; the PNGs and the
+    /// strip at --exposure).
     #[arg(long)]
     pub strip: Option<PathBuf>,
     /// With --strip: each method's signed error heat map right of its image (blue: too dark,
@@ -235,11 +236,10 @@ pub fn run(args: CompareArgs) -> Result<()> {
                 .map_err(anyhow::Error::from)
         })
     };
-    png(
-        image_ops::tonemap(&reference.value, w, h),
-        args.out.join("reference.png"),
-    )?;
-    let ref_srgb = image_ops::tonemap(&reference.value, w, h);
+    // The PNGs, the strip and FLIP see the images at --exposure.
+    let gain = 2f32.powf(args.technique.exposure);
+    let ref_srgb = image_ops::tonemap_exposed(&reference.value, w, h, gain);
+    png(ref_srgb.clone(), args.out.join("reference.png"))?;
     let ref_alpha: Vec<f32> = reference.value.iter().map(|p| p[3]).collect();
     let mask_settings = MaskSettings {
         border,
@@ -262,7 +262,7 @@ pub fn run(args: CompareArgs) -> Result<()> {
                    panels: &mut Vec<Panel>|
      -> Result<MethodReport> {
         let mut m = metrics::metrics(pixels, &reference.value, mask);
-        let srgb = image_ops::tonemap(pixels, w, h);
+        let srgb = image_ops::tonemap_exposed(pixels, w, h, gain);
         m.flip = Some(metrics::flip_mean(&srgb, &ref_srgb, mask));
         if args.strip.is_some() {
             panels.push(Panel {
@@ -388,11 +388,14 @@ pub fn run(args: CompareArgs) -> Result<()> {
             &mut panels,
         )?);
     }
-    // Images made elsewhere: the last technique's mask (same scene, camera and reference).
+    // Images made elsewhere: the last technique's mask (same scene, camera and reference); in the
+    // strip before the techniques.
     if let Some(mask) = &last_mask {
+        let mut first = Vec::new();
         for (name, pixels) in &images {
-            reports.push(measure(name, pixels, mask, Vec::new(), &mut panels)?);
+            reports.push(measure(name, pixels, mask, Vec::new(), &mut first)?);
         }
+        panels.splice(0..0, first);
     }
     if let Some(path) = &args.strip {
         panels.push(Panel {

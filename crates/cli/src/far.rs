@@ -356,7 +356,9 @@ pub fn run(args: BakeArgs) -> Result<()> {
     let loaded = args.scene.load()?;
     let settings = args.grid.settings(&loaded)?;
     loaded.report_sun();
+    let t_bake = Instant::now();
     let (volume, cached) = baked(&args.scene, &loaded, &settings, args.no_cache)?;
+    let bake_s = t_bake.elapsed().as_secs_f64();
     volume.write(&args.out).map_err(anyhow::Error::msg)?;
     let g = &volume.grid;
     eprintln!(
@@ -370,7 +372,11 @@ pub fn run(args: BakeArgs) -> Result<()> {
         g.spacing.z,
         volume.active_count(),
         volume.memory_bytes() as f64 / 1e6,
-        if cached { ", from the cache" } else { "" },
+        if cached {
+            format!(", read from the cache in {bake_s:.2} s")
+        } else {
+            String::new()
+        },
         t0.elapsed().as_secs_f64()
     );
     Ok(())

@@ -6,8 +6,13 @@ use image::{Rgb, RgbImage};
 /// Narkowicz' ACES fit at exposure 0, then sRGB — the same curve as tonemap.wgsl's `aces`, so
 /// that FLIP sees what the renderer would show. Background (alpha 0) is black.
 pub fn tonemap(values: &[[f32; 4]], width: u32, height: u32) -> RgbImage {
+    tonemap_exposed(values, width, height, 1.0)
+}
+
+/// [`tonemap`] of the values times `gain` (2^EV of an exposure).
+pub fn tonemap_exposed(values: &[[f32; 4]], width: u32, height: u32, gain: f32) -> RgbImage {
     let aces = |x: f32| {
-        let v = x.max(0.0) * 0.6;
+        let v = x.max(0.0) * gain * 0.6;
         ((v * (2.51 * v + 0.03)) / (v * (2.43 * v + 0.59) + 0.14)).clamp(0.0, 1.0)
     };
     let encode = |c: f32| {
