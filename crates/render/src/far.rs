@@ -225,7 +225,7 @@ mod tests {
     use super::*;
     use nearfield_scene::probes::{IRR_RES, VIS_RES};
 
-    /// far.wgsl's layout constants are the Rust ones.
+    /// far.wgsl's layout constants are the Rust ones (and env.wgsl's irradiance map rows).
     #[test]
     fn far_wgsl_constants_match_the_volume_layout() {
         let value = |name: &str| -> f32 {
@@ -241,5 +241,11 @@ mod tests {
         assert_eq!(value("FAR_TILE"), VIS_TILE as f32);
         assert_eq!(value("FAR_IRR_RES"), IRR_RES as f32);
         assert_eq!(value("FAR_IRR_TILE"), IRR_TILE as f32);
+        let rows = crate::util::ENV_WGSL
+            .lines()
+            .find(|l| l.starts_with("const ENV_IRRADIANCE_ROWS:"))
+            .and_then(|l| l.split('=').nth(1))
+            .map(|v| v.trim().trim_end_matches(';').parse::<f32>().unwrap());
+        assert_eq!(rows, Some(crate::gpu_env::IRRADIANCE_SIZE.1 as f32));
     }
 }

@@ -151,7 +151,7 @@ fn host_and_shader_structs_agree() {
             size_of::<SsdoParams>(),
             &offsets!(SsdoParams: radius, sample_light, mode, technique, lod, contrast, scale, fade,
                 strength, distance_clamp, pattern, light_samples, layers, cameras, light_segment,
-                vpl_mode, vpl_count, vpl_clamp, near, _pad1),
+                vpl_mode, vpl_count, vpl_clamp, near, normalise),
         );
     }
     check(

@@ -310,9 +310,15 @@ impl Environment {
 
     /// The pre-convolved diffuse map: a `width`×`height` lat-long image (unrotated, without
     /// `intensity`, like `texels`) whose texel in direction n holds E(n)/π = (1/π) ∫ L(ω)
-    /// max(0, n·ω) dω, summed over the map box-filtered to at most 64×32 texels (5.6° texels: E is smooth).
+    /// max(0, n·ω) dω, summed over the map box-filtered to at most 128×64 texels (2.8° texels:
+    /// E is smooth, and a sun in the map moves by at most half a texel).
+    /// Row y holds the polar angle π y / (height − 1): rows 0 and height − 1 are the poles
+    /// themselves (every texel of them the same direction), so that a bilinear lookup at
+    /// [`irradiance_map_v`] has no azimuth-dependent value there. (With rows at texel centres,
+    /// a normal at the pole read row 0 at whatever azimuth its u came out as: up to 7 % off
+    /// under the built-in sky with its sun in the map.)
     pub fn irradiance_map(&self, width: u32, height: u32) -> Vec<Vec3> {
-        let (w, h, t) = self.box_downsampled(64);
+        let (w, h, t) = self.box_downsampled(128);
         let small = Environment {
             name: String::new(),
             width: w,
@@ -334,7 +340,7 @@ impl Environment {
             for x in 0..width {
                 let n = uv_to_dir(Vec2::new(
                     (x as f32 + 0.5) / width as f32,
-                    (y as f32 + 0.5) / height as f32,
+                    y as f32 / (height.max(2) - 1) as f32,
                 ));
                 let e: Vec3 = sources.iter().map(|(d, l)| *l * n.dot(*d).max(0.0)).sum();
                 out.push(e / PI);
@@ -342,6 +348,12 @@ impl Environment {
         }
         out
     }
+}
+
+/// Texture v of polar coordinate `v` (0 at +Y, 1 at −Y) in an [`Environment::irradiance_map`]
+/// of `height` rows, whose rows lie at v = y / (height − 1).
+pub fn irradiance_map_v(v: f32, height: u32) -> f32 {
+    (v * (height.max(2) - 1) as f32 + 0.5) / height as f32
 }
 
 /// The DESIGN.md convention, unrotated: direction → (u, v).
@@ -377,7 +389,7 @@ mod tests {
     use super::*;
 
     /// A constant sky gives E/π = L everywhere; a sky bright only above the horizon gives
-    /// (1 + n_y)/2 (the cosine lobe's share of the upper hemisphere), within the 5.6° texels.
+    /// (1 + n_y)/2 (the cosine lobe's share of the upper hemisphere), within the 2.8° texels.
     #[test]
     fn irradiance_map_matches_closed_forms() {
         let constant = Environment::constant(Vec3::splat(2.0));
@@ -390,7 +402,7 @@ mod tests {
         let (w, h) = (16, 8);
         let map = upper.irradiance_map(w, h);
         for y in 0..h {
-            let n = uv_to_dir(Vec2::new(0.5 / w as f32, (y as f32 + 0.5) / h as f32));
+            let n = uv_to_dir(Vec2::new(0.5 / w as f32, y as f32 / (h - 1) as f32));
             let want = 0.5 * (1.0 + n.y);
             assert!(
                 (map[(y * w) as usize].x - want).abs() < 0.02,
@@ -398,6 +410,26 @@ mod tests {
                 map[(y * w) as usize].x
             );
         }
+    }
+
+    /// The poles' rows hold the poles: under a map bright towards +X only, the up-facing row is
+    /// the same at every azimuth (and equals the exact E(+Y)).
+    #[test]
+    fn irradiance_map_poles_do_not_depend_on_azimuth() {
+        let env = Environment::from_fn("lobe", 128, 64, |d| {
+            Vec3::splat(d.x.max(0.0).powi(8) * 10.0)
+        });
+        let (w, h) = (64, 32);
+        let map = env.irradiance_map(w, h);
+        let row0: Vec<f32> = map[..w as usize].iter().map(|e| e.x).collect();
+        let spread = row0.iter().fold(0.0f32, |a, &b| a.max(b))
+            - row0.iter().fold(f32::MAX, |a, &b| a.min(b));
+        assert!(
+            spread < 1e-5 * row0[0].abs().max(1.0),
+            "row 0 varies by {spread}"
+        );
+        assert!((irradiance_map_v(0.0, h) - 0.5 / h as f32).abs() < 1e-7);
+        assert!((irradiance_map_v(1.0, h) - (h as f32 - 0.5) / h as f32).abs() < 1e-7);
     }
 
     #[test]

@@ -60,7 +60,8 @@ declare_settings! {
         mode: Mode = "visibility", choice, "", "`visibility`: luminance-weighted visible fraction × SH irradiance; `radiance`: Σ (1/π) L_in V cos θ Δω with Δω = 2π/N, L_in from the environment at `lod` (ssdo)";
         bounce: bool = "on", toggle, "", "one indirect bounce (ssdo)";
         pattern: Pattern = "interleaved", choice, "", "`chapter`: stratified elevation cos θ = 1 − α, golden-ratio azimuth 2π·α·(7N/9) + φ, φ from interleaved gradient noise, random λ; `interleaved`: the paper's M×N texture, 4×4 sets of N low-discrepancy samples, one set per pixel";
-        sample_light: SampleLight = "sh", choice, "", "radiance mode's L_in: `sh` the environment's SH radiance, scaled so that an open point gets the exact pre-convolved irradiance; `mip` the box-filtered map at `lod` (the chapter's; 7–15 % biased under a bright sky lobe); a probe volume gives its own radiance";
+        sample_light: SampleLight = "sh", choice, "", "radiance mode's L_in: `sh` the environment's SH radiance; `mip` the box-filtered map at `lod` (the chapter's); a probe volume gives its own radiance";
+        normalise: bool = "on", toggle, "", "radiance mode: each channel's sum divided by the same sum with V ≡ 1 and multiplied by the exact unoccluded irradiance (the pre-convolved map's, or the probe volume's), so an open point gets it exactly (the plane under the built-in sky with its sun in the map: 1.0016 of the reference; the plain sum: `sh` 0.95, `mip` 0.82–0.87); `off`: the paper's plain sum Σ (1/π) L_in V cos θ Δω";
         lod: f32 = "5", number(0, 16), "", "mip of the box-filtered environment read per sample (5: 32×16 for a 1k map): visibility mode's weights, and radiance mode's L_in with `sample_light=mip`";
         contrast: f32 = "1", number(0.1, 8), "", "exponent on the visibility (ssdo) or on 1 − scale·S (ssao)";
         scale: f32 = "1", number(0, 4), "", "SSAO's scale on the occluded fraction S";

@@ -25,6 +25,17 @@ fn env_uv(d: vec3<f32>) -> vec2<f32> {
     return vec2<f32>(u, acos(clamp(r.y, -1.0, 1.0)) / PI);
 }
 
+// Rows of the pre-convolved diffuse map (gpu_env::IRRADIANCE_SIZE): row y at polar angle
+// π y / (rows − 1), the poles included (Environment::irradiance_map).
+const ENV_IRRADIANCE_ROWS: f32 = 32.0;
+
+// E(n)/π from the pre-convolved diffuse map (not band-limited, unlike env_irradiance_sh).
+fn env_irradiance_exact(n: vec3<f32>) -> vec3<f32> {
+    let uv = env_uv(n);
+    let v = (uv.y * (ENV_IRRADIANCE_ROWS - 1.0) + 0.5) / ENV_IRRADIANCE_ROWS;
+    return textureSampleLevel(env_irradiance_map, env_sampler, vec2<f32>(uv.x, v), 0.0).rgb * frame.env_intensity;
+}
+
 // Radiance from direction d at mip `lod` of the box-filtered chain.
 fn env_radiance_at(d: vec3<f32>, lod: f32) -> vec3<f32> {
     return textureSampleLevel(env_radiance, env_sampler, env_uv(d), lod).rgb * frame.env_intensity;

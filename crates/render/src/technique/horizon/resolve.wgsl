@@ -27,8 +27,7 @@ fn cone_far_field(x: vec3<f32>, n: vec3<f32>, bent: vec3<f32>, ao: f32, far: vec
             if volume {
                 return far_irradiance(f, bent) * energy_compensation(ao);
             }
-            let e = textureSampleLevel(env_irradiance_map, env_sampler, env_uv(bent), 0.0).rgb;
-            return e * frame.env_intensity * energy_compensation(ao);
+            return env_irradiance_exact(bent) * energy_compensation(ao);
         }
         case 3u: {
             if FAR {

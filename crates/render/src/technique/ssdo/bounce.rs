@@ -10,6 +10,7 @@ pub fn source() -> String {
     util::compose(&[
         util::COMMON_WGSL,
         util::ENV_WGSL,
+        util::FAR_WGSL,
         util::LIGHTS_WGSL,
         util::SURFACE_WGSL,
         samples::SAMPLES_WGSL,

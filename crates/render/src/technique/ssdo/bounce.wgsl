@@ -92,14 +92,18 @@ fn screen_bounce(here: Surface, pixel: vec2<u32>) -> vec3<f32> {
 // V_k / max(d², vpl_clamp²), V_k the k-th VPL's shadow map (PCF) corrected in screen space on
 // its bias segment (`light_samples` points, as for the scene's lights). The clamp keeps the
 // singularity of receivers near a VPL out of the image; screen_bounce adds back what it removes.
+// With a probe volume (far.wgsl) the lights' first bounce beyond R is the volume's (its bounces
+// hold it, read in the directions free within R): only the VPLs within R count, so that no light
+// is counted twice.
 fn radiosity_bounce(here: Surface) -> vec3<f32> {
     let c2 = params.vpl_clamp * params.vpl_clamp;
+    let reach2 = select(3.4e38, params.radius * params.radius, far_volume());
     var e = vec3<f32>(0.0);
     for (var k = 0u; k < params.vpl_count; k++) {
         let l = lights[k];
         let d = l.position - here.p;
         let dist2 = dot(d, d);
-        if dist2 <= 0.0 {
+        if dist2 <= 0.0 || dist2 > reach2 {
             continue;
         }
         let dir = d * inverseSqrt(dist2);

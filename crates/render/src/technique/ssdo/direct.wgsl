@@ -49,6 +49,8 @@ fn direct(@builtin(global_invocation_id) id: vec3<u32>) {
     var total_light = 0.0;
     var visible_light = 0.0;
     var l_dir = vec3<f32>(0.0);
+    // The same sum with V ≡ 1: the quadrature of the unoccluded irradiance by this pixel's set.
+    var l_open = vec3<f32>(0.0);
     // The light each unoccluded direction brings: the environment at a blurred mip, its SH
     // radiance (radiance mode, `sample_light=sh`), or the probe volume's radiance at this point.
     let volume = far_volume();
@@ -82,6 +84,7 @@ fn direct(@builtin(global_invocation_id) id: vec3<u32>) {
             visible_light += w * v;
             // (1/π) L_in V cos θ Δω with Δω = 2π/N.
             l_dir += l_in * (v * cos_theta * 2.0 / f32(n));
+            l_open += l_in * (cos_theta * 2.0 / f32(n));
         }
     }
     let ao = select(1.0, ao_num / ao_den, ao_den > 0.0);
@@ -98,13 +101,20 @@ fn direct(@builtin(global_invocation_id) id: vec3<u32>) {
         textureStore(out_a, pixel, vec4<f32>(vpl_environment(here), 1.0));
         return;
     }
-    if sh_light && !volume {
-        // The SH's own irradiance misses the pre-convolved one by its band limit (a few percent
-        // under a sun lobe, on walls most): scale each channel so that an unoccluded point gets
-        // the pre-convolved irradiance exactly.
-        let exact = textureSampleLevel(env_irradiance_map, env_sampler, env_uv(here.n), 0.0).rgb * frame.env_intensity;
-        let band_limited = env_irradiance_sh(here.n);
-        l_dir *= select(vec3<f32>(1.0), exact / band_limited, band_limited > vec3<f32>(1e-4 * max(max(exact.r, exact.g), exact.b)));
+    if params.technique == 1u && params.mode == 1u && params.normalise == 1u {
+        // Self-normalised: each channel's sum over the samples divided by the same sum with
+        // V ≡ 1, times the exact unoccluded irradiance — the pre-convolved map's (the SH misses
+        // it by its band limit, a few percent under a sun lobe), or the probe volume's. An open
+        // point gets that irradiance exactly, whatever this pixel's sample set integrates to;
+        // an occluded one loses the share of it its occluded samples carry.
+        var exact: vec3<f32>;
+        if volume {
+            exact = far_irradiance(far, here.n);
+        } else {
+            exact = env_irradiance_exact(here.n);
+        }
+        let floor = 1e-4 * max(max(exact.r, exact.g), max(exact.b, 1e-20));
+        l_dir = select(l_dir, l_dir * exact / l_open, l_open > vec3<f32>(floor));
     }
     textureStore(out_a, pixel, vec4<f32>(max(l_dir, vec3<f32>(0.0)), visibility));
 

@@ -27,7 +27,7 @@ impl Settings {
             vpl_count: 0,
             vpl_clamp: self.vpl_clamp,
             near: (ssdo && self.bounce) as u32,
-            _pad1: 0,
+            normalise: self.normalise as u32,
         }
     }
 }
@@ -59,6 +59,7 @@ pub struct SsdoParams {
     pub vpl_clamp: f32,
     /// 1: the bounce pass gathers sender pixels.
     pub near: u32,
+    /// Radiance mode: 1 self-normalised per channel (direct.wgsl), 0 the paper's plain sum.
     /// (Points per direction: the override `STEPS`.)
-    pub _pad1: u32,
+    pub normalise: u32,
 }

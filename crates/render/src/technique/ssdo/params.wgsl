@@ -43,8 +43,10 @@ struct SsdoParams {
     vpl_clamp: f32,
     // 1: the bounce pass gathers sender pixels (ssdo with bounce=on).
     near: u32,
-    // (Points per direction: the override STEPS.)
-    _pad1: u32,
+    // Radiance mode: 1 divides each channel's sum by the same sum with V ≡ 1 and multiplies by
+    // the exact unoccluded irradiance (direct.wgsl); 0 the paper's plain sum. (Points per
+    // direction: the override STEPS.)
+    normalise: u32,
 }
 
 // Counts, fixed per pipeline (WGSL override constants; technique/ssdo/mod.rs sets them): a
