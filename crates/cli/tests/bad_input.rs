@@ -5,8 +5,14 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 
 fn nearfield(args: &[&str]) -> (i32, String) {
+    nearfield_with(args, &[])
+}
+
+/// `nearfield ARGS` with environment variables `envs`: (exit status, stderr).
+fn nearfield_with(args: &[&str], envs: &[(&str, &Path)]) -> (i32, String) {
     let out = Command::new(env!("CARGO_BIN_EXE_nearfield"))
         .args(args)
+        .envs(envs.iter().copied())
         .output()
         .expect("run nearfield");
     (
@@ -496,17 +502,7 @@ fn bad_volume_files_exit_2_and_stale_cache_entries_are_rebuilt() {
     let d = scratch().join("volume");
     std::fs::create_dir_all(&d).unwrap();
     let cache = d.join("cache");
-    let run = |args: &[&str]| {
-        let out = Command::new(env!("CARGO_BIN_EXE_nearfield"))
-            .args(args)
-            .env("NEARFIELD_CACHE", &cache)
-            .output()
-            .expect("run nearfield");
-        (
-            out.status.code().unwrap_or(-1),
-            String::from_utf8_lossy(&out.stderr).into_owned(),
-        )
-    };
+    let run = |args: &[&str]| nearfield_with(args, &[("NEARFIELD_CACHE", &cache)]);
     let good = d.join("good.nfv");
     let bake = [
         "bake",

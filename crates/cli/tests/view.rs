@@ -42,11 +42,17 @@ fn scratch(name: &str) -> PathBuf {
 
 /// Runs `nearfield view ARGS` in a virtual X server: (exit status, stdout, stderr).
 fn view(args: &[&str]) -> (i32, String, String) {
+    view_with(args, &[])
+}
+
+/// [`view`] with environment variables `envs`.
+fn view_with(args: &[&str], envs: &[(&str, &Path)]) -> (i32, String, String) {
     let out = Command::new("xvfb-run")
         .args(["-a", "-s", "-screen 0 1280x720x24"])
         .arg(env!("CARGO_BIN_EXE_nearfield"))
         .arg("view")
         .args(args)
+        .envs(envs.iter().copied())
         .output()
         .expect("run xvfb-run");
     (
@@ -461,17 +467,15 @@ fn the_far_control_bakes_and_rebakes_in_the_background() {
     let path = dir.join("far.txt");
     std::fs::write(&path, script).unwrap();
     let cache = dir.join("cache");
-    let out = Command::new("xvfb-run")
-        .args(["-a", "-s", "-screen 0 1280x720x24"])
-        .arg(env!("CARGO_BIN_EXE_nearfield"))
-        .arg("view")
-        .args(SCENE)
-        .args(["--script", path.to_str().unwrap(), "--frames", "1000"])
-        .env("NEARFIELD_CACHE", &cache)
-        .output()
-        .expect("run xvfb-run");
-    let err = String::from_utf8_lossy(&out.stderr);
-    assert!(out.status.success(), "{err}");
+    let (code, _, err) = view_with(
+        &[
+            SCENE,
+            &["--script", path.to_str().unwrap(), "--frames", "1000"],
+        ]
+        .concat(),
+        &[("NEARFIELD_CACHE", &cache)],
+    );
+    assert_eq!(code, 0, "{err}");
     assert!(err.contains("bak"), "the bake reports progress: {err}");
     for (shot, intensity) in [(&a, "1"), (&b, "2")] {
         let reference = dir.join(format!("render-{intensity}.png"));

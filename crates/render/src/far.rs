@@ -96,32 +96,17 @@ impl GpuFarField {
                 probes[start + 1 + k] = [c.x, c.y, c.z, 0.0];
             }
         }
-        let (aw, ah) = (row * VIS_TILE, rows * VIS_TILE);
-        let mut vis = vec![half::f16::ZERO; (aw * ah * 2) as usize];
-        let tile = (VIS_TILE * VIS_TILE) as usize;
-        for i in 0..v.probes.len() {
-            let (tx, ty) = ((i as u32 % row) * VIS_TILE, (i as u32 / row) * VIS_TILE);
-            for y in 0..VIS_TILE {
-                for x in 0..VIS_TILE {
-                    let m = v.visibility[i * tile + (y * VIS_TILE + x) as usize];
-                    let at = (((ty + y) * aw + tx + x) * 2) as usize;
-                    vis[at] = half::f16::from_f32(m[0]);
-                    vis[at + 1] = half::f16::from_f32(m[1]);
-                }
+        let vis_tile = (VIS_TILE * VIS_TILE) as usize;
+        let (vis, (aw, ah)) = atlas::<2>(v.probes.len(), row, VIS_TILE, |i, tiles| {
+            for (k, texel) in tiles.iter_mut().enumerate() {
+                *texel = v.visibility[i * vis_tile + k];
             }
-        }
-        let (iw, ih) = (row * IRR_TILE, rows * IRR_TILE);
-        let mut irr = vec![half::f16::ZERO; (iw * ih * 4) as usize];
-        for i in 0..v.probes.len() {
-            let (tx, ty) = ((i as u32 % row) * IRR_TILE, (i as u32 / row) * IRR_TILE);
-            for (k, e) in v.irradiance_tile(i).into_iter().enumerate() {
-                let (x, y) = (k as u32 % IRR_TILE, k as u32 / IRR_TILE);
-                let at = (((ty + y) * iw + tx + x) * 4) as usize;
-                for c in 0..3 {
-                    irr[at + c] = half::f16::from_f32(e[c]);
-                }
+        });
+        let (irr, (iw, ih)) = atlas::<4>(v.probes.len(), row, IRR_TILE, |i, tiles| {
+            for (texel, e) in tiles.iter_mut().zip(v.irradiance_tile(i)) {
+                *texel = [e.x, e.y, e.z, 0.0];
             }
-        }
+        });
         let g = &v.grid;
         let uniforms = FarGridUniforms {
             origin: [g.origin.x, g.origin.y, g.origin.z, 1.0],
@@ -220,6 +205,32 @@ impl GpuFarField {
     }
 }
 
+/// An f16 atlas of `count` square tiles of `tile` texels a side, `row` tiles per row (texel
+/// rows top to bottom); `fill(i, texels)` writes probe i's tile, row-major. Returns the texels
+/// (C channels each) and the atlas size.
+fn atlas<const C: usize>(
+    count: usize,
+    row: u32,
+    tile: u32,
+    fill: impl Fn(usize, &mut [[f32; C]]),
+) -> (Vec<half::f16>, (u32, u32)) {
+    let (w, h) = (row * tile, (count as u32).div_ceil(row).max(1) * tile);
+    let mut out = vec![half::f16::ZERO; (w * h) as usize * C];
+    let mut texels = vec![[0f32; C]; (tile * tile) as usize];
+    for i in 0..count {
+        fill(i, &mut texels);
+        let (tx, ty) = ((i as u32 % row) * tile, (i as u32 / row) * tile);
+        for (k, texel) in texels.iter().enumerate() {
+            let (x, y) = (k as u32 % tile, k as u32 / tile);
+            let at = (((ty + y) * w + tx + x) as usize) * C;
+            for (o, &c) in out[at..at + C].iter_mut().zip(texel) {
+                *o = half::f16::from_f32(c);
+            }
+        }
+    }
+    (out, (w, h))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -228,24 +239,23 @@ mod tests {
     /// far.wgsl's layout constants are the Rust ones (and env.wgsl's irradiance map rows).
     #[test]
     fn far_wgsl_constants_match_the_volume_layout() {
-        let value = |name: &str| -> f32 {
-            let line = crate::util::FAR_WGSL
+        let constant = |source: &str, name: &str| -> f32 {
+            let line = source
                 .lines()
                 .find(|l| l.starts_with(&format!("const {name}:")))
-                .unwrap_or_else(|| panic!("far.wgsl declares {name}"));
+                .unwrap_or_else(|| panic!("the WGSL declares {name}"));
             let v = line.split('=').nth(1).unwrap().trim().trim_end_matches(';');
             v.trim_end_matches('u').parse().unwrap()
         };
+        let value = |name: &str| constant(crate::util::FAR_WGSL, name);
         assert_eq!(value("FAR_TEXELS"), PROBE_TEXELS as f32);
         assert_eq!(value("FAR_VIS_RES"), VIS_RES as f32);
         assert_eq!(value("FAR_TILE"), VIS_TILE as f32);
         assert_eq!(value("FAR_IRR_RES"), IRR_RES as f32);
         assert_eq!(value("FAR_IRR_TILE"), IRR_TILE as f32);
-        let rows = crate::util::ENV_WGSL
-            .lines()
-            .find(|l| l.starts_with("const ENV_IRRADIANCE_ROWS:"))
-            .and_then(|l| l.split('=').nth(1))
-            .map(|v| v.trim().trim_end_matches(';').parse::<f32>().unwrap());
-        assert_eq!(rows, Some(crate::gpu_env::IRRADIANCE_SIZE.1 as f32));
+        assert_eq!(
+            constant(crate::util::ENV_WGSL, "ENV_IRRADIANCE_ROWS"),
+            crate::gpu_env::IRRADIANCE_SIZE.1 as f32
+        );
     }
 }

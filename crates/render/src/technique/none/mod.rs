@@ -13,7 +13,7 @@ use crate::util;
 pub const SHADER: &str = include_str!("none.wgsl");
 
 pub fn source() -> String {
-    util::compose(&[util::COMMON_WGSL, util::ENV_WGSL, util::FAR_WGSL, SHADER])
+    util::compose(&[util::COMMON_WGSL, SHADER])
 }
 
 crate::bind_group! {
