@@ -109,7 +109,7 @@ pub fn run(args: BenchArgs) -> Result<()> {
     let methods = crate::options::methods_and_frames(args.methods.as_deref(), args.frames)?;
     crate::options::check_orbit(args.orbit)?;
     if let Some(p) = &args.json {
-        crate::render::check_parent_dir(p)?;
+        crate::output::check_parent_dir(p)?;
     }
     let params = args.technique.params()?;
     let size = crate::options::parse_size(&args.scene.size)?;
@@ -244,7 +244,7 @@ pub fn run(args: BenchArgs) -> Result<()> {
     print_table(&report);
     if let Some(p) = &args.json {
         let text = serde_json::to_string_pretty(&report)?;
-        crate::render::save_atomically(p, |tmp| std::fs::write(tmp, &text).map_err(Into::into))?;
+        crate::output::save_atomically(p, |tmp| std::fs::write(tmp, &text).map_err(Into::into))?;
         eprintln!("nearfield: wrote {}", p.display());
     }
     Ok(())

@@ -191,7 +191,7 @@ pub fn run(args: CompareArgs) -> Result<()> {
         if p.extension().and_then(|e| e.to_str()) != Some("png") {
             return Err(BadInput(format!("--strip {}: must be a .png file", p.display())).into());
         }
-        crate::render::check_parent_dir(p)?;
+        crate::output::check_parent_dir(p)?;
     }
     std::fs::create_dir_all(&args.out)
         .with_context(|| format!("cannot create {}", args.out.display()))?;
@@ -231,7 +231,7 @@ pub fn run(args: CompareArgs) -> Result<()> {
     };
     let (w, h) = size;
     let png = |img: image::RgbImage, path: std::path::PathBuf| {
-        crate::render::save_atomically(&path, |tmp| {
+        crate::output::save_atomically(&path, |tmp| {
             img.save_with_format(tmp, image::ImageFormat::Png)
                 .map_err(anyhow::Error::from)
         })

@@ -30,7 +30,7 @@ pub fn run(args: ExportArgs) -> Result<()> {
         ))
         .into());
     }
-    crate::render::check_parent_dir(&args.out)?;
+    crate::output::check_parent_dir(&args.out)?;
     let (w, h) = crate::options::parse_size(&args.scene.size)?;
     let loaded = args.scene.load()?;
     nearfield_scene::export::write_gltf(

@@ -343,7 +343,7 @@ pub fn run(args: BakeArgs) -> Result<()> {
         ))
         .into());
     }
-    crate::render::check_parent_dir(&args.out)?;
+    crate::output::check_parent_dir(&args.out)?;
     if let Some(t) = args.threads {
         if t == 0 || t > 4096 {
             return Err(BadInput(format!("--threads {t}: must be in 1..=4096")).into());

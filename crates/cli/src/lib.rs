@@ -14,6 +14,7 @@ pub mod export;
 pub mod far;
 pub mod fit;
 pub mod options;
+pub mod output;
 pub mod pareto;
 pub mod reference;
 pub mod render;

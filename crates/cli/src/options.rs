@@ -1,5 +1,5 @@
 //! Options shared by every command: the scene, its environment, the camera, the image size and
-//! the adapter (DESIGN.md, "scene opts").
+//! the adapter (docs/src/cli.md, "Scene options").
 
 use crate::BadInput;
 use anyhow::Result;

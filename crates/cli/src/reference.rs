@@ -27,7 +27,7 @@ pub struct ReferenceOpts {
     #[arg(long)]
     pub threads: Option<usize>,
     /// What the senders of indirect-irradiance (and diffuse) emit: physical (their direct light
-    /// with shadows, DESIGN.md) or unshadowed (V ≡ 1 at the sender, for analysis).
+    /// with shadows, docs/src/aovs.md) or unshadowed (V ≡ 1 at the sender, for analysis).
     #[arg(long, default_value = "physical")]
     pub senders: String,
 }
@@ -223,7 +223,7 @@ pub fn run(args: ReferenceArgs) -> Result<()> {
     let loaded = args.scene.load()?;
     loaded.report_sun();
     let (img, _) = compute(&args.scene, &args.reference, &loaded, &settings)?;
-    crate::render::save_atomically(&output, |tmp| exr_io::write(&img, tmp).map_err(Into::into))?;
+    crate::output::save_atomically(&output, |tmp| exr_io::write(&img, tmp).map_err(Into::into))?;
     eprintln!("nearfield: wrote {}", output.display());
     Ok(())
 }
@@ -237,5 +237,5 @@ fn check_exr_output(path: &Path) -> Result<()> {
         ))
         .into());
     }
-    crate::render::check_parent_dir(path)
+    crate::output::check_parent_dir(path)
 }

@@ -1,4 +1,4 @@
-//! Per-pixel estimators of every AOV (DESIGN.md's definitions).
+//! Per-pixel estimators of every AOV (the definitions of docs/src/aovs.md).
 //!
 //! For the primary hit P (normal n, albedo ρ), N cosine-weighted directions ωᵢ (pdf cos θ/π):
 //! - `ao` ≈ mean V_R(ωᵢ);
@@ -7,7 +7,7 @@
 //!   V_R L_env cos θ/π / (pdf_cos + pdf_env);
 //! - `indirect-irradiance` ≈ mean (1 − V_R(ωᵢ)) L_o(x′ᵢ), x′ᵢ the closest hit within R, with
 //!   L_o(x′) = Le(x′) + ρ(x′) (E_env(n′)/π + Σ_l E_l(x′, n′)/π), n′ the shading normal of the
-//!   side facing P. [`Senders::Physical`] (the default, DESIGN.md): the physical direct light
+//!   side facing P. [`Senders::Physical`] (default, docs/src/aovs.md): the physical direct light
 //!   of x′ — E_env/π estimated at x′ with the full shadow test V_∞ by one cosine-weighted and one
 //!   environment-drawn direction (balance heuristic, as at P), and each light with its shadow
 //!   ray (a disc light: one direction drawn uniformly over its disc). So `diffuse` at R = ∞ is

@@ -1,7 +1,7 @@
 //! Unoccluded diffuse irradiance of the environment, E(n)/π, for every normal: the exact
 //! cosine-weighted integral of the map, tabulated on a lat-long grid and read bilinearly. Used for
-//! the outgoing radiance of surfaces hit by indirect rays (DESIGN.md's L_o "with full
-//! visibility").
+//! the outgoing radiance of surfaces hit by indirect rays with `--senders unshadowed` (the L_o of
+//! docs/src/aovs.md with full visibility, V ≡ 1 at x′).
 //!
 //! The map is first reduced by solid-angle-weighted box filtering to at most 256×128 texels (the
 //! cosine lobe is smooth, so this keeps the integral to ~1e-4). The [`EXACT_TEXELS`] texels that

@@ -1,12 +1,13 @@
 //! nearfield's CPU ground truth: a BVH ray tracer (obvhs) that computes, for the pixels the GPU
-//! shades, exactly the integrals DESIGN.md defines for each AOV, with a per-pixel standard error.
-//! No wgpu: it shares only the scene model (`nearfield_scene`) with the renderer.
+//! shades, exactly the integrals that docs/src/aovs.md defines for each AOV, with a per-pixel
+//! standard error. No wgpu: it shares only the scene model (`nearfield_scene`) with the renderer.
 //!
 //! Same camera model and pixel centres as the rasterizer (`Camera::primary_ray`), the same
-//! environment lookup (`Environment::radiance`, bilinear, DESIGN.md convention), the same albedo
-//! (`Scene::base_color`: factor × bilinear sRGB-decoded texture) and the same shading normals
-//! (see [`tracer`]). Hemisphere integrals use cosine-weighted samples around the shading normal;
-//! directions below the geometric tangent plane count as blocked (the surface itself is there).
+//! environment lookup (`Environment::radiance`, bilinear, the lat-long convention of
+//! docs/src/conventions.md), the same albedo (`Scene::base_color`: factor × bilinear
+//! sRGB-decoded texture) and the same shading normals (see [`tracer`]). Hemisphere integrals use
+//! cosine-weighted samples around the shading normal; directions below the geometric tangent
+//! plane count as blocked (the surface itself is there).
 
 pub mod bake;
 pub mod cache;
@@ -85,7 +86,7 @@ impl ReferenceAov {
     }
 }
 
-/// What the senders x′ of `indirect-irradiance` emit (DESIGN.md).
+/// What the senders x′ of `indirect-irradiance` emit (L_o of docs/src/aovs.md).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
 pub enum Senders {
     /// Their physical direct light: environment with the full shadow test, lights with shadows.

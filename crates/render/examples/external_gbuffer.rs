@@ -3,7 +3,7 @@
 //! It rasterises a small scene (nearfield's built-in `boxes`, as plain triangles) with its own
 //! shader into its own textures — not nearfield's `FrameTargets`, not nearfield's G-buffer pass —
 //! shades a direct radiance of its own, and runs `ssdo` and `hbil` on those images through the
-//! documented inputs (`nearfield_render::inputs::NearFieldInputs`). It reads `ao` back and
+//! documented inputs (`nearfield_render::contract::io::NearFieldInputs`). It reads `ao` back and
 //! prints its mean over the surface pixels. What it needs from nearfield besides the technique:
 //! the `Frame` uniform (camera matrices: `FrameUniforms`) and the environment (`GpuEnvironment`),
 //! which together are group 0 of every pass.
@@ -14,9 +14,9 @@
 //! `tests/external_gbuffer.rs` runs the same scene and camera through nearfield's `Renderer` and
 //! checks that both give the same ao.
 
+use nearfield_render::contract::io::{NearFieldInputs, NearFieldOutputs};
 use nearfield_render::frame::{CameraMatrices, FrameInputs, FrameUniforms, PostUniforms, Tonemap};
 use nearfield_render::gpu_env::GpuEnvironment;
-use nearfield_render::inputs::{NearFieldInputs, NearFieldOutputs};
 use nearfield_render::passes::FrameGroup;
 use nearfield_render::profiler::GpuProfiler;
 use nearfield_render::technique::{self, FrameInfo, TechniqueContext, TechniqueParams};
@@ -341,7 +341,8 @@ pub fn ao_image(ctx: &GpuContext, method: &str) -> Result<(Vec<f32>, Vec<f32>), 
     let desc = technique::find(method).map_err(|e| e.to_string())?;
     let (_, params) = technique::resolve_params(method, &TechniqueParams::default())
         .map_err(|e| e.to_string())?;
-    let t = (desc.create)(
+    let t = technique::create(
+        desc,
         &TechniqueContext {
             device,
             queue,

@@ -1,4 +1,4 @@
-//! Arbitrary output variables: what `--aov` can write (DESIGN.md's table).
+//! Arbitrary output variables: what `--aov` can write (the table of docs/src/aovs.md).
 
 /// An output of the frame. `final` is the tonemapped sRGB image (PNG); every other AOV is linear
 /// float RGB with alpha 1 on surfaces and 0 on background (EXR).

@@ -159,15 +159,15 @@ impl GpuEnvironment {
 
         // Build both chains.
         let layout = PrefilterBindings::layout(device);
-        let module = crate::passes::shader_module(device, "env prefilter", PREFILTER_WGSL);
-        let downsample = crate::passes::standalone_pipeline(
+        let module = crate::pipeline_cache::shader_module(device, "env prefilter", PREFILTER_WGSL);
+        let downsample = crate::pipeline_cache::standalone_pipeline(
             device,
             "env downsample",
             &module,
             "downsample",
             &layout,
         );
-        let prefilter = crate::passes::standalone_pipeline(
+        let prefilter = crate::pipeline_cache::standalone_pipeline(
             device,
             "env prefilter",
             &module,

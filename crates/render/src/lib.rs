@@ -9,12 +9,12 @@
 pub mod aov;
 pub mod bindings;
 pub mod context;
+pub mod contract;
 pub mod error;
 pub mod far;
 pub mod frame;
 pub mod gpu_env;
 pub mod gpu_scene;
-pub mod inputs;
 pub mod passes;
 pub mod pipeline_cache;
 pub mod profiler;

@@ -247,3 +247,22 @@ pub fn forget(device: &wgpu::Device) {
         }
     }
 }
+
+/// A compute pipeline outside the frame (environment prefiltering, the viewer's display): group
+/// 0 is empty, group 1 is `layout`.
+pub fn standalone_pipeline(
+    device: &wgpu::Device,
+    label: &str,
+    module: &wgpu::ShaderModule,
+    entry_point: &str,
+    layout: &wgpu::BindGroupLayout,
+) -> wgpu::ComputePipeline {
+    compute_pipeline(
+        device,
+        label,
+        module,
+        entry_point,
+        [None, Some(layout)],
+        &[],
+    )
+}

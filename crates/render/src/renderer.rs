@@ -1,15 +1,15 @@
 //! The frame: owns the GPU scene, environment, targets and passes, and runs them in order
-//! (DESIGN.md, "The frame"): G-buffer → shadow maps → direct lighting → technique → composite →
-//! tonemap. Reads AOVs back for output.
+//! (docs/src/architecture.md, "The frame"): G-buffer → shadow maps → direct lighting →
+//! technique → composite → tonemap. Reads AOVs back for output.
 
 use crate::RenderError;
 use crate::aov::{Aov, AovImage};
 use crate::context::GpuContext;
+use crate::contract::io::SceneInputs;
 use crate::far::{FarMode, GpuFarField};
 use crate::frame::{CameraMatrices, FrameInputs, FrameUniforms, PostUniforms, Tonemap};
 use crate::gpu_env::GpuEnvironment;
 use crate::gpu_scene::GpuScene;
-use crate::inputs::SceneInputs;
 use crate::passes::{
     self, FrameGroup, ScreenPass,
     gbuffer::GBufferPass,
@@ -673,7 +673,8 @@ impl Passes {
     ) -> Result<Self, RenderError> {
         let (desc, params) = technique::resolve_params(spec, params)?;
         let direct = passes::direct_lighting::new(device, frame_group, targets, scene, shadows);
-        let technique = (desc.create)(
+        let technique = technique::create(
+            desc,
             &TechniqueContext {
                 device,
                 queue,
@@ -681,7 +682,10 @@ impl Passes {
                 inputs: &targets.near_field_inputs(),
                 outputs: &targets.near_field_outputs(),
                 env,
-                scene: Some(SceneInputs { scene, shadows }),
+                scene: Some(SceneInputs {
+                    scene,
+                    lights: shadows.light_resources(&scene.lights),
+                }),
                 pack_half,
             },
             &params,

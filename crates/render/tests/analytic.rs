@@ -101,9 +101,9 @@ fn bright_plus_x_map_lights_plus_x_faces() {
     assert!(plus > 50 && minus > 50, "{plus} {minus}");
 }
 
-/// The background shows the map through the DESIGN.md formula: encode u (as sin/cos, continuous
-/// across the seam) and v in a map and read it back through the centre pixel looking along each
-/// axis, with and without --env-rotation.
+/// The background shows the map through the lat-long formula (docs/src/conventions.md): encode u
+/// (as sin/cos, continuous across the seam) and v in a map and read it back through the centre
+/// pixel looking along each axis, with and without --env-rotation.
 #[test]
 fn lat_long_convention_on_the_gpu() {
     let Some(ctx) = common::context() else { return };

@@ -47,7 +47,7 @@ fn small_sky() -> Environment {
 
 /// A lone plane: ao = 1 and no indirect light at any radius, with and without interleaving;
 /// gtao's env-irradiance is `none`'s; under a constant white sky hbil's per-slice environment
-/// integral gives env-irradiance = 1 (DESIGN.md's truths).
+/// integral gives env-irradiance = 1 (the closed forms of docs/src/aovs.md).
 #[test]
 fn plane_is_unoccluded() {
     let Some(ctx) = common::context() else { return };
@@ -138,7 +138,7 @@ fn wall_ao_follows_the_curve() {
         ("gtao:falloff=0", 16, 0.015, 0.06),
         // The bitmask with the second layer: the floor and the wall have nothing behind them,
         // so the sectors below each sample are occupied to the ray's end, as a horizon. At the
-        // base 0.5 ± 0.02 (DESIGN.md's cosine-weighted ao).
+        // base 0.5 ± 0.02 (the cosine-weighted ao of docs/src/aovs.md).
         (
             "vbgi:interleaved=off+slices=8+steps=32+denoise=off",
             1,

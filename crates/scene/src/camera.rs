@@ -1,7 +1,7 @@
 //! Pinhole cameras, the camera JSON file format and auto-framing.
 //!
-//! Conventions (DESIGN.md): right-handed world, +Y up; view space looks down −Z; wgpu clip depth
-//! 0..1; pixel centres at (x+0.5, y+0.5) with row 0 at the top.
+//! Conventions (docs/src/conventions.md): right-handed world, +Y up; view space looks down −Z;
+//! wgpu clip depth 0..1; pixel centres at (x+0.5, y+0.5) with row 0 at the top.
 
 use crate::{Aabb, SceneError};
 use glam::{Mat4, Vec2, Vec3};

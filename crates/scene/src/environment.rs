@@ -1,100 +1,17 @@
 //! Environment lighting: equirectangular (lat-long) radiance maps.
 //!
-//! The convention (DESIGN.md; other tools depend on this exact formula): for a world direction d,
-//! `v = acos(d.y) / π` (row 0 = zenith) and `u = atan2(d.x, −d.z) / (2π)` wrapped to [0, 1), so
-//! u = 0 is −Z, u = 0.25 is +X and the image centre (u = 0.5) is +Z. `--env-rotation DEG` turns
-//! the map about +Y: a feature seen in direction d₀ of the unrotated map is seen in direction
-//! R_y(DEG)·d₀. Lookups are bilinear between texel centres, wrapping in u and clamping in v; the
-//! GPU sampler (repeat in u, clamp-to-edge in v) does the same.
+//! The convention (docs/src/conventions.md; other tools depend on this exact formula): for a
+//! world direction d, `v = acos(d.y) / π` (row 0 = zenith) and `u = atan2(d.x, −d.z) / (2π)`
+//! wrapped to [0, 1), so u = 0 is −Z, u = 0.25 is +X and the image centre (u = 0.5) is +Z.
+//! `--env-rotation DEG` turns the map about +Y: a feature seen in direction d₀ of the unrotated
+//! map is seen in direction R_y(DEG)·d₀. Lookups are bilinear between texel centres, wrapping in
+//! u and clamping in v; the GPU sampler (repeat in u, clamp-to-edge in v) does the same.
 
-use crate::{SceneError, sky};
+use crate::SceneError;
+use crate::light::{Light, LightKind};
 use glam::{Vec2, Vec3};
 use std::f32::consts::PI;
-use std::path::{Path, PathBuf};
-
-/// Where the environment comes from, as written after `--env`.
-#[derive(Clone, Debug, PartialEq, Default)]
-pub enum EnvSource {
-    /// A Radiance `.hdr` or OpenEXR `.exr` lat-long map.
-    File(PathBuf),
-    /// The built-in analytic sky with a sun ([`crate::sky`]).
-    #[default]
-    Sky,
-    /// Uniform radiance (linear RGB).
-    Constant(Vec3),
-}
-
-impl EnvSource {
-    /// Parses `sky`, `constant:R,G,B` (or `constant:L`) or a file path.
-    pub fn parse(s: &str) -> Result<Self, SceneError> {
-        if s == "sky" {
-            return Ok(EnvSource::Sky);
-        }
-        if let Some(rest) = s.strip_prefix("constant:") {
-            let vals: Result<Vec<f32>, _> = rest.split(',').map(|v| v.trim().parse()).collect();
-            let bad = || {
-                SceneError::Argument(format!(
-                    "--env {s}: expected constant:R,G,B (or constant:L) with finite, non-negative numbers"
-                ))
-            };
-            let vals = vals.map_err(|_| bad())?;
-            let rgb = match vals.as_slice() {
-                [l] => Vec3::splat(*l),
-                [r, g, b] => Vec3::new(*r, *g, *b),
-                _ => return Err(bad()),
-            };
-            if !rgb.is_finite() || rgb.min_element() < 0.0 {
-                return Err(bad());
-            }
-            return Ok(EnvSource::Constant(rgb));
-        }
-        Ok(EnvSource::File(PathBuf::from(s)))
-    }
-
-    /// Builds the environment map (whole: `--sun off`).
-    pub fn load(&self) -> Result<Environment, SceneError> {
-        match self {
-            EnvSource::File(p) => Environment::load(p),
-            EnvSource::Sky => Ok(sky::Sky::default().to_environment()),
-            EnvSource::Constant(c) => Ok(Environment::constant(*c)),
-        }
-    }
-
-    /// Builds the environment map with its sun split out under `SunMode::Auto`
-    /// ([`crate::sun`]): the built-in sky's sun exactly, a file's by [`crate::sun::find`].
-    /// Returns the map and the log line saying what was found (none for `off` and constants).
-    pub fn load_split(
-        &self,
-        mode: crate::sun::SunMode,
-    ) -> Result<(Environment, Option<String>), SceneError> {
-        if mode == crate::sun::SunMode::Off {
-            return Ok((self.load()?, None));
-        }
-        match self {
-            EnvSource::Sky => {
-                let env = sky::Sky::default().to_split_environment();
-                let line = env.sun.map(|s| format!("sky: {}", s.describe()));
-                Ok((env, line))
-            }
-            EnvSource::Constant(c) => Ok((Environment::constant(*c), None)),
-            EnvSource::File(p) => {
-                let mut env = Environment::load(p)?;
-                let line = crate::sun::split(&mut env, mode);
-                Ok((env, line))
-            }
-        }
-    }
-}
-
-impl std::fmt::Display for EnvSource {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        match self {
-            EnvSource::File(p) => write!(f, "{}", p.display()),
-            EnvSource::Sky => write!(f, "sky"),
-            EnvSource::Constant(c) => write!(f, "constant:{},{},{}", c.x, c.y, c.z),
-        }
-    }
-}
+use std::path::Path;
 
 /// An equirectangular radiance map (linear RGB), with its rotation about +Y and intensity.
 #[derive(Clone, Debug)]
@@ -110,7 +27,7 @@ pub struct Environment {
     pub intensity: f32,
     /// The sun split out of the map (`--sun auto`, [`crate::sun`]); `texels` are then the
     /// residual. `None`: the map is whole.
-    pub sun: Option<crate::sun::Sun>,
+    pub sun: Option<Sun>,
 }
 
 impl Environment {
@@ -356,7 +273,7 @@ pub fn irradiance_map_v(v: f32, height: u32) -> f32 {
     (v * (height.max(2) - 1) as f32 + 0.5) / height as f32
 }
 
-/// The DESIGN.md convention, unrotated: direction → (u, v).
+/// The convention of docs/src/conventions.md, unrotated: direction → (u, v).
 pub fn dir_to_uv(d: Vec3) -> Vec2 {
     let d = d.normalize();
     let v = d.y.clamp(-1.0, 1.0).acos() / PI;
@@ -382,6 +299,53 @@ pub fn uv_to_dir(uv: Vec2) -> Vec3 {
 pub fn rotate_y(d: Vec3, angle: f32) -> Vec3 {
     let (s, c) = angle.sin_cos();
     Vec3::new(c * d.x + s * d.z, d.y, -s * d.x + c * d.z)
+}
+
+/// Rec. 709 luminance weights.
+pub const LUMINANCE: Vec3 = Vec3::new(0.2126, 0.7152, 0.0722);
+
+/// A sun in the map's own frame (unrotated, without the environment's `intensity`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Sun {
+    /// Unit direction towards the sun's centre.
+    pub direction: Vec3,
+    /// Angular radius of the disc (radians).
+    pub angular_radius: f32,
+    /// Irradiance at normal incidence from the whole disc (linear RGB, W/m² in map units).
+    pub irradiance: Vec3,
+}
+
+impl Sun {
+    /// The disc light of this sun for a map turned by `rotation` and scaled by `intensity`.
+    pub fn light(&self, rotation: f32, intensity: f32) -> Light {
+        let towards = rotate_y(self.direction, rotation);
+        let lux = self.irradiance.max_element().max(0.0);
+        Light {
+            kind: LightKind::Directional {
+                direction: -towards,
+                angular_radius: self.angular_radius,
+            },
+            color: if lux > 0.0 {
+                self.irradiance / lux
+            } else {
+                Vec3::ONE
+            },
+            intensity: lux * intensity,
+            range: None,
+        }
+    }
+
+    /// One line for the log: what was found.
+    pub fn describe(&self) -> String {
+        let d = self.direction;
+        let elevation = d.y.clamp(-1.0, 1.0).asin().to_degrees();
+        let azimuth = d.x.atan2(-d.z).to_degrees().rem_euclid(360.0);
+        format!(
+            "sun at elevation {elevation:.1}°, azimuth {azimuth:.1}°, radius {:.2}°, irradiance {:.3} (luminance, map units)",
+            self.angular_radius.to_degrees(),
+            self.irradiance.dot(LUMINANCE)
+        )
+    }
 }
 
 #[cfg(test)]
@@ -470,16 +434,5 @@ mod tests {
             .map(|y| env.texel_solid_angle(y) * env.width as f32)
             .sum();
         assert!((total - 4.0 * PI).abs() < 1e-4);
-    }
-
-    #[test]
-    fn constant_parse() {
-        assert_eq!(
-            EnvSource::parse("constant:1,2,3").unwrap(),
-            EnvSource::Constant(Vec3::new(1.0, 2.0, 3.0))
-        );
-        assert!(EnvSource::parse("constant:1,2").is_err());
-        assert!(EnvSource::parse("constant:-1").is_err());
-        assert!(EnvSource::parse("constant:nan").is_err());
     }
 }

@@ -13,6 +13,7 @@
 pub mod atomic;
 pub mod builtin;
 pub mod camera;
+pub mod env_source;
 pub mod environment;
 pub mod error;
 pub mod export;
@@ -28,7 +29,8 @@ pub mod sky;
 pub mod sun;
 
 pub use camera::{Camera, CameraFile};
-pub use environment::{EnvSource, Environment};
+pub use env_source::EnvSource;
+pub use environment::Environment;
 pub use error::{SceneError, one_line};
 pub use light::{Light, LightKind};
 pub use material::{AlphaMode, Material, Texture, TextureColorSpace};

@@ -19,7 +19,7 @@
 //!   residual holds L_ring in the region, so map + disc keep the map's flux exactly.
 //! - `constant:…`: no sun.
 
-use crate::{Environment, Light, LightKind, SceneError};
+use crate::{Environment, SceneError};
 use glam::Vec3;
 use std::f32::consts::PI;
 
@@ -31,7 +31,8 @@ pub const MAX_SOLID_ANGLE: f32 = 3.83e-3;
 /// Smallest share of the map's flux (∫ L dω, luminance) a sun carries.
 pub const MIN_SHARE: f32 = 0.05;
 
-const LUMINANCE: Vec3 = Vec3::new(0.2126, 0.7152, 0.0722);
+use crate::environment::LUMINANCE;
+pub use crate::environment::Sun;
 
 /// `--sun`: split the environment's sun into a disc light, or keep the map whole.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default, Hash)]
@@ -59,50 +60,6 @@ impl SunMode {
             SunMode::Auto => "auto",
             SunMode::Off => "off",
         }
-    }
-}
-
-/// A sun in the map's own frame (unrotated, without the environment's `intensity`).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Sun {
-    /// Unit direction towards the sun's centre.
-    pub direction: Vec3,
-    /// Angular radius of the disc (radians).
-    pub angular_radius: f32,
-    /// Irradiance at normal incidence from the whole disc (linear RGB, W/m² in map units).
-    pub irradiance: Vec3,
-}
-
-impl Sun {
-    /// The disc light of this sun for a map turned by `rotation` and scaled by `intensity`.
-    pub fn light(&self, rotation: f32, intensity: f32) -> Light {
-        let towards = crate::environment::rotate_y(self.direction, rotation);
-        let lux = self.irradiance.max_element().max(0.0);
-        Light {
-            kind: LightKind::Directional {
-                direction: -towards,
-                angular_radius: self.angular_radius,
-            },
-            color: if lux > 0.0 {
-                self.irradiance / lux
-            } else {
-                Vec3::ONE
-            },
-            intensity: lux * intensity,
-            range: None,
-        }
-    }
-
-    /// One line for the log: what was found.
-    pub fn describe(&self) -> String {
-        let d = self.direction;
-        let elevation = d.y.clamp(-1.0, 1.0).asin().to_degrees();
-        let azimuth = d.x.atan2(-d.z).to_degrees().rem_euclid(360.0);
-        format!(
-            "sun at elevation {elevation:.1}°, azimuth {azimuth:.1}°, radius {:.2}°, irradiance {:.3} (luminance, map units)",
-            self.angular_radius.to_degrees(),
-            self.irradiance.dot(LUMINANCE)
-        )
     }
 }
 
@@ -233,6 +190,7 @@ pub fn split(env: &mut Environment, mode: SunMode) -> Option<String> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::LightKind;
 
     fn map_with_disc(radius_deg: f32, boost: f32) -> (Environment, Vec3) {
         let dir = Vec3::new(0.3, 0.6, -0.7).normalize();

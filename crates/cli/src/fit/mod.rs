@@ -684,7 +684,7 @@ pub fn run(args: FitArgs) -> Result<()> {
         adapter: nearfield_render::context::describe(&ctx.adapter_info()),
     };
     let json = serde_json::to_string_pretty(&file).expect("plain data");
-    crate::render::save_atomically(&args.out, |tmp| {
+    crate::output::save_atomically(&args.out, |tmp| {
         std::fs::write(tmp, json.as_bytes()).map_err(Into::into)
     })?;
 

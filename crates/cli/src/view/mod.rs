@@ -57,7 +57,7 @@ pub fn run(args: ViewArgs) -> Result<()> {
         if args.frames.is_none() {
             return Err(BadInput("--screenshot needs --frames N".into()).into());
         }
-        crate::render::check_output(nearfield_render::Aov::Final, path)?;
+        crate::output::check_output(nearfield_render::Aov::Final, path)?;
     }
     let script = match &args.script {
         Some(path) => {

@@ -673,7 +673,7 @@ impl Session {
 
     /// Saves the display image (the 3D view without the interface) as PNG.
     pub fn screenshot(&self, path: &Path) -> Result<()> {
-        crate::render::check_parent_dir(path)?;
+        crate::output::check_parent_dir(path)?;
         let encoder = self.ctx.device.create_command_encoder(&Default::default());
         if let Some(why) = self.ctx.lost() {
             return Err(nearfield_render::RenderError::Lost(why).into());
@@ -688,7 +688,7 @@ impl Session {
         let (w, h) = self.display.size();
         let img = image::RgbaImage::from_raw(w, h, bytes)
             .ok_or_else(|| anyhow::anyhow!("display image has a wrong size"))?;
-        crate::render::save_atomically(path, |tmp| {
+        crate::output::save_atomically(path, |tmp| {
             img.save_with_format(tmp, image::ImageFormat::Png)
                 .map_err(anyhow::Error::from)
         })
@@ -781,12 +781,13 @@ pub fn env_name(source: &EnvSource) -> String {
     }
 }
 
-/// Writes the camera JSON of DESIGN.md (what `render --camera` and `reference --camera` read).
+/// Writes the camera JSON of docs/src/conventions.md (what `render --camera` and
+/// `reference --camera` read).
 pub fn save_camera(camera: &Camera, path: &Path) -> Result<(), String> {
-    crate::render::check_parent_dir(path).map_err(|e| e.to_string())?;
+    crate::output::check_parent_dir(path).map_err(|e| e.to_string())?;
     let text = serde_json::to_string_pretty(&CameraFile::from_camera(camera))
         .map_err(|e| e.to_string())?;
-    crate::render::save_atomically(path, |tmp| {
+    crate::output::save_atomically(path, |tmp| {
         std::fs::write(tmp, format!("{text}\n")).map_err(anyhow::Error::from)
     })
     .map_err(|e| format!("{e:#}"))

@@ -1,5 +1,5 @@
 //! AOV extraction (compute): one AOV of the last frame into `targets.aov` (rgba32float), as
-//! DESIGN.md defines it. See aov.wgsl.
+//! docs/src/aovs.md defines it. See aov.wgsl.
 
 use super::{ComputeStep, FrameGroup, PingPong, ScreenPass};
 use crate::bindings::{PassLayout, kind};
@@ -56,7 +56,7 @@ pub fn pass_layout() -> PassLayout {
 
 pub fn new(device: &wgpu::Device, frame: &FrameGroup, targets: &FrameTargets) -> ScreenPass {
     let layout = AovBindings::layout(device);
-    let module = super::shader_module(device, "aov", &source());
+    let module = crate::pipeline_cache::shader_module(device, "aov", &source());
     let own = PingPong::from_fn(|side| {
         AovBindings {
             gb_normal: &targets.normal.view,

@@ -1,6 +1,6 @@
 // aov.wgsl — copies one AOV (frame.aov, numbered as crate::Aov) into an rgba32float image
-// for output: rgb = the AOV's value exactly as DESIGN.md defines it, a = 1 on surfaces, 0 on
-// background (where rgb = 0, except for `radiance`, which shows the environment).
+// for output: rgb = the AOV's value exactly as docs/src/aovs.md defines it, a = 1 on surfaces,
+// 0 on background (where rgb = 0, except for `radiance`, which shows the environment).
 //
 //   1 radiance  2 albedo  3 normal (world, unit)  4 depth (view depth, m)  5 ao
 //   6 env-irradiance  7 light-irradiance  8 indirect-irradiance

@@ -5,7 +5,7 @@
 
 use super::{ComputeStep, FrameGroup};
 use crate::bindings::{PassLayout, kind};
-use crate::inputs::NearFieldInputs;
+use crate::contract::io::NearFieldInputs;
 use crate::targets::HDR_FORMAT;
 use crate::util;
 use bytemuck::{Pod, Zeroable};
@@ -97,7 +97,7 @@ pub struct BlurChain {
 impl BilateralBlur {
     pub fn new(device: &wgpu::Device, frame: &FrameGroup, settings: BlurSettings) -> Self {
         let layout = BlurBindings::layout(device);
-        let module = super::shader_module(device, "bilateral blur", &source());
+        let module = crate::pipeline_cache::shader_module(device, "bilateral blur", &source());
         let params = |direction: [i32; 2]| blur_params(settings, direction);
         let buffer = |p: BlurParams| {
             device.create_buffer_init(&wgpu::util::BufferInitDescriptor {

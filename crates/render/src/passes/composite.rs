@@ -48,7 +48,7 @@ pub fn pass_layout() -> PassLayout {
 
 pub fn new(device: &wgpu::Device, frame: &FrameGroup, targets: &FrameTargets) -> ScreenPass {
     let layout = CompositeBindings::layout(device);
-    let module = super::shader_module(device, "composite", &source());
+    let module = crate::pipeline_cache::shader_module(device, "composite", &source());
     let own = CompositeBindings {
         gb_normal: &targets.normal.view,
         gb_albedo: &targets.albedo.view,

@@ -71,7 +71,7 @@ pub fn new(
     shadows: &ShadowPass,
 ) -> ScreenPass {
     let layout = DirectLightingBindings::layout(device);
-    let module = super::shader_module(device, "direct lighting", &source());
+    let module = crate::pipeline_cache::shader_module(device, "direct lighting", &source());
     let l = shadows.light_resources(&scene.lights);
     let own = PingPong::from_fn(|side| {
         DirectLightingBindings {

@@ -13,7 +13,7 @@
 // Smith visibility and Schlick's Fresnel (Karis 2013), F0 = mix(0.04, ρ, m). (A, B) is Karis'
 // analytic fit of the split-sum BRDF integral ("Physically Based Shading on Mobile", 2014) in
 // place of a lookup table. `direct_radiance` is the outgoing diffuse radiance that near-field
-// techniques gather as indirect light (DESIGN.md's L_o): it is kept for the next frame.
+// techniques gather as indirect light (L_o of docs/src/aovs.md): it is kept for the next frame.
 // Lights and shadows come from shaders/lights.wgsl.
 // Shadows: 3×3 PCF of hardware 2×2 comparisons from the shadow-map array, receiver offset along
 // the normal by `frame.shadow_normal_offset` shadow-map texels (see passes/shadow.rs for both biases).

@@ -138,8 +138,9 @@ pub struct DisplayPass {
 impl DisplayPass {
     pub fn new(device: &wgpu::Device, size: (u32, u32)) -> Self {
         let layout = DisplayBindings::layout(device);
-        let module = super::shader_module(device, "display", &source());
-        let pipeline = super::standalone_pipeline(device, "display", &module, "main", &layout);
+        let module = crate::pipeline_cache::shader_module(device, "display", &source());
+        let pipeline =
+            crate::pipeline_cache::standalone_pipeline(device, "display", &module, "main", &layout);
         let params = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("display params"),
             size: std::mem::size_of::<DisplayParams>() as u64,

@@ -68,7 +68,7 @@ impl GBufferPass {
     pub fn new(device: &wgpu::Device, frame: &FrameGroup, scene: &GpuScene) -> Self {
         let layout = GBufferBindings::layout(device);
         let bind_group = scene.material_bindings().bind_group(device, &layout);
-        let module = super::shader_module(device, "gbuffer", &source());
+        let module = crate::pipeline_cache::shader_module(device, "gbuffer", &source());
         let pipeline = |cull: Option<wgpu::Face>| {
             util::raster_pipeline(
                 device,

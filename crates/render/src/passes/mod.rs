@@ -16,42 +16,10 @@ pub mod rsm;
 pub mod shadow;
 pub mod tonemap;
 
-use crate::bindings::FrameBindings;
-use crate::far::GpuFarField;
-use crate::gpu_env::GpuEnvironment;
 use crate::profiler::GpuProfiler;
 use crate::util;
 
-/// Group 0 of every pass of the frame ([`FrameBindings`]): its layout and bind group, made once
-/// per environment and far field by the renderer.
-pub struct FrameGroup {
-    pub layout: wgpu::BindGroupLayout,
-    pub bind_group: wgpu::BindGroup,
-}
-
-impl FrameGroup {
-    pub fn new(
-        device: &wgpu::Device,
-        frame: &wgpu::Buffer,
-        env: &GpuEnvironment,
-        far: &GpuFarField,
-    ) -> Self {
-        let layout = FrameBindings::layout(device);
-        let bind_group = FrameBindings {
-            frame,
-            env_radiance: &env.radiance_view,
-            env_specular: &env.specular_view,
-            env_sampler: &env.sampler,
-            env_sh: &env.sh_buffer,
-            env_irradiance_map: &env.irradiance_view,
-            far_probes: &far.probes_view,
-            far_visibility: &far.visibility_view,
-            far_irradiance_atlas: &far.irradiance_view,
-        }
-        .bind_group(device, &layout);
-        FrameGroup { layout, bind_group }
-    }
-}
+pub use crate::contract::frame::FrameGroup;
 
 /// Two of a thing a pass keeps across frames: this frame writes one side and reads the other.
 pub struct PingPong<T> {
@@ -82,31 +50,6 @@ impl<T> PingPong<T> {
     pub fn previous(&self, index: u32) -> &T {
         &self.sides[((index + 1) % 2) as usize]
     }
-}
-
-/// A compute shader module: compiled once per device ([`crate::pipeline_cache`]), its entry
-/// points made into pipelines with group 0 (the frame) and the pass's own group 1.
-pub fn shader_module(device: &wgpu::Device, label: &str, source: &str) -> wgpu::ShaderModule {
-    crate::pipeline_cache::shader_module(device, label, source)
-}
-
-/// A compute pipeline outside the frame (environment prefiltering, the viewer's display): group
-/// 0 is empty, group 1 is `layout`.
-pub fn standalone_pipeline(
-    device: &wgpu::Device,
-    label: &str,
-    module: &wgpu::ShaderModule,
-    entry_point: &str,
-    layout: &wgpu::BindGroupLayout,
-) -> wgpu::ComputePipeline {
-    compute_pipeline(
-        device,
-        label,
-        module,
-        entry_point,
-        [None, Some(layout)],
-        &[],
-    )
 }
 
 /// A compute pipeline of `module`'s `entry_point` over groups 0 and 1, specialised by the WGSL

@@ -5,7 +5,7 @@
 
 use super::{ComputeStep, FrameGroup, PingPong};
 use crate::bindings::{PassLayout, kind};
-use crate::inputs::NearFieldInputs;
+use crate::contract::io::NearFieldInputs;
 use crate::profiler::GpuProfiler;
 use crate::targets::HDR_FORMAT;
 use crate::util;
@@ -256,8 +256,9 @@ impl Reprojection {
                 (bg, level_size(size, k))
             })
             .collect();
-        let module = super::shader_module(device, "reproject", &source());
-        let push_pull = super::shader_module(device, "push/pull", &push_pull_source());
+        let module = crate::pipeline_cache::shader_module(device, "reproject", &source());
+        let push_pull =
+            crate::pipeline_cache::shader_module(device, "push/pull", &push_pull_source());
         let step = |module, entry: &'static str, layout| {
             ComputeStep::new(device, entry, module, entry, frame, layout, &[])
         };

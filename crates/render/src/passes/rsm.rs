@@ -94,7 +94,7 @@ pub fn render(
     size: u32,
 ) -> Vec<RsmTexel> {
     let layout = RsmBindings::layout(device);
-    let module = super::shader_module(device, "rsm", &source());
+    let module = crate::pipeline_cache::shader_module(device, "rsm", &source());
     let pipeline = util::raster_pipeline(
         device,
         &util::RasterPipeline {

@@ -17,11 +17,11 @@
 //!   shadows by about a texel: contact shadows start that much late.
 
 use crate::bindings::{PassLayout, kind};
+use crate::contract::formats::DEPTH_FORMAT;
+pub use crate::contract::lights::{LightResources, NoLights};
 use crate::gpu_scene::GpuScene;
 use crate::profiler::GpuProfiler;
-use crate::targets::DEPTH_FORMAT;
 use crate::util;
-use bytemuck::Zeroable;
 use glam::{Mat4, Vec3};
 use nearfield_scene::{Aabb, Camera, LightKind};
 use wgpu::util::DeviceExt;
@@ -78,82 +78,6 @@ pub fn pass_layouts() -> Vec<PassLayout> {
         &["vs_main", "fs_main"],
         ShadowBindings::SLOTS,
     )
-}
-
-/// What a pass that includes shaders/lights.wgsl binds, under these names, in its group 1.
-#[derive(Clone, Copy)]
-pub struct LightResources<'a> {
-    /// `array<GpuLight>`: the light table.
-    pub lights: &'a wgpu::Buffer,
-    /// `array<mat4x4<f32>>`: clip_from_world of every shadow-map layer.
-    pub shadow_clip_from_world: &'a wgpu::Buffer,
-    /// The shadow maps (depth32float array).
-    pub shadow_maps: &'a wgpu::TextureView,
-    /// The comparison sampler of the shadow maps.
-    pub shadow_sampler: &'a wgpu::Sampler,
-}
-
-/// The light bindings of a frame without nearfield's lights (an engine that hands in only its
-/// images): a table of one switched-off light, one identity matrix, a 1×1 shadow map. The frame's
-/// light count is then 0.
-pub struct NoLights {
-    table: wgpu::Buffer,
-    matrices: wgpu::Buffer,
-    map: wgpu::TextureView,
-    sampler: wgpu::Sampler,
-}
-
-impl NoLights {
-    pub fn new(device: &wgpu::Device) -> Self {
-        let buffer = |label, bytes: &[u8]| {
-            device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some(label),
-                contents: bytes,
-                usage: wgpu::BufferUsages::STORAGE,
-            })
-        };
-        let map = device.create_texture(&wgpu::TextureDescriptor {
-            label: Some("no shadow map"),
-            size: wgpu::Extent3d {
-                width: 1,
-                height: 1,
-                depth_or_array_layers: 1,
-            },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format: DEPTH_FORMAT,
-            usage: wgpu::TextureUsages::TEXTURE_BINDING,
-            view_formats: &[],
-        });
-        NoLights {
-            table: buffer(
-                "no lights",
-                bytemuck::bytes_of(&crate::gpu_scene::GpuLight::zeroed()),
-            ),
-            matrices: buffer(
-                "no shadow matrices",
-                bytemuck::bytes_of(&Mat4::IDENTITY.to_cols_array_2d()),
-            ),
-            map: map.create_view(&wgpu::TextureViewDescriptor {
-                dimension: Some(wgpu::TextureViewDimension::D2Array),
-                ..Default::default()
-            }),
-            sampler: device.create_sampler(&wgpu::SamplerDescriptor {
-                compare: Some(wgpu::CompareFunction::LessEqual),
-                ..Default::default()
-            }),
-        }
-    }
-
-    pub fn resources(&self) -> LightResources<'_> {
-        LightResources {
-            lights: &self.table,
-            shadow_clip_from_world: &self.matrices,
-            shadow_maps: &self.map,
-            shadow_sampler: &self.sampler,
-        }
-    }
 }
 
 pub struct ShadowPass {
@@ -387,7 +311,7 @@ impl ShadowPass {
             material_sampler: &scene.material_sampler,
         }
         .bind_group(device, &layout);
-        let module = super::shader_module(device, "shadow", &source());
+        let module = crate::pipeline_cache::shader_module(device, "shadow", &source());
         // No culling: single-sided walls (open boxes) must still cast shadows.
         let pipeline = util::raster_pipeline(
             device,

@@ -34,7 +34,7 @@ pub fn pass_layout() -> PassLayout {
 
 pub fn new(device: &wgpu::Device, frame: &FrameGroup, targets: &FrameTargets) -> ScreenPass {
     let layout = TonemapBindings::layout(device);
-    let module = super::shader_module(device, "tonemap", &source());
+    let module = crate::pipeline_cache::shader_module(device, "tonemap", &source());
     let own = TonemapBindings {
         radiance: &targets.radiance.view,
         out_final: &targets.final_ldr.view,

@@ -25,3 +25,27 @@ declare_settings! {
         svgf_normal: f32 = "64", number(0, 256), "", "svgf: exponent σ_n on the normals' cosine";
     }
 }
+
+/// What the denoiser is run with: the technique's own temporal settings and svgf's.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SvgfConfig {
+    pub temporal: bool,
+    pub history: u32,
+    pub reject_depth: f32,
+    pub reject_normal: f32,
+    pub svgf: SvgfSettings,
+}
+
+impl SvgfConfig {
+    /// svgf's settings with the running mean on (32 frames) and the history tests of the
+    /// horizon techniques' defaults: for techniques without temporal settings of their own.
+    pub fn with_defaults(svgf: SvgfSettings) -> Self {
+        SvgfConfig {
+            temporal: true,
+            history: 32,
+            reject_depth: 0.02,
+            reject_normal: 0.9,
+            svgf,
+        }
+    }
+}

@@ -43,7 +43,7 @@ choice! {
         /// Last frame's diffuse radiance, reprojected (bounces accumulate, HBIL Eq. 17); this
         /// frame's direct radiance on the first frame and after a cut.
         Previous = "previous",
-        /// This frame's direct radiance every frame (exactly one bounce, DESIGN.md's L_o).
+        /// This frame's direct radiance every frame (exactly one bounce, L_o of docs/src/aovs.md).
         Direct = "direct",
     }
 }

@@ -1,8 +1,8 @@
 // common.wgsl — prepended to every screen-space and G-buffer shader.
 //
 // `Frame` mirrors `crate::frame::FrameUniforms` field for field (a naga layout test checks the
-// offsets). Conventions (DESIGN.md): right-handed world, +Y up, view space looks down −Z, pixel
-// centres at (x + 0.5, y + 0.5) with row 0 at the top, wgpu clip depth 0..1.
+// offsets). Conventions (docs/src/conventions.md): right-handed world, +Y up, view space looks
+// down −Z, pixel centres at (x + 0.5, y + 0.5) with row 0 at the top, wgpu clip depth 0..1.
 
 struct Frame {
     clip_from_world: mat4x4<f32>,

@@ -1,7 +1,8 @@
 // env.wgsl — environment bindings and lookups, prepended (after common.wgsl) to passes that read
 // the environment. Its bindings are group 0 (crate::bindings::FrameBindings), shared by every pass.
 //
-// Lat-long convention (DESIGN.md, bit-for-bit the same as nearfield_scene::environment):
+// Lat-long convention (docs/src/conventions.md), bit-for-bit the same as
+// nearfield_scene::environment:
 //   v = acos(d.y) / π (row 0 = zenith), u = atan2(d.x, −d.z) / (2π) wrapped to [0, 1),
 // with d first turned by −rotation about +Y. The sampler repeats in u and clamps in v.
 

@@ -1,9 +1,10 @@
 //! Near-field techniques and their registry.
 //!
 //! A technique reads the G-buffer, the direct radiance (this frame's and last frame's) and the
-//! environment, and writes `ao`, `env_irradiance` and `indirect_irradiance` (DESIGN.md's AOV
-//! definitions; `crate::targets`). The registry is the one list that the command line, the
-//! viewer, `bench` and `compare` enumerate.
+//! environment, and writes `ao`, `env_irradiance` and `indirect_irradiance` (the AOV
+//! definitions of docs/src/aovs.md; the API in [`crate::contract::technique`]). The registry is
+//! the one list that the command line, the viewer, `bench` and `compare` enumerate; [`create`]
+//! makes a technique, with the shared denoiser around it where its declaration asks for it.
 
 pub mod horizon;
 pub mod none;
@@ -13,132 +14,14 @@ pub mod ssdo;
 pub mod vbgi;
 
 use crate::RenderError;
-use crate::gpu_env::GpuEnvironment;
-use crate::inputs::{NearFieldInputs, NearFieldOutputs, SceneInputs};
-use crate::passes::FrameGroup;
-use crate::passes::shadow::{LightResources, NoLights};
-use crate::profiler::GpuProfiler;
+pub use crate::contract::technique::{
+    CheckFn, CreateFn, DenoiseFn, FrameInfo, Technique, TechniqueContext, TechniqueDesc,
+    layered_texture, reject_unknown_keys, screen_texture,
+};
+use crate::passes::denoise;
 pub use crate::settings::{
     Preset, Setting, SettingKind, TechniqueParams, keys, parse_integer, parse_number, parse_on_off,
 };
-
-/// What a technique may bind when it is created.
-pub struct TechniqueContext<'a> {
-    pub device: &'a wgpu::Device,
-    pub queue: &'a wgpu::Queue,
-    /// Group 0 of every pass: the frame's uniforms and the environment.
-    pub frame_group: &'a FrameGroup,
-    /// The images the technique reads.
-    pub inputs: &'a NearFieldInputs<'a>,
-    /// The images it writes.
-    pub outputs: &'a NearFieldOutputs<'a>,
-    /// The environment (its CPU map: ssdo-vpl's lights come from it).
-    pub env: &'a GpuEnvironment,
-    /// nearfield's scene where there is one (lights, shadow maps, geometry for depth peeling
-    /// and virtual point lights); `None` for images from another engine.
-    pub scene: Option<SceneInputs<'a>>,
-    /// The device may use pack2x16float / unpack2x16float.
-    pub pack_half: bool,
-}
-
-impl<'a> TechniqueContext<'a> {
-    /// The scene's light bindings, or `fallback`'s where there is no scene (make it with
-    /// `ctx.scene.is_none().then(|| NoLights::new(device))`).
-    pub fn lights<'b>(&'b self, fallback: Option<&'b NoLights>) -> LightResources<'b>
-    where
-        'a: 'b,
-    {
-        match (self.scene, fallback) {
-            (Some(s), _) => s.shadows.light_resources(&s.scene.lights),
-            (None, Some(f)) => f.resources(),
-            (None, None) => panic!("TechniqueContext::lights: no scene and no fallback"),
-        }
-    }
-
-    /// The scene, or an error naming what needs it.
-    pub fn require_scene(
-        &self,
-        technique: &str,
-        what: &str,
-    ) -> Result<SceneInputs<'a>, RenderError> {
-        self.scene.ok_or_else(|| RenderError::Setting {
-            technique: technique.into(),
-            msg: format!("{what} needs nearfield's scene (lights, shadow maps, geometry)"),
-        })
-    }
-}
-
-/// What a technique learns about the frame it records.
-#[derive(Clone, Copy, Debug)]
-pub struct FrameInfo {
-    /// Frame number since the renderer was made; `index % 2` selects the ping-pong side: this
-    /// frame's direct radiance is `targets.direct_radiance[index % 2]`, last frame's the other.
-    pub index: u32,
-    /// Last frame's buffers may be reused (false on the first frame and after a camera cut).
-    pub history: bool,
-}
-
-impl FrameInfo {
-    /// This frame's side of every ping-pong pair (0 or 1).
-    pub fn side(&self) -> usize {
-        (self.index % 2) as usize
-    }
-}
-
-/// A created technique: records its passes each frame.
-pub trait Technique {
-    fn name(&self) -> &'static str;
-    /// Uploads what this frame needs from the CPU (e.g. the additional cameras' matrices, which
-    /// follow the main camera) before [`Self::encode`].
-    fn prepare(&self, _queue: &wgpu::Queue, _camera: &nearfield_scene::Camera) {}
-    /// Records this frame's passes. Allocates nothing.
-    fn encode(
-        &self,
-        encoder: &mut wgpu::CommandEncoder,
-        profiler: &mut GpuProfiler,
-        frame: FrameInfo,
-    );
-    /// Applies new settings in place where they change only what the passes read from their
-    /// uniforms (floats, toggles, choices): the parameter buffers are written with
-    /// `write_buffer` and the result is `Ok(true)`. `Ok(false)` when a count or another setting
-    /// that shapes pipelines or resources changed: the technique must be rebuilt. On error
-    /// (settings out of range) nothing changes.
-    fn update(
-        &mut self,
-        _queue: &wgpu::Queue,
-        _params: &TechniqueParams,
-    ) -> Result<bool, RenderError> {
-        Ok(false)
-    }
-    /// Technique-specific images of the frame `frame` (full resolution, level 0), by name, for
-    /// inspection and tests (e.g. hbil's reprojected radiance before and after hole filling).
-    fn extras(&self, _frame: FrameInfo) -> Vec<(&'static str, &wgpu::Texture)> {
-        Vec::new()
-    }
-}
-
-/// Builds a technique's pipelines and bind groups.
-pub type CreateFn =
-    fn(&TechniqueContext, &TechniqueParams) -> Result<Box<dyn Technique>, RenderError>;
-
-/// Parses a technique's settings without building anything.
-pub type CheckFn = fn(&TechniqueParams) -> Result<(), String>;
-
-/// A registry entry.
-pub struct TechniqueDesc {
-    pub name: &'static str,
-    /// One line for `--help` and the book.
-    pub summary: &'static str,
-    pub create: CreateFn,
-    /// Parses the settings as `create` does, without a device: what a command checks before it
-    /// loads anything. `create` may still refuse a combination that depends on the image size.
-    pub check: CheckFn,
-    /// Every `--set` key with its documented range and default (what the viewer shows as
-    /// sliders, checkboxes and lists; a test checks that the parser agrees with it).
-    pub settings: &'static [Setting],
-    /// Named `quality` presets (`--set quality=NAME`): the settings each one stands for.
-    pub presets: &'static [Preset],
-}
 
 /// Replaces `quality=NAME` in `params.set` by the preset's settings, placed first so that
 /// explicit settings (and `--samples`, `--radius`) refine it. A technique without presets keeps
@@ -258,60 +141,18 @@ pub fn find(spec: &str) -> Result<&'static TechniqueDesc, RenderError> {
         })
 }
 
-/// Rejects `--set` keys a technique does not know, naming the ones it does.
-pub fn reject_unknown_keys(
-    technique: &str,
+/// Makes the technique `desc` declares from `params` (resolved: see [`resolve_params`]); where
+/// its declaration names a denoiser and the settings choose `denoise=svgf`, the technique writes
+/// the denoiser's images and the denoiser writes `ctx.outputs`.
+pub fn create(
+    desc: &TechniqueDesc,
+    ctx: &TechniqueContext,
     params: &TechniqueParams,
-    known: &[&str],
-) -> Result<(), RenderError> {
-    for (k, _) in &params.set {
-        if !known.contains(&k.as_str()) {
-            return Err(RenderError::Setting {
-                technique: technique.into(),
-                msg: if known.is_empty() {
-                    format!("unknown setting '{k}' (this technique has no settings)")
-                } else {
-                    format!("unknown setting '{k}' (known: {})", known.join(", "))
-                },
-            });
-        }
+) -> Result<Box<dyn Technique>, RenderError> {
+    match desc.denoise {
+        Some(config) => denoise::create_denoised(ctx, params, desc.name, config, |ctx| {
+            (desc.create)(ctx, params)
+        }),
+        None => (desc.create)(ctx, params),
     }
-    Ok(())
-}
-
-/// A screen-sized texture a technique owns (storage + sampled + copy source).
-pub fn screen_texture(
-    device: &wgpu::Device,
-    size: (u32, u32),
-    label: &str,
-    format: wgpu::TextureFormat,
-) -> wgpu::Texture {
-    layered_texture(device, size, 1, label, format)
-}
-
-/// A texture array (`layers` layers of `size`) a technique owns (storage + sampled + copy
-/// source).
-pub fn layered_texture(
-    device: &wgpu::Device,
-    size: (u32, u32),
-    layers: u32,
-    label: &str,
-    format: wgpu::TextureFormat,
-) -> wgpu::Texture {
-    device.create_texture(&wgpu::TextureDescriptor {
-        label: Some(label),
-        size: wgpu::Extent3d {
-            width: size.0,
-            height: size.1,
-            depth_or_array_layers: layers,
-        },
-        mip_level_count: 1,
-        sample_count: 1,
-        dimension: wgpu::TextureDimension::D2,
-        format,
-        usage: wgpu::TextureUsages::STORAGE_BINDING
-            | wgpu::TextureUsages::TEXTURE_BINDING
-            | wgpu::TextureUsages::COPY_SRC,
-        view_formats: &[],
-    })
 }

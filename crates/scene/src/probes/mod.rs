@@ -273,7 +273,7 @@ impl ProbeVolume {
         sh
     }
 
-    /// E(n)/π at `p` from the volume: the irradiance every direction brings (DESIGN's
+    /// E(n)/π at `p` from the volume: the irradiance every direction brings (docs/src/aovs.md's
     /// `far-irradiance` at R = 0), clamped at 0.
     pub fn irradiance(&self, p: Vec3, n: Vec3, v: Vec3) -> Vec3 {
         sh::irradiance_over_pi(&self.sh_at(p, n, v), n).max(Vec3::ZERO)

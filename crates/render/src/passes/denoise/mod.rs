@@ -36,12 +36,14 @@ pub mod variance;
 
 use crate::RenderError;
 use crate::bindings::PassLayout;
-use crate::inputs::NearFieldOutputs;
+use crate::contract::formats::{AO_FORMAT, HDR_FORMAT};
+use crate::contract::io::NearFieldOutputs;
+use crate::contract::technique::{
+    FrameInfo, Technique, TechniqueContext, TechniqueParams, screen_texture,
+};
 use crate::passes::{ComputeStep, PingPong};
 use crate::profiler::GpuProfiler;
-pub use crate::settings::denoise::{Denoise, SvgfSettings};
-use crate::targets::{AO_FORMAT, HDR_FORMAT};
-use crate::technique::{FrameInfo, Technique, TechniqueContext, TechniqueParams, screen_texture};
+pub use crate::settings::denoise::{Denoise, SvgfConfig, SvgfSettings};
 use crate::util;
 use bytemuck::{Pod, Zeroable};
 use wgpu::util::DeviceExt;
@@ -66,45 +68,7 @@ pub fn pass_layouts() -> Vec<PassLayout> {
     ]
 }
 
-/// What the denoiser is run with: the technique's own temporal settings and svgf's.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct SvgfConfig {
-    pub temporal: bool,
-    pub history: u32,
-    pub reject_depth: f32,
-    pub reject_normal: f32,
-    pub svgf: SvgfSettings,
-}
-
-impl SvgfConfig {
-    /// svgf's settings with the running mean on (32 frames) and the history tests of the
-    /// horizon techniques' defaults: for techniques without temporal settings of their own.
-    pub fn with_defaults(svgf: SvgfSettings) -> Self {
-        SvgfConfig {
-            temporal: true,
-            history: 32,
-            reject_depth: 0.02,
-            reject_normal: 0.9,
-            svgf,
-        }
-    }
-
-    fn params(&self, step: i32) -> SvgfParams {
-        SvgfParams {
-            temporal: self.temporal as u32,
-            max_history: self.history as f32,
-            reject_depth: self.reject_depth,
-            reject_normal: self.reject_normal,
-            sigma_l: self.svgf.svgf_luminance,
-            sigma_z: self.svgf.svgf_depth,
-            sigma_n: self.svgf.svgf_normal,
-            step,
-        }
-    }
-}
-
-/// A technique's denoiser choice and svgf configuration, parsed from its parameters.
-pub type ConfigFn = fn(&TechniqueParams) -> Result<(Denoise, SvgfConfig), String>;
+pub use crate::contract::technique::DenoiseFn as ConfigFn;
 
 /// `SvgfParams` in params.wgsl.
 #[repr(C)]
@@ -118,6 +82,21 @@ pub struct SvgfParams {
     pub sigma_z: f32,
     pub sigma_n: f32,
     pub step: i32,
+}
+
+/// The uniforms of à-trous iteration spacing `step` (the first also serves temporal and
+/// variance).
+fn svgf_params(c: &SvgfConfig, step: i32) -> SvgfParams {
+    SvgfParams {
+        temporal: c.temporal as u32,
+        max_history: c.history as f32,
+        reject_depth: c.reject_depth,
+        reject_normal: c.reject_normal,
+        sigma_l: c.svgf.svgf_luminance,
+        sigma_z: c.svgf.svgf_depth,
+        sigma_n: c.svgf.svgf_normal,
+        step,
+    }
 }
 
 /// A technique whose AOVs pass through svgf.
@@ -211,7 +190,7 @@ pub fn create_denoised(
         .map(|k| {
             device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                 label: Some("svgf params"),
-                contents: bytemuck::bytes_of(&config.params(1 << k)),
+                contents: bytemuck::bytes_of(&svgf_params(&config, 1 << k)),
                 usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
             })
         })
@@ -290,7 +269,7 @@ pub fn create_denoised(
     }
     .bind_group(device, &resolve_layout);
     let step = |label: &'static str, source: String, entry: &str, layout| {
-        let module = crate::passes::shader_module(device, label, &source);
+        let module = crate::pipeline_cache::shader_module(device, label, &source);
         ComputeStep::new(device, label, &module, entry, ctx.frame_group, layout, &[])
     };
     let extras = PingPong::from_fn(|side| {
@@ -387,7 +366,7 @@ impl Technique for Denoised {
             return Ok(false);
         }
         for (k, buffer) in self.params.iter().enumerate() {
-            queue.write_buffer(buffer, 0, bytemuck::bytes_of(&config.params(1 << k)));
+            queue.write_buffer(buffer, 0, bytemuck::bytes_of(&svgf_params(&config, 1 << k)));
         }
         self.config = config;
         Ok(true)

@@ -4,8 +4,8 @@
 use super::peel::{PeelBindings, peel_source};
 use super::shade::{ShadeBindings, ShadeParams, source};
 use super::{CAMERA_VIEW_BASE, LayerImages, VIEW_STRIDE, array_view};
+use crate::contract::lights::LightResources;
 use crate::gpu_scene::GpuScene;
-use crate::passes::shadow::ShadowPass;
 use crate::passes::{ComputeStep, FrameGroup};
 use crate::targets;
 use crate::util;
@@ -29,7 +29,7 @@ impl LayerDrawing {
         device: &wgpu::Device,
         frame: &FrameGroup,
         scene: &GpuScene,
-        shadows: &ShadowPass,
+        l: LightResources,
         (peel, cams): (&LayerImages, &LayerImages),
         views: &wgpu::Buffer,
         gbuffer_depth: &wgpu::TextureView,
@@ -61,7 +61,7 @@ impl LayerDrawing {
             raster_group(&peel_depth[1]),
             raster_group(gbuffer_depth),
         ];
-        let module = crate::passes::shader_module(device, "layers raster", &peel_source());
+        let module = crate::pipeline_cache::shader_module(device, "layers raster", &peel_source());
         let raster = util::raster_pipeline(
             device,
             &util::RasterPipeline {
@@ -100,7 +100,6 @@ impl LayerDrawing {
             let emissive = array_view(&images.emissive);
             let depth = array_view(&images.depth);
             let radiance = array_view(&images.radiance);
-            let l = shadows.light_resources(&scene.lights);
             ShadeBindings {
                 shade_params: &params,
                 layer_views: views,
@@ -117,7 +116,7 @@ impl LayerDrawing {
             .bind_group(device, &shade_layout)
         };
         let shade_groups = [shade_group(peel, 0), shade_group(cams, CAMERA_VIEW_BASE)];
-        let shade_module = crate::passes::shader_module(device, "layers shade", &source());
+        let shade_module = crate::pipeline_cache::shader_module(device, "layers shade", &source());
         let shade = ComputeStep::new(
             device,
             "layer shading",

@@ -12,15 +12,15 @@
 //!   scene's bounding sphere and d one of [`CAMERA_DIRECTIONS`] (normalised, in the main
 //!   camera's right/up/back frame); same vertical field of view and aspect, one depth layer.
 //! - Direct radiance of every texel of both: ρ × (unoccluded SH irradiance of the environment +
-//!   (1/π) Σ E_l with shadow maps) + emission — the sender radiance of DESIGN.md's
-//!   `indirect-irradiance`, for bounces from peeled and off-screen geometry.
+//!   (1/π) Σ E_l with shadow maps) + emission — the sender radiance of `indirect-irradiance`
+//!   (docs/src/aovs.md), for bounces from peeled and off-screen geometry.
 //!
 //! Views in `views` (one 256-byte [`LayerView`] each): 0..=2 the peeled layers 2..=4, 3..=6 the
 //! cameras. The blocker test that reads them is `occlusion()` in technique/samples.wgsl.
 
 use super::FrameGroup;
 use crate::bindings::PassLayout;
-use crate::inputs::{NearFieldInputs, SceneInputs};
+use crate::contract::io::{NearFieldInputs, SceneInputs};
 use crate::profiler::GpuProfiler;
 use crate::targets;
 use crate::util;
@@ -318,7 +318,7 @@ impl LayerStack {
         let draw = if settings.active() {
             let need =
                 "depth peeling and additional cameras need nearfield's scene and the depth buffer";
-            let (Some(SceneInputs { scene, shadows }), Some(gbuffer_depth)) = (scene, inputs.depth)
+            let (Some(SceneInputs { scene, lights }), Some(gbuffer_depth)) = (scene, inputs.depth)
             else {
                 return Err(need.into());
             };
@@ -326,7 +326,7 @@ impl LayerStack {
                 device,
                 frame,
                 scene,
-                shadows,
+                lights,
                 (&peel, &cams),
                 &views,
                 gbuffer_depth,

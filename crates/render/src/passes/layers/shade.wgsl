@@ -1,9 +1,9 @@
 // layers.wgsl — direct radiance of the extra layers (passes/layers/): for every texel of a
 // peeled layer or an additional camera, ρ × (unoccluded SH irradiance of the environment +
 // (1/π) Σ E_l · shadow-map visibility) + emission: the senders' outgoing diffuse radiance, an
-// estimate of DESIGN.md's physical direct light of x′ whose environment part is unoccluded (the
-// sun, split out with `--sun auto`, is a shadow-mapped light here). With a probe volume the
-// environment part is the volume's irradiance (far.wgsl), as in direct_lighting.wgsl.
+// estimate of the physical direct light of x′ (docs/src/aovs.md) whose environment part is
+// unoccluded (the sun, split out with `--sun auto`, is a shadow-mapped light here). With a probe
+// volume the environment part is the volume's irradiance (far.wgsl), as in direct_lighting.wgsl.
 
 struct ShadeParams {
     // Index in `layer_views` of this set's first layer, and the number of layers.

@@ -94,7 +94,7 @@ fn search_pixel(texel: vec2<u32>, layer: u32, pixel: vec2<u32>, centre: vec4<f32
     let lf = view_local_frame(x);
     // The light of the visible arcs: the environment at a blurred mip, or the probe volume's
     // radiance at this point.
-    let volume = FAR && params.far == 3u && far_volume();
+    let volume = FAR && params.far == FAR_SLICES && far_volume();
     var far_sh: FarSh;
     if volume {
         let xw = (frame.world_from_view * vec4<f32>(x, 1.0)).xyz;
@@ -135,7 +135,7 @@ fn search_pixel(texel: vec2<u32>, layer: u32, pixel: vec2<u32>, centre: vec4<f32
         near += front.yzw + back.yzw;
         let t1 = front.x;
         let t0 = back.x;
-        if FAR && params.far == 3u {
+        if FAR && params.far == FAR_SLICES {
             // The visible arcs [θ0, 0] and [0, θ1], each in far_steps pieces of equal angle:
             // L_env at the piece's middle × ∫ (n′·ω) |sin θ| dθ over the piece.
             let d_world = to_world(d);

@@ -4,9 +4,20 @@ use super::{Aperture, Far, Settings};
 use crate::passes::denoise::Denoise;
 use bytemuck::{Pod, Zeroable};
 
+/// `HorizonParams::far`: what the far field is (params.wgsl's constants of the same names).
+/// gtao: ao only, the far field from the direct pass's irradiance.
+pub const FAR_AO: u32 = 0;
+/// SH irradiance through the bent cone.
+pub const FAR_SH: u32 = 1;
+/// The pre-convolved diffuse map at the bent normal × F0(ao).
+pub const FAR_ENVMAP: u32 = 2;
+/// The environment (or the probe volume) over the slices' visible arcs.
+pub const FAR_SLICES: u32 = 3;
+
 impl Settings {
-    /// The GPU constants (pure). `size` is the image size.
-    pub fn params(&self, hbil: bool, size: (u32, u32)) -> HorizonParams {
+    /// The GPU constants (pure). `size` is the image size; `near`: the technique gathers
+    /// near-field light (hbil, vbgi), not only occlusion (gtao).
+    pub fn params(&self, near: bool, size: (u32, u32)) -> HorizonParams {
         let scale = if self.interleaved { 4 } else { 1 };
         HorizonParams {
             radius: self.radius,
@@ -15,7 +26,7 @@ impl Settings {
             falloff: self.falloff,
             max_pixels: self.max_pixels,
             scale,
-            indirect: hbil as u32,
+            indirect: near as u32,
             step_power: self.step_power,
             reject_a: self.reject_a,
             reject_b: self.reject_b,
@@ -24,13 +35,13 @@ impl Settings {
             // With svgf the denoiser keeps the running mean.
             temporal: (self.temporal && self.denoise != Denoise::Svgf) as u32,
             max_history: self.history as f32,
-            far: match (hbil, self.far) {
-                (false, _) => 0,
-                (true, Far::Sh) => 1,
-                (true, Far::Envmap) => 2,
-                (true, Far::Slices) => 3,
+            far: match (near, self.far) {
+                (false, _) => FAR_AO,
+                (true, Far::Sh) => FAR_SH,
+                (true, Far::Envmap) => FAR_ENVMAP,
+                (true, Far::Slices) => FAR_SLICES,
             },
-            fresnel: (hbil && self.fresnel) as u32,
+            fresnel: (near && self.fresnel) as u32,
             reject_depth: self.reject_depth,
             reject_normal: self.reject_normal,
             aperture: (self.aperture == Aperture::Matched) as u32,

@@ -21,8 +21,7 @@ struct HorizonParams {
     // 1: temporal accumulation.
     temporal: u32,
     max_history: f32,
-    // Far field: 0 ao × SH irradiance (gtao), 1 SH through the bent cone, 2 pre-convolved map
-    // × F0(ao).
+    // Far field: FAR_AO, FAR_SH, FAR_ENVMAP or FAR_SLICES (below).
     far: u32,
     // 1: (1 − F0) on the near-field irradiance (HBIL Eq. 19).
     fresnel: u32,
@@ -31,9 +30,18 @@ struct HorizonParams {
     reject_normal: f32,
     // Cone aperture from ao: 0 cos α = 1 − ao (Eq. 12), 1 cos α = √(1 − ao) (matched).
     aperture: u32,
-    // Sub-arcs per side of the environment integration (far = 3).
+    // Sub-arcs per side of the environment integration (far = FAR_SLICES).
     far_steps: u32,
 }
+
+// `far` (technique/horizon/params.rs has the same names): ao only, the far field from the direct
+// pass's irradiance (gtao); SH irradiance through the bent cone (HBIL Sec. 2.2.4); the
+// pre-convolved diffuse map at the bent normal × F0(ao) (Sec. 2.2.3); the environment or the
+// probe volume over the slices' visible arcs.
+const FAR_AO: u32 = 0u;
+const FAR_SH: u32 = 1u;
+const FAR_ENVMAP: u32 = 2u;
+const FAR_SLICES: u32 = 3u;
 
 // Counts, fixed per pipeline (WGSL override constants; technique/horizon/mod.rs sets them).
 // Slices per pixel S.

@@ -10,26 +10,26 @@ fn energy_compensation(a: f32) -> f32 {
 // The far field's irradiance through the bent cone: the environment (sky) or the probe volume at
 // world point x (its radiance SH in place of the environment's; the volume has no band 3).
 fn cone_far_field(x: vec3<f32>, n: vec3<f32>, bent: vec3<f32>, ao: f32, far: vec4<f32>) -> vec3<f32> {
-    let volume = far_volume() && params.far != 3u;
+    let volume = far_volume() && params.far != FAR_SLICES;
     var f: FarSh;
     if volume {
         f = far_sh_here(x, n);
     }
     switch params.far {
-        case 1u: {
+        case FAR_SH: {
             let cos_alpha = select(1.0 - ao, sqrt(1.0 - ao), params.aperture == 1u);
             if volume {
                 return far_irradiance_cone(f, bent, cos_alpha);
             }
             return env_irradiance_cone(bent, cos_alpha);
         }
-        case 2u: {
+        case FAR_ENVMAP: {
             if volume {
                 return far_irradiance(f, bent) * energy_compensation(ao);
             }
             return env_irradiance_exact(bent) * energy_compensation(ao);
         }
-        case 3u: {
+        case FAR_SLICES: {
             if FAR {
                 return max(far.rgb, vec3<f32>(0.0));
             }

@@ -2,9 +2,9 @@
 //! `env-irradiance`, no indirect light.
 //! The baseline every other technique is compared with. See none.wgsl.
 
-use super::{Technique, TechniqueContext, TechniqueDesc, TechniqueParams};
 use crate::RenderError;
 use crate::bindings::{PassLayout, kind};
+use crate::contract::technique::{Technique, TechniqueContext, TechniqueDesc, TechniqueParams};
 use crate::passes::{ComputeStep, ScreenPass};
 use crate::profiler::GpuProfiler;
 use crate::targets::{AO_FORMAT, HDR_FORMAT};
@@ -48,6 +48,7 @@ pub const DESC: TechniqueDesc = TechniqueDesc {
     check,
     settings: &[],
     presets: &[],
+    denoise: None,
 };
 
 struct NoneTechnique {
@@ -57,7 +58,7 @@ struct NoneTechnique {
 
 /// `none` has no settings.
 fn check(params: &TechniqueParams) -> Result<(), String> {
-    super::reject_unknown_keys("none", params, &[]).map_err(|e| match e {
+    crate::contract::technique::reject_unknown_keys("none", params, &[]).map_err(|e| match e {
         RenderError::Setting { msg, .. } => msg,
         e => e.to_string(),
     })
@@ -67,11 +68,11 @@ fn create(
     ctx: &TechniqueContext,
     params: &TechniqueParams,
 ) -> Result<Box<dyn Technique>, RenderError> {
-    super::reject_unknown_keys("none", params, &[])?;
+    crate::contract::technique::reject_unknown_keys("none", params, &[])?;
     let device = ctx.device;
     let (i, o) = (ctx.inputs, ctx.outputs);
     let layout = NoneBindings::layout(device);
-    let module = crate::passes::shader_module(device, "none", &source());
+    let module = crate::pipeline_cache::shader_module(device, "none", &source());
     let own = NoneBindings {
         gb_normal: i.normal,
         out_ao: o.ao,
@@ -105,7 +106,7 @@ impl Technique for NoneTechnique {
         &self,
         encoder: &mut wgpu::CommandEncoder,
         profiler: &mut GpuProfiler,
-        _frame: super::FrameInfo,
+        _frame: crate::contract::technique::FrameInfo,
     ) {
         self.pass.encode(encoder, profiler, self.size, 0);
     }

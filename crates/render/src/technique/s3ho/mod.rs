@@ -48,17 +48,17 @@ pub mod params;
 pub mod sample;
 pub mod shade;
 
-use super::samples::interleaved_sets;
-use super::{Technique, TechniqueContext, TechniqueDesc, TechniqueParams};
 use crate::RenderError;
+use crate::contract::technique::{Technique, TechniqueContext, TechniqueDesc, TechniqueParams};
 use crate::passes::ComputeStep;
 use crate::passes::bilateral_blur::{BilateralBlur, BlurChain, BlurSettings};
-use crate::passes::denoise::{self, Denoise, SvgfConfig};
+use crate::passes::denoise::{Denoise, SvgfConfig};
 use crate::passes::layers::LayerStack;
 use crate::passes::shadow::NoLights;
 use crate::profiler::GpuProfiler;
 use crate::settings::Declared;
 use crate::targets::HDR_FORMAT;
+use crate::technique::samples::interleaved_sets;
 use wgpu::util::DeviceExt;
 
 pub use crate::settings::s3ho::Settings;
@@ -67,27 +67,33 @@ pub use params::S3hoParams;
 /// 16 SH coefficients as half floats, 8 per texel (pack2x16float).
 pub const COEFFS_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Uint;
 
-const S3HO_PRESETS: [crate::settings::Preset; 5] =
-    crate::settings::fitted::with_fitted(super::ssdo::PRESETS, crate::settings::fitted::S3HO);
-const SSBN_PRESETS: [crate::settings::Preset; 5] =
-    crate::settings::fitted::with_fitted(super::ssdo::PRESETS, crate::settings::fitted::SSBN);
+const S3HO_PRESETS: [crate::settings::Preset; 5] = crate::settings::fitted::with_fitted(
+    crate::settings::ssdo::PRESETS,
+    crate::settings::fitted::S3HO,
+);
+const SSBN_PRESETS: [crate::settings::Preset; 5] = crate::settings::fitted::with_fitted(
+    crate::settings::ssdo::PRESETS,
+    crate::settings::fitted::SSBN,
+);
 
 pub const S3HO: TechniqueDesc = TechniqueDesc {
     name: "s3ho",
     summary: "screen-space SH occlusion (16 coefficients), SH lighting of environment and lights, indirect extension",
-    create: create_s3ho,
+    create: |ctx, tp| create(ctx, tp, false),
     check,
     settings: <Settings as Declared>::TABLE,
     presets: &S3HO_PRESETS,
+    denoise: Some(denoise_config),
 };
 
 pub const SSBN: TechniqueDesc = TechniqueDesc {
     name: "ssbn",
     summary: "screen-space bent normals and cones: environment through the cone around the bent normal",
-    create: create_ssbn,
+    create: |ctx, tp| create(ctx, tp, true),
     check,
     settings: <Settings as Declared>::TABLE,
     presets: &SSBN_PRESETS,
+    denoise: Some(denoise_config),
 };
 
 struct S3ho {
@@ -121,20 +127,6 @@ fn denoise_config(tp: &TechniqueParams) -> Result<(Denoise, SvgfConfig), String>
     Ok((s.denoise, SvgfConfig::with_defaults(s.svgf)))
 }
 
-fn create_s3ho(
-    ctx: &TechniqueContext,
-    p: &TechniqueParams,
-) -> Result<Box<dyn Technique>, RenderError> {
-    denoise::create_denoised(ctx, p, "s3ho", denoise_config, |ctx| create(ctx, p, false))
-}
-
-fn create_ssbn(
-    ctx: &TechniqueContext,
-    p: &TechniqueParams,
-) -> Result<Box<dyn Technique>, RenderError> {
-    denoise::create_denoised(ctx, p, "ssbn", denoise_config, |ctx| create(ctx, p, true))
-}
-
 fn create(
     ctx: &TechniqueContext,
     tp: &TechniqueParams,
@@ -151,7 +143,9 @@ fn create(
     let device = ctx.device;
     let frame = ctx.frame_group;
     let (i, o) = (ctx.inputs, ctx.outputs);
-    let texture = |label: &str, format| super::screen_texture(device, i.size, label, format);
+    let texture = |label: &str, format| {
+        crate::contract::technique::screen_texture(device, i.size, label, format)
+    };
     let textures = vec![
         texture("s3ho coefficients 0", COEFFS_FORMAT),
         texture("s3ho coefficients 1", COEFFS_FORMAT),
@@ -259,7 +253,7 @@ fn create(
         ("STEPS", settings.steps as f64),
     ];
     let step = |label: &'static str, source: String, entry: &str, layout, constants: &[_]| {
-        let module = crate::passes::shader_module(device, label, &source);
+        let module = crate::pipeline_cache::shader_module(device, label, &source);
         ComputeStep::new(device, label, &module, entry, frame, layout, constants)
     };
     Ok(Box::new(S3ho {
@@ -333,7 +327,7 @@ impl Technique for S3ho {
         &self,
         encoder: &mut wgpu::CommandEncoder,
         profiler: &mut GpuProfiler,
-        _frame: super::FrameInfo,
+        _frame: crate::contract::technique::FrameInfo,
     ) {
         self.layers.encode(encoder, profiler);
         self.sample

@@ -41,17 +41,17 @@ pub mod params;
 pub mod resolve;
 pub mod vpls;
 
-use super::samples::interleaved_sets;
-use super::{Technique, TechniqueContext, TechniqueDesc, TechniqueParams};
 use crate::RenderError;
+use crate::contract::technique::{Technique, TechniqueContext, TechniqueDesc, TechniqueParams};
 use crate::passes::ComputeStep;
 use crate::passes::bilateral_blur::{BilateralBlur, BlurChain, BlurSettings};
-use crate::passes::denoise::{self, Denoise, SvgfConfig};
+use crate::passes::denoise::{Denoise, SvgfConfig};
 use crate::passes::layers::LayerStack;
 use crate::passes::shadow::NoLights;
 use crate::profiler::GpuProfiler;
 use crate::settings::Declared;
 use crate::targets::HDR_FORMAT;
+use crate::technique::samples::interleaved_sets;
 use vpls::Vpls;
 use wgpu::util::DeviceExt;
 
@@ -74,37 +74,41 @@ const INSTANT_RADIOSITY_PRESETS: [crate::settings::Preset; 5] =
 pub const SSAO: TechniqueDesc = TechniqueDesc {
     name: "ssao",
     summary: "normal-oriented hemisphere SSAO (same samples and visibility test as ssdo): ao × SH irradiance",
-    create: create_ssao,
+    create: |ctx, tp| create(ctx, tp, Variant::Ssao),
     check: |tp| Variant::Ssao.check(tp),
     settings: <Settings as Declared>::TABLE,
     presets: &SSAO_PRESETS,
+    denoise: Some(denoise_config),
 };
 
 pub const SSDO: TechniqueDesc = TechniqueDesc {
     name: "ssdo",
     summary: "screen-space directional occlusion of environment and lights, plus one indirect bounce",
-    create: create_ssdo,
+    create: |ctx, tp| create(ctx, tp, Variant::Ssdo),
     check: |tp| Variant::Ssdo.check(tp),
     settings: <Settings as Declared>::TABLE,
     presets: &SSDO_PRESETS,
+    denoise: Some(denoise_config),
 };
 
 pub const SSDO_VPL: TechniqueDesc = TechniqueDesc {
     name: "ssdo-vpl",
     summary: "the environment as shadow-mapped virtual point lights, their lost small-scale shadows restored in screen space (ssdo Sec. 5)",
-    create: create_ssdo_vpl,
+    create: |ctx, tp| create(ctx, tp, Variant::SsdoVpl),
     check: |tp| Variant::SsdoVpl.check(tp),
     settings: <Settings as Declared>::TABLE,
     presets: &SSDO_VPL_PRESETS,
+    denoise: Some(denoise_config),
 };
 
 pub const INSTANT_RADIOSITY: TechniqueDesc = TechniqueDesc {
     name: "instant-radiosity",
     summary: "one bounce of the lights from virtual point lights drawn from reflective shadow maps (shadow-mapped, clamped), plus the screen-space near-field bounce the clamp removes and screen-space shadow correction (ssdo Sec. 5)",
-    create: create_instant_radiosity,
+    create: |ctx, tp| create(ctx, tp, Variant::InstantRadiosity),
     check: |tp| Variant::InstantRadiosity.check(tp),
     settings: <Settings as Declared>::TABLE,
     presets: &INSTANT_RADIOSITY_PRESETS,
+    denoise: Some(denoise_config),
 };
 
 /// Which technique of this file.
@@ -116,46 +120,6 @@ enum Variant {
     SsdoVpl,
     /// ssdo with the lights' bounce from VPLs of reflective shadow maps (Sec. 5).
     InstantRadiosity,
-}
-
-fn create_ssao(
-    ctx: &TechniqueContext,
-    params: &TechniqueParams,
-) -> Result<Box<dyn Technique>, RenderError> {
-    let name = Variant::Ssao.name();
-    denoise::create_denoised(ctx, params, name, denoise_config, |ctx| {
-        create(ctx, params, Variant::Ssao)
-    })
-}
-
-fn create_ssdo(
-    ctx: &TechniqueContext,
-    params: &TechniqueParams,
-) -> Result<Box<dyn Technique>, RenderError> {
-    let name = Variant::Ssdo.name();
-    denoise::create_denoised(ctx, params, name, denoise_config, |ctx| {
-        create(ctx, params, Variant::Ssdo)
-    })
-}
-
-fn create_ssdo_vpl(
-    ctx: &TechniqueContext,
-    params: &TechniqueParams,
-) -> Result<Box<dyn Technique>, RenderError> {
-    let name = Variant::SsdoVpl.name();
-    denoise::create_denoised(ctx, params, name, denoise_config, |ctx| {
-        create(ctx, params, Variant::SsdoVpl)
-    })
-}
-
-fn create_instant_radiosity(
-    ctx: &TechniqueContext,
-    params: &TechniqueParams,
-) -> Result<Box<dyn Technique>, RenderError> {
-    let name = Variant::InstantRadiosity.name();
-    denoise::create_denoised(ctx, params, name, denoise_config, |ctx| {
-        create(ctx, params, Variant::InstantRadiosity)
-    })
 }
 
 /// The denoiser choice and svgf's configuration (the running mean at its defaults).
@@ -208,7 +172,8 @@ fn create(
     };
     let device = ctx.device;
     let (i, o) = (ctx.inputs, ctx.outputs);
-    let texture = |label: &str| super::screen_texture(device, i.size, label, HDR_FORMAT);
+    let texture =
+        |label: &str| crate::contract::technique::screen_texture(device, i.size, label, HDR_FORMAT);
     let textures: Vec<wgpu::Texture> = [
         "ssdo a",
         "ssdo b",
@@ -273,7 +238,8 @@ fn create(
         out_light_irradiance: o.light_irradiance,
     }
     .bind_group(device, &direct_layout);
-    let direct_module = crate::passes::shader_module(device, "ssdo direct", &direct::source());
+    let direct_module =
+        crate::pipeline_cache::shader_module(device, "ssdo direct", &direct::source());
 
     let resolve_layout = resolve::ResolveBindings::layout(device);
     let resolve_bg = resolve::ResolveBindings {
@@ -286,7 +252,8 @@ fn create(
         out_ao: o.ao,
     }
     .bind_group(device, &resolve_layout);
-    let resolve_module = crate::passes::shader_module(device, "ssdo resolve", &resolve::source());
+    let resolve_module =
+        crate::pipeline_cache::shader_module(device, "ssdo resolve", &resolve::source());
 
     let bounce_layout = bounce::BounceBindings::layout(device);
     let bounce_bg = bounce::BounceBindings {
@@ -312,7 +279,8 @@ fn create(
         out_indirect: raw_indirect,
     }
     .bind_group(device, &bounce_layout);
-    let bounce_module = crate::passes::shader_module(device, "ssdo bounce", &bounce::source());
+    let bounce_module =
+        crate::pipeline_cache::shader_module(device, "ssdo bounce", &bounce::source());
 
     let blur = BilateralBlur::new(device, frame, blur_settings(&settings));
     let counts = [
@@ -463,7 +431,7 @@ impl Technique for Ssdo {
         &self,
         encoder: &mut wgpu::CommandEncoder,
         profiler: &mut GpuProfiler,
-        _frame: super::FrameInfo,
+        _frame: crate::contract::technique::FrameInfo,
     ) {
         if let Some(v) = &self.vpls {
             v.shadows.encode(encoder, profiler);

@@ -2,7 +2,7 @@
 //! and instant-radiosity (cosine emitters from reflective shadow maps), each with a shadow map.
 
 use super::Settings;
-use crate::inputs::SceneInputs;
+use crate::contract::io::SceneInputs;
 use crate::passes::shadow::{LightResources, ShadowPass};
 use crate::technique::TechniqueContext;
 use bytemuck::Zeroable;

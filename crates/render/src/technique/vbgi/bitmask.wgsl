@@ -83,7 +83,7 @@ fn fast_acos(x: f32) -> f32 {
 
 // The angle range [lo, hi] of the part within R of x of the chord from front point `p` to its
 // back, `tau` behind it along the camera ray (tau < 0: to infinity); w = 0 when no part of the
-// chord is within R (DESIGN.md's V_R: an occluder counts where it is hit within R).
+// chord is within R (V_R of docs/src/aovs.md: an occluder counts where it is hit within R).
 fn chord(p: vec3<f32>, tau: f32, x: vec3<f32>, eye: vec3<f32>, slice_normal: vec3<f32>, omega_o: vec3<f32>, side_sign: f32) -> vec3<f32> {
     let v = p - x;
     let ray = normalize(p - eye);
@@ -137,7 +137,7 @@ fn bitmask(@builtin(global_invocation_id) id: vec3<u32>) {
     let x = world_position(pixel, depth);
     // The light of the free sectors: the environment at a blurred mip, or the probe volume's
     // radiance at this point.
-    let volume = params.far == 3u && far_volume();
+    let volume = params.far == FAR_SLICES && far_volume();
     var far_sh: FarSh;
     if volume {
         far_sh = far_sh_here(x, n);
@@ -333,7 +333,7 @@ fn bitmask(@builtin(global_invocation_id) id: vec3<u32>) {
             let theta = base + PI * (f32(g) + 0.5) / f32(groups);
             let omega = sin(theta) * d + cos(theta) * omega_o;
             bent += omega * w;
-            if params.far == 3u {
+            if params.far == FAR_SLICES {
                 if volume {
                     far += far_radiance(far_sh, omega) * w;
                 } else {

@@ -30,9 +30,9 @@
 //!   adaptive  τ = `thickness_ratio` × z₁ (for engines without a second layer: a thickness that
 //!             grows with distance, as the depth buffer's own resolution does)
 //!
-//! Cosine weighting (DESIGN.md's `ao` is (1/π) ∫ V cos θ dω). In the slice the measure of the
-//! hemisphere integral is |sin θ| dθ dφ/… and the integrand n·ω = n′·ω(θ) with the projected
-//! normal n′ = (n·D, n·ω_o) (unnormalised: slices weigh by its length, as in GTAO). With
+//! Cosine weighting (`ao` is (1/π) ∫ V cos θ dω, docs/src/aovs.md). In the slice the measure of
+//! the hemisphere integral is |sin θ| dθ dφ/… and the integrand n·ω = n′·ω(θ) with the
+//! projected normal n′ = (n·D, n·ω_o) (unnormalised: slices weigh by its length, as in GTAO). With
 //!     G(θ) = ½ n′x (θ − sin θ cos θ) + ½ n′y sin² θ      (technique/horizon)
 //! the weight of the angles [a, b] is
 //!     W(a, b) = S(b) − S(a),   S(θ) = ∫_0^θ (n′·ω(t)) |sin t| dt = sign(θ) G(θ),
@@ -56,12 +56,12 @@
 
 pub mod back;
 pub mod bitmask;
+pub mod march;
 
-use super::horizon::{self, Kind};
-use super::{TechniqueContext, TechniqueDesc, TechniqueParams};
-use crate::RenderError;
-use crate::passes::denoise::{self, Denoise, SvgfConfig};
+use crate::contract::technique::{TechniqueDesc, TechniqueParams};
+use crate::passes::denoise::{Denoise, SvgfConfig};
 use crate::settings::Declared;
+use crate::technique::horizon;
 use bytemuck::{Pod, Zeroable};
 
 pub use crate::settings::vbgi::{PRESETS, Settings, Thickness, VbgiFar};
@@ -72,10 +72,11 @@ const VBGI_PRESETS: [crate::settings::Preset; 5] =
 pub const VBGI: TechniqueDesc = TechniqueDesc {
     name: "vbgi",
     summary: "visibility-bitmask GI: sectors occupied between each sample's front and back (thickness from the second depth layer), cosine-weighted; light passes behind thin objects",
-    create,
+    create: |ctx, tp| horizon::build(ctx, FLAVOR, tp),
     check,
     settings: <Settings as Declared>::TABLE,
     presets: &VBGI_PRESETS,
+    denoise: Some(config),
 };
 
 /// `VbgiParams` in bitmask.wgsl.
@@ -145,11 +146,13 @@ impl Settings {
     }
 }
 
-/// vbgi's parameters as the horizon machinery takes them.
-pub fn parse(tp: &TechniqueParams) -> Result<(horizon::Settings, Option<Bitmask>), String> {
-    let (h, b) = Settings::from_params(tp)?.split();
-    Ok((h, Some(b)))
-}
+/// vbgi on the horizon machinery: the machinery's part of its settings and the bitmask march.
+pub const FLAVOR: horizon::Flavor = horizon::Flavor {
+    name: "vbgi",
+    near: true,
+    settings: |tp| Ok(Settings::from_params(tp)?.split().0),
+    march: march::create,
+};
 
 /// The settings parsed without a device (`TechniqueDesc::check`).
 fn check(tp: &TechniqueParams) -> Result<(), String> {
@@ -158,13 +161,4 @@ fn check(tp: &TechniqueParams) -> Result<(), String> {
 
 fn config(tp: &TechniqueParams) -> Result<(Denoise, SvgfConfig), String> {
     Ok(horizon::svgf_config(&Settings::from_params(tp)?.split().0))
-}
-
-fn create(
-    ctx: &TechniqueContext,
-    tp: &TechniqueParams,
-) -> Result<Box<dyn super::Technique>, RenderError> {
-    denoise::create_denoised(ctx, tp, "vbgi", config, |ctx| {
-        horizon::build(ctx, Kind::Vbgi, tp)
-    })
 }

@@ -1,14 +1,15 @@
-//! What every near-field technique reads and writes (DESIGN.md, NearFieldInputs): the images of
-//! a deferred frame, each with its format and meaning. An engine that renders these images can
-//! run any technique without nearfield's G-buffer pass (`examples/external_gbuffer.rs`);
-//! nearfield's own [`crate::Renderer`] is one provider of them.
+//! What every near-field technique reads and writes (NearFieldInputs; docs/src/architecture.md,
+//! "Lifting a pass into another engine"): the images of a deferred frame, each with its format
+//! and meaning. An engine that renders these images can run any technique without nearfield's
+//! G-buffer pass (`examples/external_gbuffer.rs`); nearfield's own [`crate::Renderer`] is one
+//! provider of them.
 //!
-//! Besides these images a technique binds group 0 ([`crate::passes::FrameGroup`]: the `Frame`
+//! Besides these images a technique binds group 0 ([`crate::contract::frame::FrameGroup`]: the `Frame`
 //! uniform of [`crate::frame::FrameUniforms`], camera matrices of this and last frame, and the
 //! environment of [`crate::gpu_env::GpuEnvironment`]).
 
+use crate::contract::lights::LightResources;
 use crate::gpu_scene::GpuScene;
-use crate::passes::shadow::ShadowPass;
 
 /// The images a technique reads. Every one is `size` pixels, row 0 at the top, bound as a
 /// sampled texture (`TEXTURE_BINDING`); the ones named "storage" are also written by some
@@ -64,5 +65,6 @@ pub struct NearFieldOutputs<'a> {
 #[derive(Clone, Copy)]
 pub struct SceneInputs<'a> {
     pub scene: &'a GpuScene,
-    pub shadows: &'a ShadowPass,
+    /// The scene's light table with its shadow maps.
+    pub lights: LightResources<'a>,
 }

@@ -1,0 +1,469 @@
+//! The horizon machinery that gtao, hbil and vbgi share: split (4×4 deinterleave), the
+//! technique's [`March`], reprojection with push/pull, the bilateral blur and the running mean
+//! with the outputs (accumulate). See the module above for the derivation.
+
+use super::march::{Flavor, March, MarchContext, MarchIo, work};
+use super::params::FAR_SLICES;
+use super::{GEOMETRY_FORMAT, Settings, Source, accumulate, split};
+use crate::RenderError;
+use crate::contract::formats::HDR_FORMAT;
+use crate::contract::technique::{
+    FrameInfo, Technique, TechniqueContext, TechniqueParams, layered_texture, screen_texture,
+};
+use crate::passes::bilateral_blur::{BilateralBlur, BlurChain, BlurSettings};
+use crate::passes::denoise::Denoise;
+use crate::passes::reproject::{History, ReprojectParams, Reprojection};
+use crate::passes::{ComputeStep, PingPong};
+use crate::profiler::GpuProfiler;
+use crate::settings::horizon::Far;
+use crate::util;
+use wgpu::util::DeviceExt;
+
+/// The 4×4 deinterleaved layers (with interleaving): split by radiance source (direct side 0,
+/// side 1, reprojected) and search.
+struct Split {
+    split_bg: [wgpu::BindGroup; 3],
+    search_bg: wgpu::BindGroup,
+    layer_size: (u32, u32),
+}
+
+struct Horizon {
+    name: &'static str,
+    flavor: Flavor,
+    /// The march gathers near-field light (hbil, vbgi).
+    near: bool,
+    size: (u32, u32),
+    source: Source,
+    split_step: ComputeStep,
+    search_step: ComputeStep,
+    accumulate_step: ComputeStep,
+    /// With interleaving.
+    split: Option<Split>,
+    /// Without interleaving, the search's bind group by radiance source (direct side 0, side 1,
+    /// reprojected).
+    full_bg: Vec<wgpu::BindGroup>,
+    reprojection: Option<Reprojection>,
+    blur: Option<(BilateralBlur, Vec<BlurChain>)>,
+    accumulate_bg: PingPong<wgpu::BindGroup>,
+    extras: PingPong<Vec<(&'static str, wgpu::Texture)>>,
+    _textures: Vec<wgpu::Texture>,
+    /// `HorizonParams` of [`Self::settings`].
+    params: wgpu::Buffer,
+    settings: Settings,
+    march: Box<dyn March>,
+}
+
+fn array_view(t: &wgpu::Texture) -> wgpu::TextureView {
+    t.create_view(&wgpu::TextureViewDescriptor {
+        dimension: Some(wgpu::TextureViewDimension::D2Array),
+        ..Default::default()
+    })
+}
+
+/// Builds gtao, hbil or vbgi (without svgf: the registry wraps it in the denoiser).
+pub fn build(
+    ctx: &TechniqueContext,
+    flavor: Flavor,
+    tp: &TechniqueParams,
+) -> Result<Box<dyn Technique>, RenderError> {
+    let name = flavor.name;
+    let near = flavor.near;
+    let settings = (flavor.settings)(tp).map_err(RenderError::setting(name))?;
+    let device = ctx.device;
+    let frame = ctx.frame_group;
+    let (i, o) = (ctx.inputs, ctx.outputs);
+    let size = i.size;
+    let p = settings.params(near, size);
+    let params = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some("horizon params"),
+        contents: bytemuck::bytes_of(&p),
+        usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+    });
+    let full = |label: &str, format| screen_texture(device, size, label, format);
+    let raw_cone = full("horizon cone", HDR_FORMAT);
+    let raw_near = full("horizon near", HDR_FORMAT);
+    let raw_far = full("horizon far", HDR_FORMAT);
+    let pair = |label: &str, format| {
+        [
+            full(&format!("{label} 0"), format),
+            full(&format!("{label} 1"), format),
+        ]
+    };
+    let hist_far = pair("far history", HDR_FORMAT);
+    let hist_cone = pair("cone history", HDR_FORMAT);
+    let hist_near = pair("near history", HDR_FORMAT);
+    let hist_geo = pair("geometry history", GEOMETRY_FORMAT);
+    let feedback = pair("diffuse radiance", HDR_FORMAT);
+    let view = |t: &wgpu::Texture| t.create_view(&Default::default());
+    let hist_geo_views = [view(&hist_geo[0]), view(&hist_geo[1])];
+    let feedback_views = [view(&feedback[0]), view(&feedback[1])];
+
+    let reprojection = (near && settings.source == Source::Previous).then(|| {
+        Reprojection::new(
+            device,
+            frame,
+            i,
+            [
+                History {
+                    geometry: &hist_geo_views[0],
+                    radiance: &feedback_views[0],
+                },
+                History {
+                    geometry: &hist_geo_views[1],
+                    radiance: &feedback_views[1],
+                },
+            ],
+            settings.reprojection,
+            reproject_params(&settings),
+        )
+    });
+    // Radiance sources by index: this frame's direct radiance (side 0, side 1), reprojected.
+    let direct_views = i.direct_radiance;
+    let reprojected_view = reprojection
+        .as_ref()
+        .map(|r| &r.output)
+        .unwrap_or(direct_views[0]);
+    let source_views = [direct_views[0], direct_views[1], reprojected_view];
+
+    let march = (flavor.march)(&MarchContext {
+        ctx,
+        tp,
+        name,
+        settings: &settings,
+        params: &p,
+        params_buffer: &params,
+    })?;
+    let search_bg = |depth: &wgpu::TextureView,
+                     normal: &wgpu::TextureView,
+                     radiance: &wgpu::TextureView,
+                     out: [&wgpu::TextureView; 3]| {
+        march.bind_group(
+            device,
+            MarchIo {
+                params: &params,
+                depth,
+                normal,
+                radiance,
+                out,
+            },
+        )
+    };
+    let mut textures = Vec::new();
+    let split_layout = split::SplitBindings::layout(device);
+    let mut full_bg = Vec::new();
+    let split = if settings.interleaved {
+        let layer_size = (p.layer_width, p.layer_height);
+        let layered = |label: &str, format| layered_texture(device, layer_size, 16, label, format);
+        let s_geometry = layered("split geometry", GEOMETRY_FORMAT);
+        let s_radiance = layered("split radiance", HDR_FORMAT);
+        let (vg, vr) = (array_view(&s_geometry), array_view(&s_radiance));
+        let (vc, vnear, vfar) = (view(&raw_cone), view(&raw_near), view(&raw_far));
+        let split_bg = |radiance: &wgpu::TextureView| {
+            split::SplitBindings {
+                params: &params,
+                full_depth: i.view_depth,
+                full_normal: i.normal,
+                full_radiance: radiance,
+                split_geometry: &vg,
+                split_radiance: &vr,
+            }
+            .bind_group(device, &split_layout)
+        };
+        let s = Split {
+            split_bg: [
+                split_bg(source_views[0]),
+                split_bg(source_views[1]),
+                split_bg(source_views[2]),
+            ],
+            // Depth is read from the geometry's w; `in_depth` only has to be bound.
+            search_bg: search_bg(&vg, &vg, &vr, [&vc, &vnear, &vfar]),
+            layer_size,
+        };
+        textures.extend([s_geometry, s_radiance]);
+        Some(s)
+    } else {
+        let as_array = |t: &wgpu::Texture| array_view(t);
+        let (depth, normal) = (
+            as_array(i.view_depth.texture()),
+            as_array(i.normal.texture()),
+        );
+        let (cone, near, far) = (view(&raw_cone), view(&raw_near), view(&raw_far));
+        let source_textures = [
+            i.direct_radiance[0].texture(),
+            i.direct_radiance[1].texture(),
+            reprojection
+                .as_ref()
+                .map(|r| &r.output_texture)
+                .unwrap_or(i.direct_radiance[0].texture()),
+        ];
+        for s in source_textures {
+            let radiance = s.create_view(&wgpu::TextureViewDescriptor {
+                dimension: Some(wgpu::TextureViewDimension::D2Array),
+                base_mip_level: 0,
+                mip_level_count: Some(1),
+                ..Default::default()
+            });
+            full_bg.push(search_bg(&depth, &normal, &radiance, [&cone, &near, &far]));
+        }
+        None
+    };
+
+    let blur = (settings.denoise == Denoise::Bilateral).then(|| {
+        let b = BilateralBlur::new(device, frame, blur_settings(&settings));
+        let scratch = full("horizon blur scratch", HDR_FORMAT);
+        let cone_out = full("horizon cone blurred", HDR_FORMAT);
+        let near_out = full("horizon near blurred", HDR_FORMAT);
+        let far_out = full("horizon far blurred", HDR_FORMAT);
+        let chain = |from: &wgpu::Texture, to: &wgpu::Texture| {
+            b.chain(device, i, &view(from), &view(&scratch), &view(to))
+        };
+        let mut chains = vec![chain(&raw_cone, &cone_out)];
+        if near {
+            chains.push(chain(&raw_near, &near_out));
+        }
+        if p.far == FAR_SLICES {
+            chains.push(chain(&raw_far, &far_out));
+        }
+        (b, chains, [scratch, cone_out, near_out, far_out])
+    });
+    let (cone_in, near_in, far_in) = match &blur {
+        Some((_, _, tex)) => (
+            view(&tex[1]),
+            if near { view(&tex[2]) } else { view(&raw_near) },
+            if p.far == FAR_SLICES {
+                view(&tex[3])
+            } else {
+                view(&raw_far)
+            },
+        ),
+        None => (view(&raw_cone), view(&raw_near), view(&raw_far)),
+    };
+
+    let accumulate_layout = accumulate::AccumulateBindings::layout(device);
+    let accumulate_bg = PingPong::from_fn(|side| {
+        let prev = 1 - side;
+        accumulate::AccumulateBindings {
+            params: &params,
+            gb_normal: i.normal,
+            gb_view_depth: i.view_depth,
+            raw_cone: &cone_in,
+            raw_near: &near_in,
+            raw_far: &far_in,
+            prev_cone: &view(&hist_cone[prev]),
+            prev_near: &view(&hist_near[prev]),
+            prev_far: &view(&hist_far[prev]),
+            prev_geometry: &hist_geo_views[prev],
+            acc_cone: &view(&hist_cone[side]),
+            acc_near: &view(&hist_near[side]),
+            acc_far: &view(&hist_far[side]),
+            acc_geometry: &hist_geo_views[side],
+            gb_albedo: i.albedo,
+            gb_material: i.material,
+            gb_emissive: i.emission,
+            light_irradiance: o.light_irradiance,
+            out_ao: o.ao,
+            out_env: o.env_irradiance,
+            out_indirect: o.indirect_irradiance,
+            out_feedback: &feedback_views[side],
+        }
+        .bind_group(device, &accumulate_layout)
+    });
+    let extras = PingPong::from_fn(|side| {
+        let mut e = vec![
+            ("bent-cone", hist_cone[side].clone()),
+            ("near-history", hist_near[side].clone()),
+            ("far-history", hist_far[side].clone()),
+            ("feedback", feedback[side].clone()),
+        ];
+        if let Some(r) = &reprojection {
+            e.push(("reprojected", r.raw.clone()));
+            e.push(("radiance-source", r.output_texture.clone()));
+        }
+        e
+    });
+    let (search_source, search_entry, march_counts) = march.kernel();
+    let mut counts = vec![
+        ("SLICES", settings.slices as f64),
+        ("STEPS", settings.steps as f64),
+    ];
+    counts.extend(march_counts);
+    let work = work(near, &p);
+    let step = |label: &'static str, source: String, entry: &str, layout, constants: &[_]| {
+        let module = crate::pipeline_cache::shader_module(device, label, &source);
+        ComputeStep::new(device, label, &module, entry, frame, layout, constants)
+    };
+    let technique = Horizon {
+        name,
+        flavor,
+        near,
+        size,
+        source: settings.source,
+        split_step: step("split", split::source(), "split", &split_layout, &[]),
+        search_step: step(name, search_source, search_entry, march.layout(), &counts),
+        accumulate_step: step(
+            "accumulate",
+            accumulate::source(),
+            "accumulate",
+            &accumulate_layout,
+            &work,
+        ),
+        split,
+        full_bg,
+        accumulate_bg,
+        extras,
+        reprojection,
+        blur: blur.map(|(b, chains, tex)| {
+            textures.extend(tex);
+            (b, chains)
+        }),
+        _textures: {
+            textures.extend([raw_cone, raw_near, raw_far]);
+            textures.extend(hist_far);
+            textures.extend(hist_cone);
+            textures.extend(hist_near);
+            textures.extend(hist_geo);
+            textures.extend(feedback);
+            textures
+        },
+        params,
+        settings,
+        march,
+    };
+    Ok(Box::new(technique))
+}
+
+fn blur_settings(settings: &Settings) -> BlurSettings {
+    BlurSettings {
+        enabled: true,
+        radius: settings.blur_radius,
+        depth_sigma: 0.01,
+        normal_power: 8.0,
+    }
+}
+
+fn reproject_params(settings: &Settings) -> ReprojectParams {
+    ReprojectParams {
+        reject_depth: settings.reject_depth,
+        reject_normal: settings.reject_normal,
+        _pad0: 0.0,
+        _pad1: 0.0,
+    }
+}
+
+/// What shapes the passes' pipelines and resources: a change of any of these rebuilds.
+fn structure(s: &Settings) -> impl PartialEq + use<> {
+    (
+        s.slices,
+        s.steps,
+        s.interleaved,
+        s.reprojection,
+        s.source,
+        s.denoise,
+        s.far == Far::Slices,
+    )
+}
+
+impl Technique for Horizon {
+    fn name(&self) -> &'static str {
+        self.name
+    }
+
+    fn prepare(&self, queue: &wgpu::Queue, camera: &nearfield_scene::Camera) {
+        self.march.prepare(queue, camera);
+    }
+
+    fn encode(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        profiler: &mut GpuProfiler,
+        frame: FrameInfo,
+    ) {
+        let side = frame.side();
+        self.march.encode_before(encoder, profiler);
+        let reproject = self.near && self.source == Source::Previous && frame.history;
+        let source = if reproject { 2 } else { side };
+        if reproject && let Some(r) = &self.reprojection {
+            r.encode(encoder, profiler, frame.index);
+        }
+        match &self.split {
+            Some(s) => {
+                let (gx, gy) = util::groups_8x8(s.layer_size);
+                {
+                    let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                        label: Some("split"),
+                        timestamp_writes: profiler.compute("split"),
+                    });
+                    self.split_step
+                        .dispatch(&mut pass, &s.split_bg[source], (gx, gy, 1));
+                    self.march.dispatch_after_split(&mut pass);
+                }
+                {
+                    let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                        label: Some(self.name),
+                        timestamp_writes: profiler.compute(self.name),
+                    });
+                    // The 16 layers stacked vertically (see search.wgsl).
+                    self.search_step
+                        .dispatch(&mut pass, &s.search_bg, (gx, gy * 16, 1));
+                }
+            }
+            None => self
+                .search_step
+                .encode(encoder, profiler, &self.full_bg[source], self.size),
+        }
+        if let Some((blur, chains)) = &self.blur {
+            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                label: Some("blur"),
+                timestamp_writes: profiler.compute("blur"),
+            });
+            for chain in chains {
+                blur.dispatch(&mut pass, chain, self.size);
+            }
+        }
+        let (gx, gy) = util::groups_8x8(self.size);
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some("temporal"),
+            timestamp_writes: profiler.compute("temporal"),
+        });
+        self.accumulate_step.dispatch(
+            &mut pass,
+            self.accumulate_bg.current(frame.index),
+            (gx, gy, 1),
+        );
+    }
+
+    fn update(&mut self, queue: &wgpu::Queue, tp: &TechniqueParams) -> Result<bool, RenderError> {
+        let settings = (self.flavor.settings)(tp).map_err(RenderError::setting(self.name))?;
+        if structure(&settings) != structure(&self.settings)
+            || !self
+                .march
+                .update(queue, tp)
+                .map_err(RenderError::setting(self.name))?
+        {
+            return Ok(false);
+        }
+        let p = settings.params(self.near, self.size);
+        queue.write_buffer(&self.params, 0, bytemuck::bytes_of(&p));
+        if let Some((blur, _)) = &self.blur {
+            blur.write(queue, blur_settings(&settings));
+        }
+        if let Some(r) = &self.reprojection {
+            queue.write_buffer(
+                &r.params,
+                0,
+                bytemuck::bytes_of(&reproject_params(&settings)),
+            );
+        }
+        self.source = settings.source;
+        self.settings = settings;
+        Ok(true)
+    }
+
+    fn extras(&self, frame: FrameInfo) -> Vec<(&'static str, &wgpu::Texture)> {
+        self.extras
+            .current(frame.index)
+            .iter()
+            .map(|(n, t)| (*n, t))
+            .collect()
+    }
+}

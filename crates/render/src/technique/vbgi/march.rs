@@ -1,0 +1,181 @@
+//! vbgi's march for the horizon machinery ([`crate::technique::horizon::March`]): the bitmask
+//! kernel ([`super::bitmask`]), its uniforms, and the second depth layer it reads the thickness
+//! from (depth peeling, deinterleaved by [`super::back`] with interleaving).
+
+use super::{Bitmask, Settings, back, bitmask};
+use crate::RenderError;
+use crate::contract::technique::{TechniqueParams, layered_texture, screen_texture};
+use crate::passes::ComputeStep;
+use crate::passes::layers::{LayerSettings, LayerStack};
+use crate::profiler::GpuProfiler;
+use crate::technique::horizon::{March, MarchContext, MarchIo};
+use crate::util;
+use wgpu::util::DeviceExt;
+
+/// The bitmask march and what it owns.
+pub struct BitmaskMarch {
+    layout: wgpu::BindGroupLayout,
+    bitmask: Bitmask,
+    /// `VbgiParams`.
+    params: wgpu::Buffer,
+    /// With `thickness=layer`: the second depth layer.
+    layers: Option<LayerStack>,
+    /// What the kernel reads of the second layer: the deinterleaved layer with interleaving,
+    /// the peeled layer without, else a stand-in.
+    back_view: wgpu::TextureView,
+    /// With `thickness=layer` and interleaving: the deinterleave.
+    back: Option<(ComputeStep, wgpu::BindGroup, (u32, u32))>,
+    _textures: Vec<wgpu::Texture>,
+}
+
+fn array_view(t: &wgpu::Texture) -> wgpu::TextureView {
+    t.create_view(&wgpu::TextureViewDescriptor {
+        dimension: Some(wgpu::TextureViewDimension::D2Array),
+        ..Default::default()
+    })
+}
+
+/// Makes vbgi's march ([`crate::technique::horizon::Flavor::march`]).
+pub fn create(m: &MarchContext) -> Result<Box<dyn March>, RenderError> {
+    let ctx = m.ctx;
+    let device = ctx.device;
+    let (_, b) = Settings::from_params(m.tp)
+        .map_err(RenderError::setting(m.name))?
+        .split();
+    let p = m.params;
+    let params = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some("vbgi params"),
+        contents: bytemuck::bytes_of(&b.params),
+        usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+    });
+    let layers = if b.layer {
+        let two = LayerSettings {
+            layers: 2,
+            ..Default::default()
+        };
+        let mut stack =
+            LayerStack::new(device, ctx.inputs, ctx.scene, ctx.frame_group, two).map_err(|e| {
+                RenderError::Setting {
+                    technique: m.name.into(),
+                    msg: format!(
+                        "thickness=layer: {e}; thickness=adaptive or thickness=constant need no second layer"
+                    ),
+                }
+            })?;
+        stack.shade = false;
+        Some(stack)
+    } else {
+        None
+    };
+    let split_back = (layers.is_some() && m.settings.interleaved).then(|| {
+        layered_texture(
+            device,
+            (p.layer_width, p.layer_height),
+            16,
+            "split back depth",
+            wgpu::TextureFormat::R32Float,
+        )
+    });
+    let stand_in = screen_texture(
+        device,
+        (1, 1),
+        "no back depth",
+        wgpu::TextureFormat::R32Float,
+    );
+    let back_view = match (&split_back, &layers) {
+        (Some(t), _) => array_view(t),
+        (None, Some(l)) => l.resources().peel_depth.clone(),
+        (None, None) => array_view(&stand_in),
+    };
+    let back = match (&split_back, &layers) {
+        (Some(t), Some(l)) => {
+            let back_layout = back::BackBindings::layout(device);
+            let bg = back::BackBindings {
+                params: m.params_buffer,
+                full_back: l.resources().peel_depth,
+                split_back: &array_view(t),
+            }
+            .bind_group(device, &back_layout);
+            let module = crate::pipeline_cache::shader_module(device, "vbgi back", &back::source());
+            let step = ComputeStep::new(
+                device,
+                "vbgi back",
+                &module,
+                "back",
+                ctx.frame_group,
+                &back_layout,
+                &[],
+            );
+            Some((step, bg, util::groups_8x8((p.layer_width, p.layer_height))))
+        }
+        _ => None,
+    };
+    let mut textures = vec![stand_in];
+    textures.extend(split_back);
+    Ok(Box::new(BitmaskMarch {
+        layout: bitmask::BitmaskBindings::layout(device),
+        bitmask: b,
+        params,
+        layers,
+        back_view,
+        back,
+        _textures: textures,
+    }))
+}
+
+impl March for BitmaskMarch {
+    fn layout(&self) -> &wgpu::BindGroupLayout {
+        &self.layout
+    }
+
+    fn bind_group(&self, device: &wgpu::Device, io: MarchIo) -> wgpu::BindGroup {
+        bitmask::BitmaskBindings {
+            params: io.params,
+            vbgi: &self.params,
+            in_depth: io.depth,
+            in_normal: io.normal,
+            in_radiance: io.radiance,
+            in_back: &self.back_view,
+            out_cone: io.out[0],
+            out_near: io.out[1],
+            out_far: io.out[2],
+        }
+        .bind_group(device, &self.layout)
+    }
+
+    fn kernel(&self) -> (String, &'static str, Vec<(&'static str, f64)>) {
+        (
+            bitmask::source(),
+            "bitmask",
+            vec![("SECTORS", self.bitmask.sectors as f64)],
+        )
+    }
+
+    fn prepare(&self, queue: &wgpu::Queue, camera: &nearfield_scene::Camera) {
+        if let Some(l) = &self.layers {
+            l.prepare(queue, camera);
+        }
+    }
+
+    fn encode_before(&self, encoder: &mut wgpu::CommandEncoder, profiler: &mut GpuProfiler) {
+        if let Some(l) = &self.layers {
+            l.encode(encoder, profiler);
+        }
+    }
+
+    fn dispatch_after_split(&self, pass: &mut wgpu::ComputePass) {
+        if let Some((step, bg, groups)) = &self.back {
+            step.dispatch(pass, bg, (groups.0, groups.1, 1));
+        }
+    }
+
+    fn update(&mut self, queue: &wgpu::Queue, tp: &TechniqueParams) -> Result<bool, String> {
+        let (_, b) = Settings::from_params(tp)?.split();
+        if (b.sectors, b.layer) != (self.bitmask.sectors, self.bitmask.layer) {
+            return Ok(false);
+        }
+        queue.write_buffer(&self.params, 0, bytemuck::bytes_of(&b.params));
+        self.bitmask = b;
+        Ok(true)
+    }
+}
