@@ -13,7 +13,7 @@
 //! Scratch output goes to target/figures/. `FIGURES_QUICK=1` runs smaller images and fewer
 //! samples (to try the pipeline, not to publish).
 
-use nearfield_cli::book::{Bench, Failure, MethodError, Results, Run};
+use nearfield_cli::measure::schema::{Bench, Failure, MethodError, MetricsFile, Results, Run};
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
@@ -87,19 +87,23 @@ fn compare(id: &str, scene: &Scene, rest: &str) -> (String, Vec<MethodError>, St
     let out = PathBuf::from("target/figures").join(id);
     let cmd = format!("compare {} {rest} --out {}", scene.args, out.display());
     nearfield(&words(&cmd));
-    let m = json(&out.join("metrics.json"));
-    let aov = m["aov"].as_str().unwrap_or_default().to_string();
-    let metric = if aov == "ao" { "mae" } else { "relative_error" };
-    let methods = m["methods"]
-        .as_array()
-        .expect("methods")
+    let path = out.join("metrics.json");
+    let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let m: MetricsFile =
+        serde_json::from_str(&text).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let methods = m
+        .methods
         .iter()
         .map(|x| MethodError {
-            name: x["name"].as_str().unwrap_or_default().into(),
-            error: x["metrics"][metric].as_f64().unwrap_or(f64::NAN),
+            name: x.name.clone(),
+            error: if m.aov == "ao" {
+                x.metrics.mae
+            } else {
+                x.metrics.relative_error
+            },
         })
         .collect();
-    let adapter = m["adapter"].as_str().unwrap_or_default().to_string();
+    let adapter = m.adapter.clone();
     (
         format!("nearfield {}", words(&cmd).join(" ")),
         methods,

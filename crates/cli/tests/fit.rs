@@ -2,7 +2,7 @@
 //! on real scenes, and what it reports is what `compare` measures for the fitted spec.
 
 use nearfield_cli::fit::optimise::{Dimension, minimise};
-use nearfield_cli::fit::{Metric, Target, Truth};
+use nearfield_cli::measure::{Metric, Target, Truth};
 use nearfield_render::{Aov, GpuContext, RenderSettings, Renderer, TechniqueParams};
 use std::path::PathBuf;
 use std::process::Command;

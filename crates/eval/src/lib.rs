@@ -4,6 +4,7 @@
 
 pub mod image_ops;
 pub mod metrics;
+pub mod plot;
 pub mod report;
 pub mod strip;
 

@@ -7,10 +7,10 @@
 //! RGB channels, e = test − reference:
 //! bias = mean e, MAE = mean |e|, RMSE = √(mean e²), relative error = Σ|e| / Σ reference.
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 /// How pixels are excluded.
-#[derive(Clone, Copy, Debug, Serialize)]
+#[derive(Clone, Copy, Debug, Serialize, Deserialize)]
 pub struct MaskSettings {
     /// Width of the excluded band at the image edge (pixels).
     pub border: u32,
@@ -108,7 +108,7 @@ impl Mask {
 }
 
 /// Error metrics over the valid pixels.
-#[derive(Clone, Copy, Debug, Serialize, PartialEq)]
+#[derive(Clone, Copy, Debug, Serialize, Deserialize, PartialEq)]
 pub struct Metrics {
     pub pixels: usize,
     pub bias: f64,

@@ -5,12 +5,12 @@
 
 use crate::image_ops::diverging;
 use crate::metrics::{MaskSettings, Metrics};
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 use std::fmt::Write as _;
 use std::path::Path;
 
 /// One method's results.
-#[derive(Clone, Debug, Serialize)]
+#[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct MethodReport {
     pub name: String,
     pub metrics: Metrics,
@@ -24,7 +24,7 @@ pub struct MethodReport {
 }
 
 /// The error after `frames` frames.
-#[derive(Clone, Copy, Debug, Serialize)]
+#[derive(Clone, Copy, Debug, Serialize, Deserialize)]
 pub struct ConvergencePoint {
     pub frames: u32,
     pub rmse: f64,
@@ -110,8 +110,9 @@ pub fn convergence_svg(methods: &[MethodReport]) -> String {
     svg
 }
 
-/// Everything in metrics.json.
-#[derive(Clone, Debug, Serialize)]
+/// Everything in metrics.json (written by `write`, read back by the book's figures and the
+/// tests with the same type).
+#[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct Report {
     pub scene: String,
     pub aov: String,
@@ -136,7 +137,7 @@ pub struct Report {
     pub methods: Vec<MethodReport>,
 }
 
-#[derive(Clone, Debug, Serialize)]
+#[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct ReferenceInfo {
     pub path: String,
     pub spp: Option<u32>,

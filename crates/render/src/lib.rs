@@ -35,9 +35,9 @@ pub use technique::TechniqueParams;
 pub use wgpu;
 
 /// Every pass's binding declaration (WGSL as compiled, entry point, group-1 slots): what the
-/// reflection test compares with naga's view of the WGSL.
+/// reflection test compares with naga's view of the WGSL. The techniques' come from the
+/// registry (each declares its own).
 pub fn pass_layouts() -> Vec<bindings::PassLayout> {
-    use technique::{horizon, s3ho, ssdo, vbgi};
     let mut v = vec![
         passes::tonemap::pass_layout(),
         passes::composite::pass_layout(),
@@ -45,19 +45,8 @@ pub fn pass_layouts() -> Vec<bindings::PassLayout> {
         passes::direct_lighting::pass_layout(),
         passes::bilateral_blur::pass_layout(),
         passes::display::pass_layout(),
-        technique::none::pass_layout(),
-        ssdo::direct::pass_layout(),
-        ssdo::resolve::pass_layout(),
-        ssdo::bounce::pass_layout(),
-        s3ho::sample::pass_layout(),
-        s3ho::filter::pass_layout(),
-        s3ho::shade::pass_layout(),
-        horizon::split::pass_layout(),
-        horizon::search::pass_layout(),
-        horizon::accumulate::pass_layout(),
-        vbgi::bitmask::pass_layout(),
-        vbgi::back::pass_layout(),
     ];
+    v.extend(technique::pass_layouts());
     v.extend(passes::gbuffer::pass_layouts());
     v.extend(passes::shadow::pass_layouts());
     v.extend(passes::rsm::pass_layouts());

@@ -19,7 +19,8 @@ use glam::Vec3;
 use nearfield_scene::{Environment, Light, LightKind, environment::rotate_y};
 
 /// Most virtual point lights.
-pub use crate::settings::ssdo::MAX_VPLS;
+/// Virtual point lights at most (ssdo-vpl, instant-radiosity).
+pub const MAX_VPLS: u32 = 256;
 
 fn luminance(c: Vec3) -> f32 {
     c.dot(Vec3::new(0.2126, 0.7152, 0.0722)).max(0.0)

@@ -143,7 +143,7 @@ fn quality_expands_first_and_explicit_settings_refine_it() {
     let hbil = technique::expand_presets(&horizon::HBIL, &params).unwrap();
     let s = horizon::Settings::from_params(&hbil).unwrap();
     // ultra = 8 slices, 32 steps; the explicit slices=5 and --samples 3 win.
-    assert_eq!((s.slices, s.steps), (5, 3));
+    assert_eq!((s.march.slices, s.march.steps), (5, 3));
     let ssdo = technique::expand_presets(&ssdo::SSDO, &with("quality", "high")).unwrap();
     assert_eq!(ssdo::Settings::from_params(&ssdo).unwrap().samples, 32);
     let bad = technique::expand_presets(&ssdo::SSDO, &with("quality", "insane"));
@@ -156,23 +156,38 @@ fn quality_expands_first_and_explicit_settings_refine_it() {
 
 #[test]
 fn every_technique_with_settings_has_a_generated_table() {
-    // Every technique with settings shows one of the generated tables.
+    // Every technique with settings is named on its family's generated page, whose table holds
+    // every one of its keys; the techniques of one family share their keys.
+    let pages = technique::book_pages();
     for desc in technique::REGISTRY
         .iter()
         .filter(|d| !d.settings.is_empty())
     {
-        assert!(
-            nearfield_render::settings::FAMILIES
-                .iter()
-                .any(|(_, names, table, _)| {
-                    table
-                        .iter()
-                        .map(|s| s.key)
-                        .eq(desc.settings.iter().map(|s| s.key))
-                        && names.split(", ").any(|n| n == desc.name)
-                }),
-            "{}: its table is not among the generated ones",
-            desc.name
-        );
+        let (_, page) = pages
+            .iter()
+            .find(|(name, _)| *name == format!("settings-{}.md", desc.family))
+            .unwrap_or_else(|| panic!("{}: no page for family {}", desc.name, desc.family));
+        assert!(page.contains(&format!("`{}`", desc.name)), "{}", desc.name);
+        for s in desc.settings {
+            assert!(
+                page.contains(&format!("| `{}` |", s.key)),
+                "{}: {}",
+                desc.name,
+                s.key
+            );
+        }
+    }
+    for (family, descs) in technique::families() {
+        for d in &descs {
+            assert!(
+                d.settings
+                    .iter()
+                    .map(|s| s.key)
+                    .eq(descs[0].settings.iter().map(|s| s.key)),
+                "{family}: {} and {} differ",
+                d.name,
+                descs[0].name
+            );
+        }
     }
 }

@@ -10,16 +10,14 @@
 pub mod optimise;
 
 use crate::BadInput;
+use crate::measure::schema::{FitFile, FitScene, FitSide};
+use crate::measure::{Metric, Target, Truth, mean};
 use crate::options::{SceneOpts, TechniqueOpts};
 use crate::reference::{ReferenceOpts, parse_aov};
 use anyhow::{Context, Result};
 use clap::Args;
-use nearfield_eval::image_ops;
-use nearfield_eval::metrics::{self, Mask, MaskSettings};
 use nearfield_render::{Aov, GpuContext, Renderer};
 use optimise::{Dimension, Optimum};
-use serde::Serialize;
-use std::collections::BTreeMap;
 use std::path::PathBuf;
 use std::time::Instant;
 
@@ -29,7 +27,8 @@ pub struct FitArgs {
     /// fitted (the start is the spec's value of each fitted setting, else its default).
     pub method: String,
     /// Settings to fit, comma-separated: KEY searches its declared range, KEY=LO..HI a
-    /// narrower one. Numeric settings only.
+    /// narrower one. Numeric settings only; `uniform`: every number the technique's
+    /// declarations mark as a uniform (its settings table's role column).
     #[arg(long)]
     pub params: String,
     /// Training scenes, comma-separated: SCENE (a file or builtin:NAME, with its default
@@ -88,144 +87,6 @@ pub struct FitArgs {
     /// Output JSON.
     #[arg(long, default_value = "fit.json")]
     pub out: PathBuf,
-}
-
-/// The error measure a fit minimises.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Metric {
-    Relative,
-    Rmse,
-    Flip,
-}
-
-impl Metric {
-    pub fn parse(s: &str) -> Option<Self> {
-        match s {
-            "rel" => Some(Metric::Relative),
-            "rmse" => Some(Metric::Rmse),
-            "flip" => Some(Metric::Flip),
-            _ => None,
-        }
-    }
-
-    pub fn name(self) -> &'static str {
-        match self {
-            Metric::Relative => "rel",
-            Metric::Rmse => "rmse",
-            Metric::Flip => "flip",
-        }
-    }
-
-    /// This metric of `test` against `reference` within `mask` (`ref_srgb`: the reference
-    /// tonemapped, for FLIP).
-    pub fn measure(
-        self,
-        test: &nearfield_render::AovImage,
-        reference: &[[f32; 4]],
-        ref_srgb: &image::RgbImage,
-        mask: &Mask,
-    ) -> f64 {
-        match self {
-            Metric::Relative => metrics::metrics(&test.pixels, reference, mask).relative_error,
-            Metric::Rmse => metrics::metrics(&test.pixels, reference, mask).rmse,
-            Metric::Flip => metrics::flip_mean(
-                &image_ops::tonemap(&test.pixels, test.width, test.height),
-                ref_srgb,
-                mask,
-            ),
-        }
-    }
-}
-
-/// One AOV of one scene: the truth it is measured against.
-pub struct Truth {
-    pub aov: Aov,
-    pub reference: Vec<[f32; 4]>,
-    pub ref_srgb: image::RgbImage,
-    /// Made from the first rendering (coverage and depth do not depend on the settings).
-    pub mask: Option<Mask>,
-    /// Where the reference's coverage and depth come from, for the mask.
-    pub ref_alpha: Vec<f32>,
-    pub ref_depth: Vec<f32>,
-}
-
-impl Truth {
-    /// The truth of `aov` from a reference image (value, coverage in alpha, depth).
-    pub fn new(aov: Aov, reference: Vec<[f32; 4]>, depth: Vec<f32>, size: (u32, u32)) -> Self {
-        Truth {
-            aov,
-            ref_srgb: image_ops::tonemap(&reference, size.0, size.1),
-            ref_alpha: reference.iter().map(|p| p[3]).collect(),
-            reference,
-            mask: None,
-            ref_depth: depth,
-        }
-    }
-}
-
-impl Truth {
-    /// Whether the reference is zero on every covered pixel.
-    pub fn is_zero(&self) -> bool {
-        self.reference
-            .iter()
-            .all(|p| p[3] <= 0.0 || p[0].abs() + p[1].abs() + p[2].abs() == 0.0)
-    }
-}
-
-/// One scene of a fit: its renderer (reused by every evaluation) and its truths.
-pub struct Target {
-    pub name: String,
-    pub renderer: Renderer,
-    pub truths: Vec<Truth>,
-}
-
-impl Target {
-    /// The error of the settings `spec` on this scene: the mean of `metric` over its AOVs after
-    /// `frames` frames from a restart.
-    pub fn evaluate(
-        &mut self,
-        spec: &str,
-        params: &nearfield_render::TechniqueParams,
-        frames: u32,
-        metric: Metric,
-    ) -> Result<f64> {
-        match self.renderer.set_technique(spec, params) {
-            Ok(()) => {}
-            // A combination the technique refuses (settings that constrain each other) is no
-            // candidate: the search moves away from it.
-            Err(nearfield_render::RenderError::Setting { .. }) => return Ok(f64::INFINITY),
-            Err(e) => return Err(e.into()),
-        }
-        self.renderer.restart();
-        for i in 0..frames {
-            self.renderer.render_frame();
-            if i % 8 == 7 {
-                self.renderer.wait();
-            }
-        }
-        let mut sum = 0.0;
-        let border = crate::compare::default_border(self.renderer.size());
-        for t in &mut self.truths {
-            let value = self.renderer.read_aov(t.aov);
-            if t.mask.is_none() {
-                t.mask = Some(crate::compare::gpu_mask(
-                    &mut self.renderer,
-                    &value,
-                    &t.ref_alpha,
-                    &t.ref_depth,
-                    MaskSettings {
-                        border,
-                        depth_tolerance: 0.01,
-                    },
-                    None,
-                ));
-            }
-            let mask = t.mask.as_ref().expect("made above");
-            sum += metric.measure(&value, &t.reference, &t.ref_srgb, mask);
-        }
-        self.renderer.check_device()?;
-        Ok(sum / self.truths.len().max(1) as f64)
-    }
 }
 
 /// A scene as written in `--scenes`: `SCENE[@CAMERA.json][:env=ENV]`.
@@ -298,13 +159,29 @@ fn parse_scene_list(what: &str, s: &str) -> Result<Vec<(String, SceneSpec)>> {
 }
 
 /// `--params k1,k2=lo..hi`: the fitted settings of technique `desc`, starting from their value
-/// in the resolved parameters (else the declared default).
+/// in the resolved parameters (else the declared default). `--params uniform`: every number the
+/// declarations mark `uniform` that applies to the technique.
 pub fn parse_params(
     text: &str,
     desc: &nearfield_render::technique::TechniqueDesc,
     resolved: &nearfield_render::TechniqueParams,
 ) -> Result<Vec<Dimension>> {
-    let items = list_items(text);
+    use nearfield_render::settings::{Role, SettingKind};
+    let uniforms: Vec<&str> = desc
+        .settings
+        .iter()
+        .filter(|s| {
+            s.role == Role::Uniform
+                && s.applies(desc.name)
+                && matches!(s.kind, SettingKind::Number { .. })
+        })
+        .map(|s| s.key)
+        .collect();
+    let items = if text.trim() == "uniform" {
+        uniforms
+    } else {
+        list_items(text)
+    };
     if items.is_empty() {
         return Err(BadInput(format!("--params '{text}': names no setting")).into());
     }
@@ -329,6 +206,14 @@ pub fn parse_params(
         })?;
         if dims.iter().any(|d| d.key == key) {
             return Err(BadInput(format!("--params: '{key}' is named twice")).into());
+        }
+        if !setting.applies(desc.name) {
+            return Err(BadInput(format!(
+                "--params: {key} does not change {} (it applies to {})",
+                desc.name,
+                setting.only.join(", ")
+            ))
+            .into());
         }
         let start_text = resolved
             .set
@@ -363,58 +248,11 @@ pub fn spec_with(base: &str, dims: &[Dimension], values: &[f64]) -> String {
     format!("{base}{sep}{}", sets.join("+"))
 }
 
-#[derive(Serialize)]
-struct Side {
-    before: f64,
-    after: f64,
-    per_scene: BTreeMap<String, SceneErrors>,
-}
-
-#[derive(Serialize)]
-struct SceneErrors {
-    before: f64,
-    after: f64,
-}
-
-#[derive(Serialize)]
-struct FitFile {
-    method: String,
-    params: BTreeMap<String, serde_json::Value>,
-    start: BTreeMap<String, serde_json::Value>,
-    spec: String,
-    metric: String,
-    aov: String,
-    size: [u32; 2],
-    frames: u32,
-    radius: f32,
-    spp: u32,
-    train: Side,
-    holdout: Side,
-    evaluations: usize,
-    /// Every evaluated point in order: the fitted settings' values and the training error.
-    history: Vec<(Vec<f64>, f64)>,
-    stopped: String,
-    /// The scenes as given (the tables name them shortly).
-    scenes: BTreeMap<String, String>,
-    seconds: f64,
-    command: String,
-    adapter: String,
-}
-
 fn json_number(d: &Dimension, x: f64) -> serde_json::Value {
     if d.integer {
         serde_json::Value::from(x as i64)
     } else {
         serde_json::Value::from(x)
-    }
-}
-
-/// The mean over the scenes' errors (0 when there is none).
-fn mean(v: &[f64]) -> f64 {
-    if v.is_empty() {
-        0.0
-    } else {
-        v.iter().sum::<f64>() / v.len() as f64
     }
 }
 
@@ -624,7 +462,7 @@ pub fn run(args: FitArgs) -> Result<()> {
         holdout_before.push(t.evaluate(&start_spec, &params, args.frames, metric)?);
         holdout_after.push(t.evaluate(&best_spec, &params, args.frames, metric)?);
     }
-    let side = |names: &[(String, SceneSpec)], before: &[f64], after: &[f64]| Side {
+    let side = |names: &[(String, SceneSpec)], before: &[f64], after: &[f64]| FitSide {
         before: mean(before),
         after: mean(after),
         per_scene: names
@@ -633,7 +471,7 @@ pub fn run(args: FitArgs) -> Result<()> {
             .map(|((_, spec), (&b, &a))| {
                 (
                     short_name(spec),
-                    SceneErrors {
+                    FitScene {
                         before: b,
                         after: a,
                     },

@@ -352,6 +352,8 @@ mod tests {
                 integer,
                 log,
             },
+            role: nearfield_render::settings::Role::Uniform,
+            only: &[],
             default: "1",
             unit: "",
             doc: "",

@@ -6,6 +6,8 @@ mod camera_control;
 mod panel;
 pub mod script;
 pub mod session;
+#[cfg(test)]
+mod settings_reach;
 mod technique_state;
 mod window;
 

@@ -4,8 +4,10 @@
 use super::camera_control;
 use super::session::{Change, Session, Side};
 use nearfield_render::Tonemap;
-use nearfield_render::technique::{self, SettingKind};
+use nearfield_render::technique;
 use std::collections::VecDeque;
+
+mod setting;
 
 /// Render resolutions offered besides following the window.
 const SIZES: &[(u32, u32)] = &[
@@ -139,8 +141,12 @@ impl Panel {
         egui::CollapsingHeader::new("settings")
             .default_open(true)
             .show(ui, |ui| {
+                // A setting of the family that this technique ignores (hbil's `fresnel` on gtao)
+                // is not shown.
                 for (setting, (key, value)) in state.desc.settings.iter().zip(&state.values) {
-                    self.setting(ui, side, setting, key, value, req);
+                    if setting.applies(state.desc.name) {
+                        self.setting(ui, side, setting, key, value, req);
+                    }
                 }
                 if state.desc.settings.is_empty() {
                     ui.label("(no settings)");
@@ -327,74 +333,6 @@ impl Panel {
         });
         if !self.status.is_empty() {
             ui.label(&self.status);
-        }
-    }
-
-    fn setting(
-        &mut self,
-        ui: &mut egui::Ui,
-        side: Side,
-        setting: &technique::Setting,
-        key: &'static str,
-        value: &str,
-        req: &mut Requests,
-    ) {
-        match setting.kind {
-            SettingKind::Number {
-                lo,
-                hi,
-                integer,
-                log,
-            } => {
-                let mut v = match self.pending {
-                    Some((ps, pk, pv)) if ps == side && pk == key => pv,
-                    _ => value.parse::<f32>().unwrap_or(lo),
-                };
-                let mut slider = egui::Slider::new(&mut v, lo..=hi)
-                    .logarithmic(log)
-                    .text(key);
-                if integer {
-                    slider = slider.integer();
-                }
-                let r = ui.add(slider).on_hover_text(hover_text(setting));
-                if r.dragged() {
-                    self.pending = Some((side, key, v));
-                } else if r.drag_stopped() || r.changed() {
-                    self.pending = None;
-                    let text = if integer {
-                        format!("{}", v.round() as i64)
-                    } else {
-                        format!("{v}")
-                    };
-                    req.changes.push(Change::Setting(side, key.into(), text));
-                }
-            }
-            SettingKind::Toggle => {
-                let mut on = value == "on";
-                if ui
-                    .checkbox(&mut on, key)
-                    .on_hover_text(hover_text(setting))
-                    .changed()
-                {
-                    let v = if on { "on" } else { "off" };
-                    req.changes
-                        .push(Change::Setting(side, key.into(), v.into()));
-                }
-            }
-            SettingKind::Choice(options) => {
-                egui::ComboBox::from_id_salt(("choice", key))
-                    .selected_text(format!("{key}: {value}"))
-                    .show_ui(ui, |ui| {
-                        for o in options {
-                            if ui.selectable_label(*o == value, *o).clicked() && *o != value {
-                                req.changes
-                                    .push(Change::Setting(side, key.into(), o.to_string()));
-                            }
-                        }
-                    })
-                    .response
-                    .on_hover_text(hover_text(setting));
-            }
         }
     }
 
@@ -598,14 +536,5 @@ fn light_kind(l: &nearfield_scene::Light) -> &'static str {
         nearfield_scene::LightKind::Directional { .. } => "directional",
         nearfield_scene::LightKind::Point { .. } => "point",
         nearfield_scene::LightKind::Spot { .. } => "spot",
-    }
-}
-
-/// A setting's hover text: its doc line and, for numbers, its unit.
-fn hover_text(setting: &technique::Setting) -> String {
-    if setting.unit.is_empty() {
-        setting.doc.to_string()
-    } else {
-        format!("{} ({})", setting.doc, setting.unit)
     }
 }

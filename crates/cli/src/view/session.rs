@@ -5,21 +5,19 @@
 
 use super::technique_state::TechniqueState;
 use anyhow::Result;
-use nearfield_reference::bake::Monitor;
-use nearfield_render::passes::display::{DisplayMode, DisplayPass, DisplayPost, DisplaySide};
+use display::{display_side, source, wgpu_encoder_label};
+use far::Bake;
+pub use files::{env_name, save_camera};
+use nearfield_render::passes::display::{DisplayPass, DisplayPost};
 use nearfield_render::{Aov, GpuContext, RenderSettings, Renderer, Tonemap};
 use nearfield_scene::probes::ProbeVolume;
 use nearfield_scene::{Camera, CameraFile, EnvSource, Environment, Scene, SceneSource, SunMode};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
-/// A bake under way in the background: what it is for ([`Session::far_key`]), how far it is,
-/// and the thread.
-struct Bake {
-    key: String,
-    monitor: Arc<Monitor>,
-    thread: std::thread::JoinHandle<Result<ProbeVolume, String>>,
-}
+mod display;
+mod far;
+mod files;
 
 /// Which side of the A/B view.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -381,134 +379,6 @@ impl Session {
         }
     }
 
-    /// What the volume must be baked for now: the scene, the environment (intensity and rotation
-    /// too) and which lights are on.
-    fn far_key(&self) -> String {
-        let lights: String = (0..self.renderer_a.lights().len())
-            .map(|i| {
-                if self.renderer_a.light_enabled(i) {
-                    '1'
-                } else {
-                    '0'
-                }
-            })
-            .collect();
-        format!(
-            "{}|{}|{}|{}|{lights}",
-            self.scene_name, self.env_name, self.env_intensity, self.env_rotation_deg
-        )
-    }
-
-    /// After a change the far field may depend on: with the sky, every renderer drops its volume;
-    /// with the volume, one that matches the session is used, or baked in the background (the
-    /// renderers keep the old one until the new one is ready).
-    fn refresh_far(&mut self) -> Result<(), String> {
-        if !self.far_volume {
-            if let Some(b) = self.bake.take() {
-                b.monitor
-                    .cancel
-                    .store(true, std::sync::atomic::Ordering::Relaxed);
-            }
-            self.volume = None;
-            return self.set_far_field(None);
-        }
-        let key = self.far_key();
-        if let Some((k, v)) = &self.volume
-            && *k == key
-        {
-            let v = v.clone();
-            return self.set_far_field(Some(&v));
-        }
-        if self.bake.as_ref().is_some_and(|b| b.key == key) {
-            return Ok(());
-        }
-        if let Some(b) = self.bake.take() {
-            b.monitor
-                .cancel
-                .store(true, std::sync::atomic::Ordering::Relaxed);
-        }
-        // What the bake sees: the scene's lights that are on, the sun if it is on.
-        let lights = self.renderer_a.lights().len();
-        let scene_lights = self.scene.lights.len();
-        let mut scene = self.scene.clone();
-        scene.lights = (0..scene_lights)
-            .filter(|&i| self.renderer_a.light_enabled(i))
-            .map(|i| self.scene.lights[i])
-            .collect();
-        let mut env = self.load_env(&self.env_name)?;
-        if lights > scene_lights && !self.renderer_a.light_enabled(lights - 1) {
-            env.sun = None;
-        }
-        let settings = crate::far::GridOpts::default()
-            .settings_for(&scene)
-            .map_err(|e| e.to_string())?;
-        let monitor = Arc::new(Monitor::default());
-        let (scene_name, env_name) = (self.scene_name.clone(), self.env_name.clone());
-        let m = monitor.clone();
-        let thread = std::thread::spawn(move || {
-            let input = crate::far::BakeInput {
-                scene_name: &scene_name,
-                scene: &scene,
-                env_name: &env_name,
-                env: &env,
-            };
-            crate::far::baked_from(&input, &settings, false, false, Some(&m))
-                .map(|(v, _)| v)
-                .map_err(|e| e.to_string())
-        });
-        self.bake = Some(Bake {
-            key,
-            monitor,
-            thread,
-        });
-        Ok(())
-    }
-
-    /// Every renderer's far field.
-    fn set_far_field(&mut self, volume: Option<&ProbeVolume>) -> Result<(), String> {
-        self.renderer_a
-            .set_far_field(volume)
-            .map_err(|e| e.to_string())?;
-        if let Some(b) = &mut self.renderer_b {
-            b.set_far_field(volume).map_err(|e| e.to_string())?;
-        }
-        Ok(())
-    }
-
-    /// Takes a finished background bake into the renderers; `wait` blocks until it finishes.
-    fn poll_bake(&mut self, wait: bool) -> Result<(), String> {
-        let finished = self.bake.as_ref().is_some_and(|b| b.thread.is_finished());
-        if !(finished || (wait && self.bake.is_some())) {
-            return Ok(());
-        }
-        let b = self.bake.take().expect("a bake");
-        let v = b
-            .thread
-            .join()
-            .map_err(|_| "the background bake failed".to_string())??;
-        let v = Arc::new(v);
-        self.set_far_field(Some(&v))?;
-        self.volume = Some((b.key, v));
-        Ok(())
-    }
-
-    /// Waits for a background bake (the script's `bake-wait`).
-    pub fn wait_bake(&mut self) -> Result<(), String> {
-        self.poll_bake(true)
-    }
-
-    /// How far the background bake is (0..=1), when one is under way.
-    pub fn bake_progress(&self) -> Option<f32> {
-        self.bake.as_ref().map(|b| b.monitor.fraction())
-    }
-
-    /// Probes of the volume in use, active ones.
-    pub fn volume_probes(&self) -> Option<(usize, usize)> {
-        self.volume
-            .as_ref()
-            .map(|(_, v)| (v.probes.len(), v.active_count()))
-    }
-
     fn for_each_renderer(&mut self, mut f: impl FnMut(&mut Renderer)) {
         f(&mut self.renderer_a);
         if let Some(b) = &mut self.renderer_b {
@@ -713,82 +583,4 @@ impl Session {
                 + hub.render_pipelines.num_kept_from_user,
         }
     }
-}
-
-fn display_side(s: &(nearfield_render::wgpu::TextureView, DisplayMode, bool)) -> DisplaySide<'_> {
-    DisplaySide {
-        view: &s.0,
-        mode: s.1,
-        coverage: s.2,
-    }
-}
-
-fn wgpu_encoder_label() -> nearfield_render::wgpu::CommandEncoderDescriptor<'static> {
-    nearfield_render::wgpu::CommandEncoderDescriptor {
-        label: Some("display"),
-    }
-}
-
-/// The image to show for `name` from one renderer: (view, mode, alpha is coverage). A name the
-/// renderer does not have (a technique image of the other side) shows its frame.
-fn source(
-    r: &mut Renderer,
-    name: &str,
-) -> (nearfield_render::wgpu::TextureView, DisplayMode, bool) {
-    use nearfield_render::wgpu::{TextureFormat as F, TextureViewDescriptor, TextureViewDimension};
-    match Aov::parse(name) {
-        Some(Aov::Final) => (
-            r.targets.final_ldr.view.clone(),
-            DisplayMode::Encoded,
-            false,
-        ),
-        Some(aov) => {
-            r.extract_aov(aov);
-            (r.targets.aov.view.clone(), DisplayMode::for_aov(aov), true)
-        }
-        None => match r.extra_texture(name) {
-            Some(t) if matches!(t.format(), F::Rgba16Float | F::Rgba32Float | F::R32Float) => {
-                let view = t.create_view(&TextureViewDescriptor {
-                    dimension: Some(TextureViewDimension::D2),
-                    base_mip_level: 0,
-                    mip_level_count: Some(1),
-                    base_array_layer: 0,
-                    array_layer_count: Some(1),
-                    ..Default::default()
-                });
-                let mode = if t.format() == F::R32Float {
-                    DisplayMode::Scalar
-                } else {
-                    DisplayMode::Colour
-                };
-                (view, mode, false)
-            }
-            _ => (
-                r.targets.final_ldr.view.clone(),
-                DisplayMode::Encoded,
-                false,
-            ),
-        },
-    }
-}
-
-/// How an environment source is typed after `--env`.
-pub fn env_name(source: &EnvSource) -> String {
-    match source {
-        EnvSource::Sky => "sky".into(),
-        EnvSource::File(p) => p.display().to_string(),
-        EnvSource::Constant(c) => format!("constant:{},{},{}", c.x, c.y, c.z),
-    }
-}
-
-/// Writes the camera JSON of docs/src/conventions.md (what `render --camera` and
-/// `reference --camera` read).
-pub fn save_camera(camera: &Camera, path: &Path) -> Result<(), String> {
-    crate::output::check_parent_dir(path).map_err(|e| e.to_string())?;
-    let text = serde_json::to_string_pretty(&CameraFile::from_camera(camera))
-        .map_err(|e| e.to_string())?;
-    crate::output::save_atomically(path, |tmp| {
-        std::fs::write(tmp, format!("{text}\n")).map_err(anyhow::Error::from)
-    })
-    .map_err(|e| format!("{e:#}"))
 }

@@ -4,6 +4,7 @@
 //! (`crate::technique`) imports the families.
 
 use crate::RenderError;
+use crate::bindings::PassLayout;
 use crate::contract::frame::FrameGroup;
 use crate::contract::io::{NearFieldInputs, NearFieldOutputs, SceneInputs};
 use crate::contract::lights::{LightResources, NoLights};
@@ -118,6 +119,9 @@ pub type CheckFn = fn(&TechniqueParams) -> Result<(), String>;
 /// A registry entry.
 pub struct TechniqueDesc {
     pub name: &'static str,
+    /// The family whose settings it shares (its folder `technique/<family>/`; the book's page
+    /// `settings-<family>.md`).
+    pub family: &'static str,
     /// One line for `--help` and the book.
     pub summary: &'static str,
     pub create: CreateFn,
@@ -133,6 +137,9 @@ pub struct TechniqueDesc {
     /// parsed from its settings; `None` for a technique without one. The registry wraps the
     /// technique that `create` makes in the denoiser where this says `svgf`.
     pub denoise: Option<DenoiseFn>,
+    /// Every pass's binding declaration (what the reflection test checks against naga); passes
+    /// shared within a family appear under one name.
+    pub pass_layouts: fn() -> Vec<PassLayout>,
 }
 
 /// Parses a technique's denoiser choice and svgf configuration from its settings.

@@ -18,7 +18,7 @@ pub fn source() -> String {
     util::compose(&[util::COMMON_WGSL, SHADER])
 }
 
-pub use crate::settings::horizon::ReprojectMode;
+pub use crate::settings::march::ReprojectMode;
 
 /// `ReprojectParams` in reproject.wgsl.
 #[repr(C)]

@@ -11,10 +11,10 @@ pub const MAX_CAMERAS: u32 = 4;
 declare_settings! {
     /// What the extra layers hold.
     pub struct LayerSettings {
-        layers: u32 = "1", values("1", "2", "4"), "", "depth layers of the main view in the blocker test (depth peeling; 1 = the G-buffer only; layers come in entry/exit pairs)";
-        cameras: u32 = "0", integer(0, MAX_CAMERAS), "", "additional cameras in the blocker test";
-        camera_scale: u32 = "2", integer(1, 8), "", "resolution divisor of the additional cameras";
-        camera_spread: f32 = "0.5", number(0, 4), "", "camera displacement as a fraction of the scene's bounding-sphere radius";
+        layers: u32 = "1", values("1", "2", "4"), structural, "", "depth layers of the main view in the blocker test (depth peeling; 1 = the G-buffer only; layers come in entry/exit pairs)";
+        cameras: u32 = "0", integer(0, MAX_CAMERAS), count, "", "additional cameras in the blocker test";
+        camera_scale: u32 = "2", integer(1, 8), structural, "", "resolution divisor of the additional cameras";
+        camera_spread: f32 = "0.5", number(0, 4), structural, "", "camera displacement as a fraction of the scene's bounding-sphere radius";
     }
 }
 

@@ -4,18 +4,20 @@
 //! (the field's name), type, default (as typed after `key=`), kind and range, unit and doc line.
 //! From that one declaration come the struct and its rustdoc, `Default`, the `--set` parser
 //! ([`Declared::set`]), the table that the viewer shows as sliders, checkboxes and lists
-//! ([`Declared::TABLE`]) and the book's settings tables ([`markdown_table`], [`book_pages`];
-//! a test checks the committed pages). Word-valued settings are enums written with [`choice!`].
+//! ([`Declared::TABLE`]) and the book's settings tables ([`markdown_table`];
+//! `technique::book_pages`, a test checks the committed pages). Word-valued settings are enums
+//! written with [`choice!`]. Each line also declares the setting's [`Role`] and, where it is not
+//! all of its family's, the techniques it applies to.
 //!
-//! This module knows nothing of techniques or GPU resources; `technique/` builds on it.
+//! This module knows nothing of techniques or GPU resources: it holds the machinery and the
+//! groups several families share (denoise, layers, march, sampling); each family declares its
+//! own settings in `technique/<family>/settings.rs`.
 
 pub mod denoise;
 pub mod fitted;
-pub mod horizon;
 pub mod layers;
-pub mod s3ho;
-pub mod ssdo;
-pub mod vbgi;
+pub mod march;
+pub mod sampling;
 
 /// Generic settings from the command line, interpreted by each technique: `--samples`,
 /// `--radius` and `--set key=value`.
@@ -45,11 +47,44 @@ pub enum SettingKind {
     Choice(&'static [&'static str]),
 }
 
+/// What a setting is for, declared with it: what the sweep, the fit, the viewer and the book
+/// read instead of names.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Role {
+    /// How much work: samples, steps, slices, lights, cameras (`pareto` scales it; it may
+    /// rebuild the pipelines, as a WGSL `override` constant does).
+    Count,
+    /// Shapes the pipelines or resources (a mode that adds a pass, a texture size): a change
+    /// rebuilds the technique.
+    Structural,
+    /// A value the kernels read from a uniform buffer: written in place, no rebuild (`fit`
+    /// fits these).
+    Uniform,
+    /// Chooses or tunes the denoising (the denoiser, the running mean, the blur, svgf).
+    Denoiser,
+}
+
+impl Role {
+    /// The word the declaration and the book use.
+    pub fn word(self) -> &'static str {
+        match self {
+            Role::Count => "count",
+            Role::Structural => "structural",
+            Role::Uniform => "uniform",
+            Role::Denoiser => "denoiser",
+        }
+    }
+}
+
 /// One `--set key=value` setting of a technique.
 #[derive(Clone, Copy, Debug)]
 pub struct Setting {
     pub key: &'static str,
     pub kind: SettingKind,
+    /// What it is for.
+    pub role: Role,
+    /// The techniques of the family it applies to; empty: all of them.
+    pub only: &'static [&'static str],
     /// The default, as typed after `key=`.
     pub default: &'static str,
     /// The unit of a number (`m`, `pixels`), empty where it has none.
@@ -59,6 +94,11 @@ pub struct Setting {
 }
 
 impl Setting {
+    /// Whether the setting changes technique `name` (the family's others ignore it).
+    pub fn applies(&self, name: &str) -> bool {
+        self.only.is_empty() || self.only.contains(&name)
+    }
+
     /// Checks a typed value against the documented range; the technique's parser has the
     /// last word (some settings constrain each other).
     pub fn check(&self, value: &str) -> Result<(), String> {
@@ -84,6 +124,16 @@ impl Setting {
                     ))
                 }
             }
+        }
+    }
+
+    /// The settings table's "role" cell: the role, and the techniques where not all of the
+    /// family's.
+    pub fn role_text(&self) -> String {
+        if self.only.is_empty() {
+            self.role.word().to_string()
+        } else {
+            format!("{} ({})", self.role.word(), self.only.join(", "))
         }
     }
 
@@ -214,6 +264,23 @@ pub trait Declared: Default {
     fn set(&mut self, key: &str, value: &str) -> Result<bool, String>;
 }
 
+/// The [`Role`] of a declaration line.
+#[macro_export]
+macro_rules! setting_role {
+    (count) => {
+        $crate::settings::Role::Count
+    };
+    (structural) => {
+        $crate::settings::Role::Structural
+    };
+    (uniform) => {
+        $crate::settings::Role::Uniform
+    };
+    (denoiser) => {
+        $crate::settings::Role::Denoiser
+    };
+}
+
 /// The [`SettingKind`] of a declaration line.
 #[macro_export]
 macro_rules! setting_kind {
@@ -238,22 +305,30 @@ macro_rules! setting_kind {
 }
 
 /// Declares a settings struct: one line per setting,
-/// `key: Type = "default", kind(range), "unit", "doc line";` where kind is `integer(lo, hi)`,
-/// `number(lo, hi)`, `log(lo, hi)` (a number best shown on a log scale), `toggle` (on | off),
-/// `choice` (an enum of [`choice!`]) or `values("1", "2")` (whole numbers from a list).
-/// `flatten { field: Type, ... }` embeds other declared structs, whose keys join this one's.
+/// `key: Type = "default", kind(range), role("technique", …), "unit", "doc line";` where kind is
+/// `integer(lo, hi)`, `number(lo, hi)`, `log(lo, hi)` (a number best shown on a log scale),
+/// `toggle` (on | off), `choice` (an enum of [`choice!`]) or `values("1", "2")` (whole numbers
+/// from a list), and role is `count`, `structural`, `uniform` or `denoiser` ([`Role`]), with the
+/// techniques it applies to in parentheses where it is not all of the family's.
+/// `flatten { field: Type, ... }` embeds other declared structs, whose keys join this one's
+/// (after its own; `@first { field: Type }` before the struct's lines puts a group first).
 #[macro_export]
 macro_rules! declare_settings {
     (
         $(#[$meta:meta])*
         pub struct $name:ident {
-            $($field:ident : $ty:ty = $default:literal, $kind:ident $(($($arg:tt)*))?, $unit:literal, $doc:literal;)*
+            $(@first { $($pfield:ident : $pty:ty),* $(,)? })?
+            $($field:ident : $ty:ty = $default:literal, $kind:ident $(($($arg:tt)*))?, $role:ident $(($($only:literal),+))?, $unit:literal, $doc:literal;)*
         }
         $(flatten { $($ffield:ident : $fty:ty),* $(,)? })?
     ) => {
         $(#[$meta])*
         #[derive(Clone, Copy, Debug, PartialEq)]
         pub struct $name {
+            $($(
+                #[doc = concat!("The settings of [`", stringify!($pty), "`], under their own keys.")]
+                pub $pfield: $pty,
+            )*)?
             $(
                 #[doc = concat!("`", stringify!($field), "`: ", $doc, ". Default ", $default, ".")]
                 pub $field: $ty,
@@ -270,13 +345,18 @@ macro_rules! declare_settings {
                 $crate::settings::Setting {
                     key: stringify!($field),
                     kind: $crate::setting_kind!($kind $(($($arg)*))?, $ty),
+                    role: $crate::setting_role!($role),
+                    only: &[$($($only),+)?],
                     default: $default,
                     unit: $unit,
                     doc: $doc,
                 },
             )*];
-            const TABLE_LEN: usize = Self::OWN.len() $($(+ <$fty as $crate::settings::Declared>::TABLE.len())*)?;
+            const TABLE_LEN: usize = Self::OWN.len()
+                $($(+ <$pty as $crate::settings::Declared>::TABLE.len())*)?
+                $($(+ <$fty as $crate::settings::Declared>::TABLE.len())*)?;
             const TABLE_ARRAY: [$crate::settings::Setting; Self::TABLE_LEN] = $crate::settings::concat(&[
+                $($(<$pty as $crate::settings::Declared>::TABLE,)*)?
                 Self::OWN,
                 $($(<$fty as $crate::settings::Declared>::TABLE,)*)?
             ]);
@@ -285,6 +365,7 @@ macro_rules! declare_settings {
         impl Default for $name {
             fn default() -> Self {
                 $name {
+                    $($($pfield: <$pty>::default(),)*)?
                     $(
                         $field: <$ty as $crate::settings::SettingValue>::parse(
                             stringify!($field),
@@ -315,6 +396,11 @@ macro_rules! declare_settings {
                     )*
                     _ => {
                         $($(
+                            if $crate::settings::Declared::set(&mut self.$pfield, key, value)? {
+                                return Ok(true);
+                            }
+                        )*)?
+                        $($(
                             if $crate::settings::Declared::set(&mut self.$ffield, key, value)? {
                                 return Ok(true);
                             }
@@ -332,6 +418,8 @@ pub const fn concat<const N: usize>(tables: &[&[Setting]]) -> [Setting; N] {
     const BLANK: Setting = Setting {
         key: "",
         kind: SettingKind::Toggle,
+        role: Role::Uniform,
+        only: &[],
         default: "",
         unit: "",
         doc: "",
@@ -359,6 +447,22 @@ pub fn apply<S: Declared>(
     params: &TechniqueParams,
     aliases: &[(&str, &str)],
 ) -> Result<(), String> {
+    let alias = |k: &str| {
+        aliases
+            .iter()
+            .find(|(from, _)| *from == k)
+            .map_or(k.to_string(), |(_, to)| to.to_string())
+    };
+    // The command line's shortcuts are settings like any other: parsed and checked by the
+    // declaration (a family without the key ignores them).
+    if let Some(n) = params.samples {
+        s.set(&alias("samples"), &n.to_string())
+            .map_err(|e| format!("--samples {n}: {e}"))?;
+    }
+    if let Some(r) = params.radius {
+        s.set("radius", &r.to_string())
+            .map_err(|e| format!("--radius {r}: {e}"))?;
+    }
     for (k, v) in &params.set {
         let key = aliases
             .iter()
@@ -379,7 +483,8 @@ pub fn apply<S: Declared>(
 
 /// The markdown table of a settings struct: key, meaning, unit / range, default.
 pub fn markdown_table(table: &[Setting], presets: &[Preset]) -> String {
-    let mut out = String::from("| key | meaning | unit / range | default |\n|---|---|---|---|\n");
+    let mut out =
+        String::from("| key | meaning | unit / range | default | role |\n|---|---|---|---|---|\n");
     if !presets.is_empty() {
         let names: Vec<String> = presets
             .iter()
@@ -389,61 +494,21 @@ pub fn markdown_table(table: &[Setting], presets: &[Preset]) -> String {
             })
             .collect();
         out += &format!(
-            "| `quality` | preset: {}; `fitted` each technique's constants fitted against the reference (results page, \"Fitted presets\"); explicit settings refine it | | |\n",
+            "| `quality` | preset: {}; `fitted` each technique's constants fitted against the reference (results page, \"Fitted presets\"); explicit settings refine it | | | |\n",
             names.join(", ")
         );
     }
     for s in table {
         out += &format!(
-            "| `{}` | {} | {} | {} |\n",
+            "| `{}` | {} | {} | {} | {} |\n",
             s.key,
             s.doc,
             s.range_text(),
-            s.default
+            s.default,
+            s.role_text()
         );
     }
     out
-}
-
-/// Every family of techniques that shares one settings struct: (id of its book page
-/// `settings-ID.md`, the techniques, table, presets).
-pub const FAMILIES: &[(&str, &str, &[Setting], &[Preset])] = &[
-    (
-        "ssdo",
-        "ssao, ssdo, ssdo-vpl, instant-radiosity",
-        ssdo::Settings::TABLE,
-        ssdo::PRESETS,
-    ),
-    ("s3ho", "s3ho, ssbn", s3ho::Settings::TABLE, s3ho::PRESETS),
-    (
-        "horizon",
-        "gtao, hbil",
-        horizon::Settings::TABLE,
-        horizon::PRESETS,
-    ),
-    ("vbgi", "vbgi", vbgi::Settings::TABLE, vbgi::PRESETS),
-];
-
-/// The book's generated settings pages: (file name, content) per family, e.g.
-/// `settings-ssdo.md`, each naming the techniques it applies to and giving the table.
-pub fn book_pages() -> Vec<(String, String)> {
-    FAMILIES
-        .iter()
-        .map(|(id, techniques, table, presets)| {
-            let names: Vec<String> = techniques.split(", ").map(|t| format!("`{t}`")).collect();
-            (
-                format!("settings-{id}.md"),
-                format!(
-                    "<!-- generated from the settings declarations (crates/render/src/settings/); \
-                     regenerate with `cargo run -p nearfield-cli --example book_reference` -->\n\n\
-                     Settings of {}: `--set key=value` on the command line, `technique:key=value` \
-                     (joined by `+`) in `--methods`, the panel in the viewer.\n\n{}",
-                    names.join(", "),
-                    markdown_table(table, presets)
-                ),
-            )
-        })
-        .collect()
 }
 
 /// The keys of a settings table, for error messages.
@@ -484,19 +549,6 @@ pub fn parse_integer(key: &str, v: &str, lo: u32, hi: u32) -> Result<u32, String
     Ok(x as u32)
 }
 
-/// Checks the sampling settings every screen-space sampling technique shares.
-pub fn check_sampling(samples: u32, radius: f32) -> Result<(), String> {
-    if !(1..=256).contains(&samples) {
-        return Err(format!("samples {samples}: must be in 1..=256"));
-    }
-    if !(radius.is_finite() && radius > 0.0) {
-        return Err(format!(
-            "radius {radius}: screen-space sampling needs a finite radius > 0"
-        ));
-    }
-    Ok(())
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -506,25 +558,5 @@ mod tests {
         assert_eq!(or_list(&["a"]), "a");
         assert_eq!(or_list(&["a", "b"]), "a or b");
         assert_eq!(or_list(&["a", "b", "c"]), "a, b or c");
-    }
-
-    #[test]
-    fn every_declared_default_parses() {
-        // Default::default() panics when a declared default does not parse under its kind.
-        let _ = ssdo::Settings::default();
-        let _ = s3ho::Settings::default();
-        let _ = horizon::Settings::default();
-        let _ = layers::LayerSettings::default();
-        let _ = vbgi::Settings::default();
-        for table in [
-            ssdo::Settings::TABLE,
-            s3ho::Settings::TABLE,
-            horizon::Settings::TABLE,
-            vbgi::Settings::TABLE,
-        ] {
-            for s in table {
-                s.check(s.default).unwrap();
-            }
-        }
     }
 }

@@ -73,7 +73,8 @@ pub fn expand_presets(
     })
 }
 
-/// Every technique, in the order shown to users.
+/// Every technique, in the order shown to users. Adding a technique is its folder
+/// `technique/<name>/` and one line here (docs/src/architecture.md).
 pub const REGISTRY: &[TechniqueDesc] = &[
     none::DESC,
     ssdo::SSAO,
@@ -154,5 +155,83 @@ pub fn create(
             (desc.create)(ctx, params)
         }),
         None => (desc.create)(ctx, params),
+    }
+}
+
+/// Every pass of every registered technique (each name once).
+pub fn pass_layouts() -> Vec<crate::bindings::PassLayout> {
+    let mut out: Vec<crate::bindings::PassLayout> = Vec::new();
+    for desc in REGISTRY {
+        for p in (desc.pass_layouts)() {
+            if !out.iter().any(|q| q.name == p.name) {
+                out.push(p);
+            }
+        }
+    }
+    out
+}
+
+/// The techniques of each family with settings, in registry order: (family, its techniques).
+pub fn families() -> Vec<(&'static str, Vec<&'static TechniqueDesc>)> {
+    let mut out: Vec<(&'static str, Vec<&'static TechniqueDesc>)> = Vec::new();
+    for desc in REGISTRY.iter().filter(|d| !d.settings.is_empty()) {
+        match out.iter_mut().find(|(f, _)| *f == desc.family) {
+            Some((_, v)) => v.push(desc),
+            None => out.push((desc.family, vec![desc])),
+        }
+    }
+    out
+}
+
+/// The book's generated settings pages: (file name, content) per family, e.g.
+/// `settings-ssdo.md`, each naming the techniques it applies to and giving the table (the
+/// family's first technique's; the `fitted` preset is described in the table's first line).
+pub fn book_pages() -> Vec<(String, String)> {
+    families()
+        .into_iter()
+        .map(|(family, descs)| {
+            let names: Vec<String> = descs.iter().map(|d| format!("`{}`", d.name)).collect();
+            let first = descs[0];
+            let presets: Vec<Preset> = first
+                .presets
+                .iter()
+                .filter(|p| p.name != "fitted")
+                .copied()
+                .collect();
+            (
+                format!("settings-{family}.md"),
+                format!(
+                    "<!-- generated from the settings declarations (crates/render/src/technique/*/settings.rs \
+                     and the shared groups in crates/render/src/settings/); \
+                     regenerate with `cargo run -p nearfield-cli --example book_reference` -->\n\n\
+                     Settings of {}: `--set key=value` on the command line, `technique:key=value` \
+                     (joined by `+`) in `--methods`, the panel in the viewer. The role says what a \
+                     setting is for: a `count` scales the work (`pareto` sweeps it), a \
+                     `structural` setting shapes the passes (a change rebuilds the technique), a \
+                     `uniform` is written in place (`fit` fits these), a `denoiser` setting \
+                     chooses or tunes the denoising.\n\n{}",
+                    names.join(", "),
+                    crate::settings::markdown_table(first.settings, &presets)
+                ),
+            )
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_declared_default_parses() {
+        // Each technique's settings parse with nothing set (Default::default() would panic on a
+        // declared default that does not parse), and every declared default passes its own
+        // range check.
+        for desc in REGISTRY {
+            (desc.check)(&TechniqueParams::default()).unwrap();
+            for s in desc.settings {
+                s.check(s.default).unwrap();
+            }
+        }
     }
 }

@@ -4,6 +4,7 @@
 
 use super::march::{Flavor, March, MarchContext, MarchIo, work};
 use super::params::FAR_SLICES;
+use super::settings::Far;
 use super::{GEOMETRY_FORMAT, Settings, Source, accumulate, split};
 use crate::RenderError;
 use crate::contract::formats::HDR_FORMAT;
@@ -15,7 +16,6 @@ use crate::passes::denoise::Denoise;
 use crate::passes::reproject::{History, ReprojectParams, Reprojection};
 use crate::passes::{ComputeStep, PingPong};
 use crate::profiler::GpuProfiler;
-use crate::settings::horizon::Far;
 use crate::util;
 use wgpu::util::DeviceExt;
 
@@ -98,7 +98,7 @@ pub fn build(
     let hist_geo_views = [view(&hist_geo[0]), view(&hist_geo[1])];
     let feedback_views = [view(&feedback[0]), view(&feedback[1])];
 
-    let reprojection = (near && settings.source == Source::Previous).then(|| {
+    let reprojection = (near && settings.march.source == Source::Previous).then(|| {
         Reprojection::new(
             device,
             frame,
@@ -113,7 +113,7 @@ pub fn build(
                     radiance: &feedback_views[1],
                 },
             ],
-            settings.reprojection,
+            settings.march.reprojection,
             reproject_params(&settings),
         )
     });
@@ -151,7 +151,7 @@ pub fn build(
     let mut textures = Vec::new();
     let split_layout = split::SplitBindings::layout(device);
     let mut full_bg = Vec::new();
-    let split = if settings.interleaved {
+    let split = if settings.march.interleaved {
         let layer_size = (p.layer_width, p.layer_height);
         let layered = |label: &str, format| layered_texture(device, layer_size, 16, label, format);
         let s_geometry = layered("split geometry", GEOMETRY_FORMAT);
@@ -283,8 +283,8 @@ pub fn build(
     });
     let (search_source, search_entry, march_counts) = march.kernel();
     let mut counts = vec![
-        ("SLICES", settings.slices as f64),
-        ("STEPS", settings.steps as f64),
+        ("SLICES", settings.march.slices as f64),
+        ("STEPS", settings.march.steps as f64),
     ];
     counts.extend(march_counts);
     let work = work(near, &p);
@@ -297,7 +297,7 @@ pub fn build(
         flavor,
         near,
         size,
-        source: settings.source,
+        source: settings.march.source,
         split_step: step("split", split::source(), "split", &split_layout, &[]),
         search_step: step(name, search_source, search_entry, march.layout(), &counts),
         accumulate_step: step(
@@ -335,7 +335,7 @@ pub fn build(
 fn blur_settings(settings: &Settings) -> BlurSettings {
     BlurSettings {
         enabled: true,
-        radius: settings.blur_radius,
+        radius: settings.march.blur_radius,
         depth_sigma: 0.01,
         normal_power: 8.0,
     }
@@ -343,8 +343,8 @@ fn blur_settings(settings: &Settings) -> BlurSettings {
 
 fn reproject_params(settings: &Settings) -> ReprojectParams {
     ReprojectParams {
-        reject_depth: settings.reject_depth,
-        reject_normal: settings.reject_normal,
+        reject_depth: settings.march.reject_depth,
+        reject_normal: settings.march.reject_normal,
         _pad0: 0.0,
         _pad1: 0.0,
     }
@@ -353,11 +353,11 @@ fn reproject_params(settings: &Settings) -> ReprojectParams {
 /// What shapes the passes' pipelines and resources: a change of any of these rebuilds.
 fn structure(s: &Settings) -> impl PartialEq + use<> {
     (
-        s.slices,
-        s.steps,
-        s.interleaved,
-        s.reprojection,
-        s.source,
+        s.march.slices,
+        s.march.steps,
+        s.march.interleaved,
+        s.march.reprojection,
+        s.march.source,
         s.denoise,
         s.far == Far::Slices,
     )
@@ -454,7 +454,7 @@ impl Technique for Horizon {
                 bytemuck::bytes_of(&reproject_params(&settings)),
             );
         }
-        self.source = settings.source;
+        self.source = settings.march.source;
         self.settings = settings;
         Ok(true)
     }

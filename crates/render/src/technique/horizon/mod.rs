@@ -76,16 +76,17 @@ mod machine;
 pub mod march;
 pub mod params;
 pub mod search;
+pub mod settings;
 pub mod split;
 
 use crate::contract::technique::{TechniqueDesc, TechniqueParams};
 use crate::passes::denoise::{Denoise, SvgfConfig};
 use crate::settings::Declared;
 
-pub use crate::settings::horizon::{Aperture, Far, PRESETS, ReprojectMode, Settings, Source};
 pub use machine::build;
 pub use march::{Flavor, HorizonMarch, March, MarchContext, MarchIo};
 pub use params::HorizonParams;
+pub use settings::{Aperture, Far, PRESETS, ReprojectMode, Settings, Source};
 
 /// The history geometry and split geometry: world normal xyz, view depth w.
 pub const GEOMETRY_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
@@ -112,6 +113,7 @@ pub const HBIL_FLAVOR: Flavor = Flavor {
 };
 
 pub const GTAO: TechniqueDesc = TechniqueDesc {
+    family: "horizon",
     name: "gtao",
     summary: "ground-truth AO: horizon search in slices, cosine-weighted AO, bent normal; ao × SH irradiance",
     create: |ctx, tp| build(ctx, GTAO_FLAVOR, tp),
@@ -119,9 +121,11 @@ pub const GTAO: TechniqueDesc = TechniqueDesc {
     settings: <Settings as Declared>::TABLE,
     presets: &GTAO_PRESETS,
     denoise: Some(config),
+    pass_layouts,
 };
 
 pub const HBIL: TechniqueDesc = TechniqueDesc {
+    family: "horizon",
     name: "hbil",
     summary: "horizon-based indirect lighting: bent cones, far field through the cone, near-field bounces from reprojected radiance",
     create: |ctx, tp| build(ctx, HBIL_FLAVOR, tp),
@@ -129,6 +133,7 @@ pub const HBIL: TechniqueDesc = TechniqueDesc {
     settings: <Settings as Declared>::TABLE,
     presets: &HBIL_PRESETS,
     denoise: Some(config),
+    pass_layouts,
 };
 
 /// The settings parsed without a device (`TechniqueDesc::check`).
@@ -147,11 +152,20 @@ pub fn svgf_config(s: &Settings) -> (Denoise, SvgfConfig) {
     (
         s.denoise,
         SvgfConfig {
-            temporal: s.temporal,
-            history: s.history,
-            reject_depth: s.reject_depth,
-            reject_normal: s.reject_normal,
+            temporal: s.march.temporal,
+            history: s.march.history,
+            reject_depth: s.march.reject_depth,
+            reject_normal: s.march.reject_normal,
             svgf: s.svgf,
         },
     )
+}
+
+/// The machinery's passes with the horizon march (`TechniqueDesc::pass_layouts`).
+pub fn pass_layouts() -> Vec<crate::bindings::PassLayout> {
+    vec![
+        split::pass_layout(),
+        search::pass_layout(),
+        accumulate::pass_layout(),
+    ]
 }

@@ -18,32 +18,32 @@ impl Settings {
     /// The GPU constants (pure). `size` is the image size; `near`: the technique gathers
     /// near-field light (hbil, vbgi), not only occlusion (gtao).
     pub fn params(&self, near: bool, size: (u32, u32)) -> HorizonParams {
-        let scale = if self.interleaved { 4 } else { 1 };
+        let scale = if self.march.interleaved { 4 } else { 1 };
         HorizonParams {
-            radius: self.radius,
+            radius: self.march.radius,
             _pad0: 0,
             _pad1: 0,
             falloff: self.falloff,
-            max_pixels: self.max_pixels,
+            max_pixels: self.march.max_pixels,
             scale,
             indirect: near as u32,
-            step_power: self.step_power,
-            reject_a: self.reject_a,
-            reject_b: self.reject_b,
+            step_power: self.march.step_power,
+            reject_a: self.march.reject_a,
+            reject_b: self.march.reject_b,
             layer_width: size.0.div_ceil(scale),
             layer_height: size.1.div_ceil(scale),
             // With svgf the denoiser keeps the running mean.
-            temporal: (self.temporal && self.denoise != Denoise::Svgf) as u32,
-            max_history: self.history as f32,
+            temporal: (self.march.temporal && self.denoise != Denoise::Svgf) as u32,
+            max_history: self.march.history as f32,
             far: match (near, self.far) {
                 (false, _) => FAR_AO,
                 (true, Far::Sh) => FAR_SH,
                 (true, Far::Envmap) => FAR_ENVMAP,
                 (true, Far::Slices) => FAR_SLICES,
             },
-            fresnel: (near && self.fresnel) as u32,
-            reject_depth: self.reject_depth,
-            reject_normal: self.reject_normal,
+            fresnel: (near && self.march.fresnel) as u32,
+            reject_depth: self.march.reject_depth,
+            reject_normal: self.march.reject_normal,
             aperture: (self.aperture == Aperture::Matched) as u32,
             far_steps: 8,
         }

@@ -42,6 +42,7 @@ pub fn pass_layout() -> PassLayout {
 }
 
 pub const DESC: TechniqueDesc = TechniqueDesc {
+    family: "none",
     name: "none",
     summary: "no occlusion: ao = 1, the unoccluded far field (sky SH or probe volume), no indirect light",
     create,
@@ -49,6 +50,7 @@ pub const DESC: TechniqueDesc = TechniqueDesc {
     settings: &[],
     presets: &[],
     denoise: None,
+    pass_layouts: || vec![pass_layout()],
 };
 
 struct NoneTechnique {

@@ -46,6 +46,7 @@
 pub mod filter;
 pub mod params;
 pub mod sample;
+pub mod settings;
 pub mod shade;
 
 use crate::RenderError;
@@ -61,22 +62,23 @@ use crate::targets::HDR_FORMAT;
 use crate::technique::samples::interleaved_sets;
 use wgpu::util::DeviceExt;
 
-pub use crate::settings::s3ho::Settings;
 pub use params::S3hoParams;
+pub use settings::Settings;
 
 /// 16 SH coefficients as half floats, 8 per texel (pack2x16float).
 pub const COEFFS_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Uint;
 
 const S3HO_PRESETS: [crate::settings::Preset; 5] = crate::settings::fitted::with_fitted(
-    crate::settings::ssdo::PRESETS,
+    crate::settings::sampling::PRESETS,
     crate::settings::fitted::S3HO,
 );
 const SSBN_PRESETS: [crate::settings::Preset; 5] = crate::settings::fitted::with_fitted(
-    crate::settings::ssdo::PRESETS,
+    crate::settings::sampling::PRESETS,
     crate::settings::fitted::SSBN,
 );
 
 pub const S3HO: TechniqueDesc = TechniqueDesc {
+    family: "s3ho",
     name: "s3ho",
     summary: "screen-space SH occlusion (16 coefficients), SH lighting of environment and lights, indirect extension",
     create: |ctx, tp| create(ctx, tp, false),
@@ -84,9 +86,11 @@ pub const S3HO: TechniqueDesc = TechniqueDesc {
     settings: <Settings as Declared>::TABLE,
     presets: &S3HO_PRESETS,
     denoise: Some(denoise_config),
+    pass_layouts,
 };
 
 pub const SSBN: TechniqueDesc = TechniqueDesc {
+    family: "s3ho",
     name: "ssbn",
     summary: "screen-space bent normals and cones: environment through the cone around the bent normal",
     create: |ctx, tp| create(ctx, tp, true),
@@ -94,6 +98,7 @@ pub const SSBN: TechniqueDesc = TechniqueDesc {
     settings: <Settings as Declared>::TABLE,
     presets: &SSBN_PRESETS,
     denoise: Some(denoise_config),
+    pass_layouts,
 };
 
 struct S3ho {
@@ -358,4 +363,13 @@ impl Technique for S3ho {
                 .dispatch(&mut pass, &self.blur_indirect, self.size);
         }
     }
+}
+
+/// The family's passes (`TechniqueDesc::pass_layouts`).
+fn pass_layouts() -> Vec<crate::bindings::PassLayout> {
+    vec![
+        sample::pass_layout(),
+        filter::pass_layout(),
+        shade::pass_layout(),
+    ]
 }

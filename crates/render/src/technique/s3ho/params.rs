@@ -1,7 +1,7 @@
 //! `S3hoParams`: the GPU constants of every s3ho pass, a pure function of the settings.
 
 use super::Settings;
-use crate::settings::ssdo::Pattern;
+use crate::settings::sampling::Pattern;
 use bytemuck::{Pod, Zeroable};
 
 impl Settings {

@@ -39,6 +39,7 @@ pub mod bounce;
 pub mod direct;
 pub mod params;
 pub mod resolve;
+pub mod settings;
 pub mod vpls;
 
 use crate::RenderError;
@@ -55,9 +56,8 @@ use crate::technique::samples::interleaved_sets;
 use vpls::Vpls;
 use wgpu::util::DeviceExt;
 
-pub use crate::settings::check_sampling;
-pub use crate::settings::ssdo::{LightSegment, Mode, PRESETS, Pattern, Settings};
 pub use params::SsdoParams;
+pub use settings::{LightSegment, Mode, PRESETS, Pattern, Settings};
 
 /// Most memory the virtual point lights' shadow maps may take.
 pub const VPL_SHADOW_BUDGET: u64 = 1 << 30;
@@ -72,6 +72,7 @@ const INSTANT_RADIOSITY_PRESETS: [crate::settings::Preset; 5] =
     crate::settings::fitted::with_fitted(PRESETS, crate::settings::fitted::INSTANT_RADIOSITY);
 
 pub const SSAO: TechniqueDesc = TechniqueDesc {
+    family: "ssdo",
     name: "ssao",
     summary: "normal-oriented hemisphere SSAO (same samples and visibility test as ssdo): ao × SH irradiance",
     create: |ctx, tp| create(ctx, tp, Variant::Ssao),
@@ -79,9 +80,11 @@ pub const SSAO: TechniqueDesc = TechniqueDesc {
     settings: <Settings as Declared>::TABLE,
     presets: &SSAO_PRESETS,
     denoise: Some(denoise_config),
+    pass_layouts,
 };
 
 pub const SSDO: TechniqueDesc = TechniqueDesc {
+    family: "ssdo",
     name: "ssdo",
     summary: "screen-space directional occlusion of environment and lights, plus one indirect bounce",
     create: |ctx, tp| create(ctx, tp, Variant::Ssdo),
@@ -89,9 +92,11 @@ pub const SSDO: TechniqueDesc = TechniqueDesc {
     settings: <Settings as Declared>::TABLE,
     presets: &SSDO_PRESETS,
     denoise: Some(denoise_config),
+    pass_layouts,
 };
 
 pub const SSDO_VPL: TechniqueDesc = TechniqueDesc {
+    family: "ssdo",
     name: "ssdo-vpl",
     summary: "the environment as shadow-mapped virtual point lights, their lost small-scale shadows restored in screen space (ssdo Sec. 5)",
     create: |ctx, tp| create(ctx, tp, Variant::SsdoVpl),
@@ -99,9 +104,11 @@ pub const SSDO_VPL: TechniqueDesc = TechniqueDesc {
     settings: <Settings as Declared>::TABLE,
     presets: &SSDO_VPL_PRESETS,
     denoise: Some(denoise_config),
+    pass_layouts,
 };
 
 pub const INSTANT_RADIOSITY: TechniqueDesc = TechniqueDesc {
+    family: "ssdo",
     name: "instant-radiosity",
     summary: "one bounce of the lights from virtual point lights drawn from reflective shadow maps (shadow-mapped, clamped), plus the screen-space near-field bounce the clamp removes and screen-space shadow correction (ssdo Sec. 5)",
     create: |ctx, tp| create(ctx, tp, Variant::InstantRadiosity),
@@ -109,6 +116,7 @@ pub const INSTANT_RADIOSITY: TechniqueDesc = TechniqueDesc {
     settings: <Settings as Declared>::TABLE,
     presets: &INSTANT_RADIOSITY_PRESETS,
     denoise: Some(denoise_config),
+    pass_layouts,
 };
 
 /// Which technique of this file.
@@ -463,4 +471,13 @@ impl Technique for Ssdo {
                 .dispatch(&mut pass, &self.blur_indirect, self.size);
         }
     }
+}
+
+/// The family's passes (`TechniqueDesc::pass_layouts`).
+fn pass_layouts() -> Vec<crate::bindings::PassLayout> {
+    vec![
+        direct::pass_layout(),
+        resolve::pass_layout(),
+        bounce::pass_layout(),
+    ]
 }

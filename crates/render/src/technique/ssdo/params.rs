@@ -1,7 +1,7 @@
 //! `SsdoParams`: the GPU constants of every ssdo pass, a pure function of the settings.
 
+use super::settings::SampleLight;
 use super::{LightSegment, Mode, Pattern, Settings};
-use crate::settings::ssdo::SampleLight;
 use bytemuck::{Pod, Zeroable};
 
 impl Settings {

@@ -67,7 +67,7 @@ pub fn create(m: &MarchContext) -> Result<Box<dyn March>, RenderError> {
     } else {
         None
     };
-    let split_back = (layers.is_some() && m.settings.interleaved).then(|| {
+    let split_back = (layers.is_some() && m.settings.march.interleaved).then(|| {
         layered_texture(
             device,
             (p.layer_width, p.layer_height),

@@ -57,6 +57,7 @@
 pub mod back;
 pub mod bitmask;
 pub mod march;
+pub mod settings;
 
 use crate::contract::technique::{TechniqueDesc, TechniqueParams};
 use crate::passes::denoise::{Denoise, SvgfConfig};
@@ -64,12 +65,13 @@ use crate::settings::Declared;
 use crate::technique::horizon;
 use bytemuck::{Pod, Zeroable};
 
-pub use crate::settings::vbgi::{PRESETS, Settings, Thickness, VbgiFar};
+pub use settings::{PRESETS, Settings, Thickness, VbgiFar};
 
 const VBGI_PRESETS: [crate::settings::Preset; 5] =
     crate::settings::fitted::with_fitted(PRESETS, crate::settings::fitted::VBGI);
 
 pub const VBGI: TechniqueDesc = TechniqueDesc {
+    family: "vbgi",
     name: "vbgi",
     summary: "visibility-bitmask GI: sectors occupied between each sample's front and back (thickness from the second depth layer), cosine-weighted; light passes behind thin objects",
     create: |ctx, tp| horizon::build(ctx, FLAVOR, tp),
@@ -77,6 +79,7 @@ pub const VBGI: TechniqueDesc = TechniqueDesc {
     settings: <Settings as Declared>::TABLE,
     presets: &VBGI_PRESETS,
     denoise: Some(config),
+    pass_layouts,
 };
 
 /// `VbgiParams` in bitmask.wgsl.
@@ -102,30 +105,15 @@ impl Settings {
     /// The horizon machinery's settings and the bitmask part (pure).
     pub fn split(&self) -> (horizon::Settings, Bitmask) {
         let h = horizon::Settings {
-            slices: self.slices,
-            steps: self.steps,
-            radius: self.radius,
-            interleaved: self.interleaved,
-            reprojection: self.reprojection,
+            march: self.march,
             far: match self.far {
                 VbgiFar::Sectors => horizon::Far::Slices,
                 VbgiFar::Sh => horizon::Far::Sh,
                 VbgiFar::Envmap => horizon::Far::Envmap,
             },
             aperture: horizon::Aperture::Matched,
-            source: self.source,
-            temporal: self.temporal,
-            history: self.history,
-            fresnel: self.fresnel,
             falloff: 0.0,
-            step_power: self.step_power,
-            max_pixels: self.max_pixels,
-            reject_a: self.reject_a,
-            reject_b: self.reject_b,
             denoise: self.denoise,
-            blur_radius: self.blur_radius,
-            reject_depth: self.reject_depth,
-            reject_normal: self.reject_normal,
             svgf: self.svgf,
         };
         let b = Bitmask {
@@ -161,4 +149,14 @@ fn check(tp: &TechniqueParams) -> Result<(), String> {
 
 fn config(tp: &TechniqueParams) -> Result<(Denoise, SvgfConfig), String> {
     Ok(horizon::svgf_config(&Settings::from_params(tp)?.split().0))
+}
+
+/// The machinery's passes with the bitmask march (`TechniqueDesc::pass_layouts`).
+fn pass_layouts() -> Vec<crate::bindings::PassLayout> {
+    vec![
+        horizon::split::pass_layout(),
+        bitmask::pass_layout(),
+        back::pass_layout(),
+        horizon::accumulate::pass_layout(),
+    ]
 }

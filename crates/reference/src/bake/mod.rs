@@ -26,15 +26,18 @@
 //!
 //! The result depends on the scene, environment, grid, rays and bounces only (not on threads).
 
+mod rays;
+
 use crate::lights::Lights;
 use crate::sampling::{hash, r2, r2_offset};
 use crate::tracer::{Hit, Tracer};
-use glam::{Mat3, Quat, Vec2, Vec3};
+use glam::Vec3;
 use nearfield_scene::probes::{
     self, MAX_DISTANCE_FACTOR, Probe, ProbeGrid, ProbeVolume, SH_COEFFS, VIS_RES, VIS_TILE,
 };
 use nearfield_scene::{Environment, Scene, sh};
 use rayon::prelude::*;
+use rays::{directions, pack_normal, unpack_normal};
 use std::f32::consts::PI;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 
@@ -170,48 +173,6 @@ struct HitLookup {
     weights: [u16; 8],
     normal: [u16; 2],
     albedo: [u8; 4],
-}
-
-fn pack_normal(n: Vec3) -> [u16; 2] {
-    let e = probes::oct_encode(n) * 0.5 + 0.5;
-    [
-        (e.x.clamp(0.0, 1.0) * 65535.0).round() as u16,
-        (e.y.clamp(0.0, 1.0) * 65535.0).round() as u16,
-    ]
-}
-
-fn unpack_normal(p: [u16; 2]) -> Vec3 {
-    probes::oct_decode(Vec2::new(p[0] as f32, p[1] as f32) / 65535.0 * 2.0 - 1.0)
-}
-
-/// The i-th of n directions on a spherical Fibonacci lattice.
-fn fibonacci(i: u32, n: u32) -> Vec3 {
-    let golden = (5f32.sqrt() - 1.0) * 0.5;
-    let z = 1.0 - (2.0 * i as f32 + 1.0) / n as f32;
-    let r = (1.0 - z * z).max(0.0).sqrt();
-    let phi = 2.0 * PI * (i as f32 * golden).fract();
-    Vec3::new(r * phi.cos(), r * phi.sin(), z)
-}
-
-/// The rotation probe `index`'s rays are turned by.
-fn probe_rotation(index: usize) -> Mat3 {
-    let h = |k: u32| (hash(index as u32 ^ hash(k)) >> 8) as f32 / (1u32 << 24) as f32;
-    // A uniform random rotation (Shoemake 1992).
-    let (u1, u2, u3) = (h(1), h(2), h(3));
-    let (a, b) = ((1.0 - u1).sqrt(), u1.sqrt());
-    let q = Quat::from_xyzw(
-        a * (2.0 * PI * u2).sin(),
-        a * (2.0 * PI * u2).cos(),
-        b * (2.0 * PI * u3).sin(),
-        b * (2.0 * PI * u3).cos(),
-    );
-    Mat3::from_quat(q.normalize())
-}
-
-/// The directions of probe `index`'s rays.
-fn directions(index: usize, rays: u32) -> Vec<Vec3> {
-    let r = probe_rotation(index);
-    (0..rays).map(|j| r * fibonacci(j, rays)).collect()
 }
 
 struct Baker<'a> {

@@ -1,0 +1,73 @@
+//! Settings of `gtao` and `hbil` (technique/horizon).
+
+use crate::settings::denoise::{Denoise, SvgfSettings};
+use crate::settings::march::MarchSettings;
+pub use crate::settings::march::{ReprojectMode, Source, check_march};
+use crate::settings::{Preset, TechniqueParams};
+use crate::{choice, declare_settings};
+
+choice! {
+    /// Far-field estimate through the bent cone (hbil).
+    pub enum Far {
+        /// SH irradiance with the cone's reduced aperture (HBIL Sec. 2.2.4).
+        Sh = "sh",
+        /// Pre-convolved diffuse map at the bent normal × F0(ao) (HBIL Sec. 2.2.3).
+        Envmap = "envmap",
+        /// The environment integrated over every slice's visible arcs (directional; beyond the
+        /// paper, see technique/horizon/mod.rs).
+        Slices = "slices",
+    }
+}
+
+choice! {
+    /// How the bent cone's aperture follows from the (cosine-weighted) ao (hbil, `far=sh`).
+    pub enum Aperture {
+        /// cos α = 1 − ao (HBIL Eq. 12).
+        Eq12 = "eq12",
+        /// cos α = √(1 − ao): the cone whose cosine-weighted visibility is ao (see technique/horizon/mod.rs).
+        Matched = "matched",
+    }
+}
+
+declare_settings! {
+    /// Settings of `gtao` and `hbil` (`--samples` = steps, `--radius`, `--set key=value`).
+    pub struct Settings {
+        @first { march: MarchSettings }
+        far: Far = "slices", choice, structural("hbil"), "", "hbil's far field: `sh` SH irradiance through the bent cone (Sec. 2.2.4); `envmap` pre-convolved diffuse map at the bent normal × F0(ao) (Sec. 2.2.3); `slices` the environment integrated over each slice's visible arcs";
+        aperture: Aperture = "matched", choice, uniform("hbil"), "", "hbil, `far=sh`: cone aperture `eq12` cos α = 1 − ao, or `matched` cos α = √(1 − ao)";
+        falloff: f32 = "0.1", number(0, 1), uniform, "", "an occluder's rise fades out over the last `falloff`·R";
+        denoise: Denoise = "bilateral", choice, denoiser, "", "`bilateral` geometry-aware blur of the raw results (merges a 4×4 block's directions) then the running mean; `svgf` the shared spatio-temporal denoiser on the AOVs; `off` raw results (with the running mean)";
+    }
+    flatten { svgf: SvgfSettings }
+}
+
+/// `quality` presets: slices and steps.
+pub const PRESETS: &[Preset] = &[
+    Preset {
+        name: "low",
+        set: &[("slices", "1"), ("steps", "8")],
+    },
+    Preset {
+        name: "medium",
+        set: &[("slices", "2"), ("steps", "16")],
+    },
+    Preset {
+        name: "high",
+        set: &[("slices", "4"), ("steps", "16")],
+    },
+    Preset {
+        name: "ultra",
+        set: &[("slices", "8"), ("steps", "32")],
+    },
+];
+
+impl Settings {
+    /// Applies `--samples` (steps), `--radius` and `--set` on top of the defaults (`quality`
+    /// was expanded by `technique::expand_presets` before).
+    pub fn from_params(params: &TechniqueParams) -> Result<Self, String> {
+        let mut s = Settings::default();
+        crate::settings::apply(&mut s, params, &[("samples", "steps")])?;
+        check_march(&s.march)?;
+        Ok(s)
+    }
+}
