@@ -326,3 +326,22 @@ impl PassLayout {
             .collect()
     }
 }
+
+/// Declares a uniform struct shared with WGSL (`#[repr(C)]`, `Pod`) together with its field
+/// table `FIELDS` (name, byte offset, in order), which `tests/shaders.rs` compares with naga's
+/// layout of the WGSL struct of the same name: a new field is its line here and in the WGSL.
+#[macro_export]
+macro_rules! gpu_struct {
+    ($(#[$meta:meta])* pub struct $name:ident { $($(#[$fmeta:meta])* pub $field:ident : $ty:ty),* $(,)? }) => {
+        $(#[$meta])*
+        #[repr(C)]
+        #[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
+        pub struct $name { $($(#[$fmeta])* pub $field: $ty),* }
+
+        impl $name {
+            /// Every field with its byte offset, in declaration order.
+            pub const FIELDS: &'static [(&'static str, usize)] =
+                &[$((stringify!($field), std::mem::offset_of!($name, $field))),*];
+        }
+    };
+}

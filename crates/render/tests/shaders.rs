@@ -80,9 +80,7 @@ fn host_and_shader_structs_agree() {
         &nearfield_render::technique::horizon::search::source(),
         "HorizonParams",
         size_of::<HorizonParams>(),
-        &offsets!(HorizonParams: radius, _pad0, _pad1, falloff, max_pixels, scale, indirect,
-            step_power, reject_a, reject_b, layer_width, layer_height, temporal, max_history, far,
-            fresnel, reject_depth, reject_normal, aperture, far_steps),
+        HorizonParams::FIELDS,
     );
     check(
         &nearfield_render::passes::reproject::source(),

@@ -534,7 +534,10 @@ pub fn parse_number(key: &str, v: &str, lo: f32, hi: f32) -> Result<f32, String>
     let x: f32 = v
         .parse()
         .map_err(|_| format!("{key}={v}: expected a number"))?;
-    if !(x.is_finite() && x >= lo && x <= hi) {
+    if !x.is_finite() {
+        return Err(format!("{key}={v}: must be a finite number"));
+    }
+    if !(x >= lo && x <= hi) {
         return Err(format!("{key}={v}: must be in {lo}..={hi}"));
     }
     Ok(x)

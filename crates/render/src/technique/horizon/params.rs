@@ -2,7 +2,6 @@
 
 use super::{Aperture, Far, Settings};
 use crate::passes::denoise::Denoise;
-use bytemuck::{Pod, Zeroable};
 
 /// `HorizonParams::far`: what the far field is (params.wgsl's constants of the same names).
 /// gtao: ao only, the far field from the direct pass's irradiance.
@@ -50,29 +49,57 @@ impl Settings {
     }
 }
 
-/// `HorizonParams` in params.wgsl.
-#[repr(C)]
-#[derive(Clone, Copy, Debug, Pod, Zeroable)]
-pub struct HorizonParams {
-    pub radius: f32,
-    /// (Slices and steps: the overrides `SLICES` and `STEPS`.)
-    pub _pad0: u32,
-    pub _pad1: u32,
-    pub falloff: f32,
-    pub max_pixels: f32,
-    pub scale: u32,
-    pub indirect: u32,
-    pub step_power: f32,
-    pub reject_a: f32,
-    pub reject_b: f32,
-    pub layer_width: u32,
-    pub layer_height: u32,
-    pub temporal: u32,
-    pub max_history: f32,
-    pub far: u32,
-    pub fresnel: u32,
-    pub reject_depth: f32,
-    pub reject_normal: f32,
-    pub aperture: u32,
-    pub far_steps: u32,
+crate::gpu_struct! {
+    /// `HorizonParams` in params.wgsl.
+    pub struct HorizonParams {
+        pub radius: f32,
+        /// (Slices and steps: the overrides `SLICES` and `STEPS`.)
+        pub _pad0: u32,
+        pub _pad1: u32,
+        pub falloff: f32,
+        pub max_pixels: f32,
+        pub scale: u32,
+        pub indirect: u32,
+        pub step_power: f32,
+        pub reject_a: f32,
+        pub reject_b: f32,
+        pub layer_width: u32,
+        pub layer_height: u32,
+        pub temporal: u32,
+        pub max_history: f32,
+        pub far: u32,
+        pub fresnel: u32,
+        pub reject_depth: f32,
+        pub reject_normal: f32,
+        pub aperture: u32,
+        pub far_steps: u32,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `const NAME: u32 = Nu;` of params.wgsl.
+    fn wgsl_constant(name: &str) -> u32 {
+        let src = include_str!("params.wgsl");
+        let line = src
+            .lines()
+            .find(|l| l.starts_with(&format!("const {name}: u32 = ")))
+            .unwrap_or_else(|| panic!("params.wgsl has no {name}"));
+        let value = line.rsplit("= ").next().unwrap().trim_end_matches(';');
+        value.trim_end_matches('u').parse().unwrap()
+    }
+
+    #[test]
+    fn the_far_constants_match_params_wgsl() {
+        for (name, value) in [
+            ("FAR_AO", FAR_AO),
+            ("FAR_SH", FAR_SH),
+            ("FAR_ENVMAP", FAR_ENVMAP),
+            ("FAR_SLICES", FAR_SLICES),
+        ] {
+            assert_eq!(wgsl_constant(name), value, "{name}");
+        }
+    }
 }
