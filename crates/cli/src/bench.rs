@@ -115,9 +115,10 @@ pub fn run(args: BenchArgs) -> Result<()> {
     let size = crate::options::parse_size(&args.scene.size)?;
     let settings = args.technique.settings(size)?;
     args.far.precheck()?;
+    // The adapter first: a machine that cannot run the passes hears so before a bake.
+    let ctx = GpuContext::new(args.scene.adapter.as_deref())?;
     let loaded = args.scene.load()?;
     let volume = args.far.resolve(&args.scene, &loaded, None)?;
-    let ctx = GpuContext::new(args.scene.adapter.as_deref())?;
     let info = ctx.adapter_info();
     // Every method's renderer is made and warmed first; then the timed frames go round the
     // methods in turn, so that a slow drift of the machine (thermal, other load) touches all of

@@ -322,9 +322,14 @@ pub struct BakeArgs {
     pub scene: SceneOpts,
     #[command(flatten)]
     pub grid: GridOpts,
-    /// Output file (.nfv), read by `--volume`. Default: volume.nfv.
-    #[arg(long, default_value = "volume.nfv")]
-    pub out: PathBuf,
+    /// Output file: `.nfv` (read by `--volume`) or, with `--format bevy`, `.ktx2`. Default:
+    /// volume.nfv, or volume.ktx2 with `--format bevy`.
+    #[arg(long)]
+    pub out: Option<PathBuf>,
+    /// `nfv` (nearfield's volume) or `bevy` (Bevy's `IrradianceVolume` ambient-cube texture,
+    /// KTX2). Default: from the extension of `--out`, else nfv.
+    #[arg(long)]
+    pub format: Option<String>,
     /// Ignore and do not update the volume cache.
     #[arg(long)]
     pub no_cache: bool,
@@ -335,15 +340,8 @@ pub struct BakeArgs {
 
 pub fn run(args: BakeArgs) -> Result<()> {
     args.grid.precheck()?;
-    let ext = args.out.extension().and_then(|e| e.to_str()).unwrap_or("");
-    if !ext.eq_ignore_ascii_case("nfv") {
-        return Err(BadInput(format!(
-            "--out {}: a probe volume is written as .nfv",
-            args.out.display()
-        ))
-        .into());
-    }
-    crate::output::check_parent_dir(&args.out)?;
+    let (out, bevy) = bake_output(args.out.as_deref(), args.format.as_deref())?;
+    crate::output::check_parent_dir(&out)?;
     if let Some(t) = args.threads {
         if t == 0 || t > 4096 {
             return Err(BadInput(format!("--threads {t}: must be in 1..=4096")).into());
@@ -359,11 +357,15 @@ pub fn run(args: BakeArgs) -> Result<()> {
     let t_bake = Instant::now();
     let (volume, cached) = baked(&args.scene, &loaded, &settings, args.no_cache)?;
     let bake_s = t_bake.elapsed().as_secs_f64();
-    volume.write(&args.out).map_err(anyhow::Error::msg)?;
+    if bevy {
+        write_bevy(&volume, &out)?;
+    } else {
+        volume.write(&out).map_err(anyhow::Error::msg)?;
+    }
     let g = &volume.grid;
     eprintln!(
         "nearfield: wrote {} ({}×{}×{} probes at {:.3}×{:.3}×{:.3} m, {} active, {:.1} MB{}) in {:.2} s",
-        args.out.display(),
+        out.display(),
         g.counts[0],
         g.counts[1],
         g.counts[2],
@@ -378,6 +380,62 @@ pub fn run(args: BakeArgs) -> Result<()> {
             String::new()
         },
         t0.elapsed().as_secs_f64()
+    );
+    Ok(())
+}
+
+/// The output path and whether it is Bevy's format, from `--out` and `--format`.
+fn bake_output(out: Option<&Path>, format: Option<&str>) -> Result<(PathBuf, bool)> {
+    let bevy = match format {
+        None => out
+            .and_then(|p| p.extension())
+            .is_some_and(|e| e.eq_ignore_ascii_case("ktx2")),
+        Some("nfv") => false,
+        Some("bevy") => true,
+        Some(f) => {
+            return Err(BadInput(format!("--format {f}: expected nfv or bevy")).into());
+        }
+    };
+    let (want, default) = if bevy {
+        ("ktx2", "volume.ktx2")
+    } else {
+        ("nfv", "volume.nfv")
+    };
+    let out = out.map_or_else(|| PathBuf::from(default), Path::to_path_buf);
+    let ext = out.extension().and_then(|e| e.to_str()).unwrap_or("");
+    if !ext.eq_ignore_ascii_case(want) {
+        return Err(BadInput(format!(
+            "--out {}: {} is written as .{want}",
+            out.display(),
+            if bevy {
+                "a Bevy irradiance volume"
+            } else {
+                "a probe volume"
+            }
+        ))
+        .into());
+    }
+    Ok((out, bevy))
+}
+
+/// Writes Bevy's ambient-cube texture (KTX2) and says how to place it.
+fn write_bevy(volume: &ProbeVolume, out: &Path) -> Result<()> {
+    let b = nearfield_scene::probes::bevy::BevyVolume::from_volume(volume);
+    crate::output::save_atomically(out, |tmp| {
+        std::fs::write(tmp, b.to_ktx2()).map_err(|e| anyhow::anyhow!("{}: {e}", out.display()))
+    })?;
+    eprintln!(
+        "nearfield: Bevy irradiance volume {}×{}×{} texels: Transform translation ({:.4}, {:.4}, {:.4}), scale ({:.4}, {:.4}, {:.4}); IrradianceVolume intensity {}",
+        b.size[0],
+        b.size[1],
+        b.size[2],
+        b.translation.x,
+        b.translation.y,
+        b.translation.z,
+        b.scale.x,
+        b.scale.y,
+        b.scale.z,
+        b.intensity
     );
     Ok(())
 }

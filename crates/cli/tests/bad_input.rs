@@ -277,6 +277,9 @@ fn every_bad_input_exits_2_with_one_line() {
         (args(&["bake", "builtin:cornell", "--spacing", "NaN"]), "--spacing NaN"),
         (args(&["bake", "builtin:cornell", "--out", "/tmp/volume.png"]), ".nfv"),
         (args(&["bake", "builtin:cornell", "--out", "/nonexistent/dir/v.nfv"]), "does not exist"),
+        (args(&["bake", "builtin:cornell", "--format", "unity"]), "expected nfv or bevy"),
+        (args(&["bake", "builtin:cornell", "--format", "bevy", "--out", "/tmp/v.nfv"]), "written as .ktx2"),
+        (args(&["bake", "builtin:cornell", "--format", "nfv", "--out", "/tmp/v.ktx2"]), "written as .nfv"),
         (args(&["render", "builtin:cornell", "--size", "16x16", "--volume", "/nonexistent/v.nfv"]), "no such file"),
     ];
     for (args, needle) in cases {

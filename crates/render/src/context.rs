@@ -34,6 +34,12 @@ impl GpuContext {
         Self::with_instance(Self::instance(None), adapter_filter, None)
     }
 
+    /// Whether [`Self::new`] would find an adapter it can run on, without opening a device: what
+    /// a command checks before it loads or bakes anything.
+    pub fn check_adapter(adapter_filter: Option<&str>) -> Result<(), RenderError> {
+        choose_adapter(&Self::instance(None), adapter_filter, None).map(|_| ())
+    }
+
     /// The instance [`Self::new`] uses; with a display handle when windows will be shown on it.
     pub fn instance(display: Option<Box<dyn wgpu::wgt::WgpuHasDisplayHandle>>) -> wgpu::Instance {
         let mut desc = match display {
@@ -52,37 +58,7 @@ impl GpuContext {
         adapter_filter: Option<&str>,
         surface: Option<&wgpu::Surface>,
     ) -> Result<Self, RenderError> {
-        let adapters = pollster::block_on(instance.enumerate_adapters(desc_backends()));
-        let rank = |a: &wgpu::Adapter| match a.get_info().device_type {
-            wgpu::DeviceType::DiscreteGpu => 0,
-            wgpu::DeviceType::IntegratedGpu => 1,
-            wgpu::DeviceType::VirtualGpu => 2,
-            wgpu::DeviceType::Other => 3,
-            wgpu::DeviceType::Cpu => 4,
-        };
-        // Vulkan first among equals: it is the backend CI and the timings use.
-        let backend_rank = |a: &wgpu::Adapter| match a.get_info().backend {
-            wgpu::Backend::Vulkan => 0,
-            wgpu::Backend::Metal | wgpu::Backend::Dx12 => 1,
-            _ => 2,
-        };
-        let mut candidates: Vec<wgpu::Adapter> = adapters
-            .into_iter()
-            .filter(|a| match adapter_filter {
-                Some(f) => a.get_info().name.to_lowercase().contains(&f.to_lowercase()),
-                None => true,
-            })
-            .filter(|a| surface.is_none_or(|s| a.is_surface_supported(s)))
-            .collect();
-        candidates.sort_by_key(|a| (rank(a), backend_rank(a)));
-        let adapter = candidates
-            .into_iter()
-            .next()
-            .ok_or_else(|| RenderError::NoAdapter {
-                filter: adapter_filter
-                    .map(|f| format!(" whose name contains '{f}'"))
-                    .unwrap_or_default(),
-            })?;
+        let adapter = choose_adapter(&instance, adapter_filter, surface)?;
         let info = adapter.get_info();
         let timestamps = adapter.features().contains(wgpu::Features::TIMESTAMP_QUERY);
         if !timestamps {
@@ -178,6 +154,64 @@ impl Drop for GpuContext {
     fn drop(&mut self) {
         crate::pipeline_cache::forget(&self.device);
     }
+}
+
+/// The adapter [`GpuContext::with_instance`] opens: see [`GpuContext::new`] for the order; an
+/// adapter without WebGPU's full capabilities (GL) is refused with what it lacks.
+fn choose_adapter(
+    instance: &wgpu::Instance,
+    adapter_filter: Option<&str>,
+    surface: Option<&wgpu::Surface>,
+) -> Result<wgpu::Adapter, RenderError> {
+    let adapters = pollster::block_on(instance.enumerate_adapters(desc_backends()));
+    let rank = |a: &wgpu::Adapter| match a.get_info().device_type {
+        wgpu::DeviceType::DiscreteGpu => 0,
+        wgpu::DeviceType::IntegratedGpu => 1,
+        wgpu::DeviceType::VirtualGpu => 2,
+        wgpu::DeviceType::Other => 3,
+        wgpu::DeviceType::Cpu => 4,
+    };
+    // Vulkan first among equals: it is the backend CI and the timings use.
+    let backend_rank = |a: &wgpu::Adapter| match a.get_info().backend {
+        wgpu::Backend::Vulkan => 0,
+        wgpu::Backend::Metal | wgpu::Backend::Dx12 => 1,
+        _ => 2,
+    };
+    let mut candidates: Vec<wgpu::Adapter> = adapters
+        .into_iter()
+        .filter(|a| match adapter_filter {
+            Some(f) => a.get_info().name.to_lowercase().contains(&f.to_lowercase()),
+            None => true,
+        })
+        .filter(|a| surface.is_none_or(|s| a.is_surface_supported(s)))
+        .collect();
+    candidates.sort_by_key(|a| (rank(a), backend_rank(a)));
+    // The passes need WebGPU's full capabilities (render targets of every format they
+    // write, depth and array views as declared): GL and other downlevel adapters lack some,
+    // so they are refused with what they lack, before anything is made on them.
+    let compliant = |a: &wgpu::Adapter| a.get_downlevel_capabilities().is_webgpu_compliant();
+    if let Some(best) = candidates.first()
+        && !candidates.iter().any(compliant)
+    {
+        let caps = best.get_downlevel_capabilities();
+        let missing = wgpu::DownlevelFlags::compliant() - caps.flags;
+        let mut names: Vec<&str> = missing.iter_names().map(|(n, _)| n).collect();
+        if names.is_empty() {
+            names.push("the full shader model and limits");
+        }
+        return Err(RenderError::Downlevel {
+            adapter: describe(&best.get_info()),
+            missing: names.join(", "),
+        });
+    }
+    candidates
+        .into_iter()
+        .find(compliant)
+        .ok_or_else(|| RenderError::NoAdapter {
+            filter: adapter_filter
+                .map(|f| format!(" whose name contains '{f}'"))
+                .unwrap_or_default(),
+        })
 }
 
 fn desc_backends() -> wgpu::Backends {

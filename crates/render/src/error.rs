@@ -6,6 +6,10 @@ pub enum RenderError {
         "no GPU adapter found{filter}. Install a Vulkan driver: on Debian/Ubuntu `apt-get install mesa-vulkan-drivers libvulkan1` gives the software rasterizer lavapipe"
     )]
     NoAdapter { filter: String },
+    #[error(
+        "the only GPU adapter, {adapter}, lacks what nearfield's passes need ({missing}): it runs on Vulkan, Metal or DX12. Install a Vulkan driver: on Debian/Ubuntu `apt-get install mesa-vulkan-drivers libvulkan1` gives the software rasterizer lavapipe"
+    )]
+    Downlevel { adapter: String, missing: String },
     #[error("cannot create the GPU device on {adapter}: {msg}")]
     Device { adapter: String, msg: String },
     #[error("image size {width}×{height} is not supported: {why}")]

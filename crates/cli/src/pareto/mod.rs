@@ -163,9 +163,11 @@ pub fn run(args: ParetoArgs) -> Result<()> {
     let size = crate::options::parse_size(&args.scene.size)?;
     let settings = technique.settings(size)?;
     let ref_settings = args.reference.settings(ref_aov, size, radius, args.seed)?;
+    args.far.precheck()?;
+    // The adapter first: a machine that cannot run the passes hears so before a bake.
+    let ctx = GpuContext::new(args.scene.adapter.as_deref())?;
     std::fs::create_dir_all(&args.out)
         .with_context(|| format!("cannot create {}", args.out.display()))?;
-    args.far.precheck()?;
     let loaded = args.scene.load()?;
     let volume = args
         .far
@@ -173,7 +175,6 @@ pub fn run(args: ParetoArgs) -> Result<()> {
     for n in &notes {
         eprintln!("{n}");
     }
-    let ctx = GpuContext::new(args.scene.adapter.as_deref())?;
     let info = ctx.adapter_info();
     let gpu = ctx.timestamps && info.device_type != nearfield_render::wgpu::DeviceType::Cpu;
     let (img, _) = crate::reference::compute(&args.scene, &args.reference, &loaded, &ref_settings)?;

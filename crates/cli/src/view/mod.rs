@@ -91,6 +91,8 @@ pub fn run(args: ViewArgs) -> Result<()> {
     let size = crate::options::parse_size(&args.scene.size)?;
     let settings = args.technique.settings(size)?;
     args.far.precheck()?;
+    // A machine that cannot run the passes hears so before the scene loads or a volume bakes.
+    nearfield_render::GpuContext::check_adapter(args.scene.adapter.as_deref())?;
     let loaded = args.scene.load()?;
     loaded.report_sun();
     // The frame's far field as `render` has it for the image shown (baked or cached before the

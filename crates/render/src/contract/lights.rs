@@ -17,6 +17,10 @@ pub struct LightResources<'a> {
     pub shadow_maps: &'a wgpu::TextureView,
     /// The comparison sampler of the shadow maps.
     pub shadow_sampler: &'a wgpu::Sampler,
+    /// The same maps bound as unfilterable floats (`texture_2d_array<f32>`), which
+    /// `textureLoad` reads on every backend (GL cannot load from a depth texture); the same view
+    /// as `shadow_maps` serves.
+    pub shadow_depths: &'a wgpu::TextureView,
 }
 
 /// The light bindings of a frame without nearfield's lights (an engine that hands in only its
@@ -78,6 +82,7 @@ impl NoLights {
             shadow_clip_from_world: &self.matrices,
             shadow_maps: &self.map,
             shadow_sampler: &self.sampler,
+            shadow_depths: &self.map,
         }
     }
 }

@@ -50,6 +50,9 @@ crate::bind_group! {
         /// The far field's E(n)/π, unoccluded (rgba16float): what the senders are lit with, left
         /// in the techniques' `env-irradiance` output on entry (`none` passes it on).
         out_env_irradiance: view = kind::write(HDR_FORMAT),
+        /// The shadow maps as unfilterable floats, for the disc search's loads (GL cannot load
+        /// from a depth texture).
+        shadow_depths: view = kind::TEXTURE_ARRAY_UNFILTERABLE,
     }
 }
 
@@ -84,6 +87,7 @@ pub fn new(
             shadow_clip_from_world: l.shadow_clip_from_world,
             shadow_maps: l.shadow_maps,
             shadow_sampler: l.shadow_sampler,
+            shadow_depths: l.shadow_depths,
             out_light_irradiance: &targets.light_irradiance.view,
             out_specular: &targets.specular.view,
             out_direct_radiance: &targets.direct_radiance[side].view,

@@ -31,6 +31,7 @@
 @group(1) @binding(10) var out_specular: texture_storage_2d<rgba16float, write>;
 @group(1) @binding(11) var out_direct_radiance: texture_storage_2d<rgba16float, write>;
 @group(1) @binding(12) var out_env_irradiance: texture_storage_2d<rgba16float, write>;
+@group(1) @binding(13) var shadow_depths: texture_2d_array<f32>;
 
 fn d_ggx(n_h: f32, a: f32) -> f32 {
     let a2 = a * a;

@@ -406,6 +406,7 @@ impl ShadowPass {
             shadow_clip_from_world: &self.matrices,
             shadow_maps: &self.array_view,
             shadow_sampler: &self.compare_sampler,
+            shadow_depths: &self.array_view,
         }
     }
 

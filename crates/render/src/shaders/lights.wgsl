@@ -2,7 +2,9 @@
 // near-field techniques that occlude lights in screen space. It declares no bindings: a pass that
 // includes it declares, in its group 1 (Rust: `LightBindings` fields of its binding struct),
 //   lights: array<GpuLight> (storage, read), shadow_clip_from_world: array<mat4x4<f32>>
-//   (storage, read), shadow_maps: texture_depth_2d_array, shadow_sampler: sampler_comparison.
+//   (storage, read), shadow_maps: texture_depth_2d_array, shadow_sampler: sampler_comparison,
+//   shadow_depths: texture_2d_array<f32> (the same maps, unfilterable: the loads of the disc
+//   search, which GL cannot make from a depth texture).
 // `GpuLight` mirrors crate::gpu_scene::GpuLight; the irradiance formulas mirror
 // nearfield_scene::Light (falloff, spot cone, range window).
 
@@ -156,7 +158,7 @@ fn disc_shadow(l: GpuLight, layer: u32, p: vec3<f32>, n: vec3<f32>, uv: vec2<f32
         let ak = f32(k) * 2.39996323;
         let o = vec2<f32>(cos(ak), sin(ak)) * rk * search;
         let q = clamp(uv + o, vec2<f32>(0.0), vec2<f32>(1.0) - 0.5 / dims);
-        let d = textureLoad(shadow_maps, vec2<i32>(q * dims), layer, 0);
+        let d = textureLoad(shadow_depths, vec2<i32>(q * dims), layer, 0).r;
         let gap = z + dot(slope, o) - d;
         // A blocker counts only where it can hide part of the disc from p: its lateral offset
         // is within gap · tan r (plus a texel).

@@ -20,6 +20,7 @@
 //! (`nearfield_reference::bake`) use [`ProbeVolume::irradiance`] to light their hits with the
 //! previous bounce.
 
+pub mod bevy;
 mod file;
 mod grid;
 

@@ -112,6 +112,7 @@ impl LayerDrawing {
                 shadow_clip_from_world: l.shadow_clip_from_world,
                 shadow_maps: l.shadow_maps,
                 shadow_sampler: l.shadow_sampler,
+                shadow_depths: l.shadow_depths,
             }
             .bind_group(device, &shade_layout)
         };

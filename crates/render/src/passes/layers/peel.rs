@@ -25,8 +25,9 @@ crate::bind_group! {
         material_sampler: sampler = kind::SAMPLER,
         /// This layer's `LayerView`, at a dynamic offset into the views buffer.
         layer_view: buffer_range = kind::uniform_dynamic(VIEW_STRIDE),
-        /// The depth buffer of the layer before (peeling).
-        prev_depth: view = kind::TEXTURE_DEPTH,
+        /// The depth buffer of the layer before (peeling), read as an unfilterable float (GL
+        /// cannot load from a depth texture).
+        prev_depth: view = kind::TEXTURE_UNFILTERABLE,
     }
 }
 

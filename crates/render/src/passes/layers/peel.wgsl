@@ -9,7 +9,7 @@
 @group(1) @binding(2) var linear_textures: texture_2d_array<f32>;
 @group(1) @binding(3) var material_sampler: sampler;
 @group(1) @binding(4) var<uniform> layer_view: LayerView;
-@group(1) @binding(5) var prev_depth: texture_depth_2d;
+@group(1) @binding(5) var prev_depth: texture_2d<f32>;
 
 @vertex
 fn vs_layer(v: VertexIn) -> VertexOut {
@@ -31,7 +31,7 @@ fn fs_layer(in: VertexOut) -> LayerOut {
     if layer_view.peel == 1u {
         // View depth of the layer before, from its depth buffer (directx-style perspective:
         // d = f (t − n) / ((f − n) t)  ⇔  t = f n / (f − d (f − n))).
-        let d = textureLoad(prev_depth, vec2<u32>(in.clip.xy), 0);
+        let d = textureLoad(prev_depth, vec2<u32>(in.clip.xy), 0).r;
         let near = layer_view.near;
         let far = layer_view.far;
         let before = far * near / (far - d * (far - near));

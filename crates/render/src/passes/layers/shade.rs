@@ -48,6 +48,9 @@ crate::bind_group! {
         shadow_clip_from_world: buffer = kind::STORAGE_READ,
         shadow_maps: view = kind::TEXTURE_DEPTH_ARRAY,
         shadow_sampler: sampler = kind::SAMPLER_COMPARISON,
+        /// The shadow maps as unfilterable floats, for the disc search's loads (GL cannot load
+        /// from a depth texture).
+        shadow_depths: view = kind::TEXTURE_ARRAY_UNFILTERABLE,
     }
 }
 

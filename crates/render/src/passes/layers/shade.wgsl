@@ -24,6 +24,7 @@ struct ShadeParams {
 @group(1) @binding(8) var<storage, read> shadow_clip_from_world: array<mat4x4<f32>>;
 @group(1) @binding(9) var shadow_maps: texture_depth_2d_array;
 @group(1) @binding(10) var shadow_sampler: sampler_comparison;
+@group(1) @binding(11) var shadow_depths: texture_2d_array<f32>;
 
 @compute @workgroup_size(8, 8, 1)
 fn shade(@builtin(global_invocation_id) id: vec3<u32>) {

@@ -56,6 +56,9 @@ crate::bind_group! {
         out_ao_raw: view = kind::write(HDR_FORMAT),
         /// Raw indirect irradiance (rgba16float).
         out_indirect: view = kind::write(HDR_FORMAT),
+        /// The shadow maps as unfilterable floats, for the disc search's loads (GL cannot load
+        /// from a depth texture).
+        shadow_depths: view = kind::TEXTURE_ARRAY_UNFILTERABLE,
     }
 }
 

@@ -24,6 +24,7 @@
 @group(1) @binding(18) var out_bent: texture_storage_2d<rgba16float, write>;
 @group(1) @binding(19) var out_ao_raw: texture_storage_2d<rgba16float, write>;
 @group(1) @binding(20) var out_indirect: texture_storage_2d<rgba16float, write>;
+@group(1) @binding(21) var shadow_depths: texture_2d_array<f32>;
 
 fn cfg() -> SampleConfig {
     return SampleConfig(SAMPLES, params.pattern, params.radius, params.fade, params.layers, params.cameras);

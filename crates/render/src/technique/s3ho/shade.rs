@@ -44,6 +44,9 @@ crate::bind_group! {
         out_light_irradiance: view = kind::write(HDR_FORMAT),
         /// `ao` (r32float).
         out_ao: view = kind::write(AO_FORMAT),
+        /// The shadow maps as unfilterable floats, for the disc search's loads (GL cannot load
+        /// from a depth texture).
+        shadow_depths: view = kind::TEXTURE_ARRAY_UNFILTERABLE,
     }
 }
 

@@ -16,6 +16,7 @@
 @group(1) @binding(11) var out_env_irradiance: texture_storage_2d<rgba16float, write>;
 @group(1) @binding(12) var out_light_irradiance: texture_storage_2d<rgba16float, write>;
 @group(1) @binding(13) var out_ao: texture_storage_2d<r32float, write>;
+@group(1) @binding(14) var shadow_depths: texture_2d_array<f32>;
 
 fn hanning(l: u32) -> f32 {
     return 0.5 * (1.0 + cos(PI * f32(l) / 4.0));

@@ -55,6 +55,9 @@ crate::bind_group! {
         light_irradiance: view = kind::TEXTURE,
         /// Raw indirect-irradiance before the blur (rgba16float).
         out_indirect: view = kind::write(HDR_FORMAT),
+        /// The shadow maps as unfilterable floats, for the disc search's loads (GL cannot load
+        /// from a depth texture).
+        shadow_depths: view = kind::TEXTURE_ARRAY_UNFILTERABLE,
     }
 }
 

@@ -24,6 +24,7 @@
 @group(1) @binding(17) var env_irradiance: texture_2d<f32>;
 @group(1) @binding(18) var light_irradiance: texture_2d<f32>;
 @group(1) @binding(19) var out_indirect: texture_storage_2d<rgba16float, write>;
+@group(1) @binding(20) var shadow_depths: texture_2d_array<f32>;
 
 @compute @workgroup_size(8, 8, 1)
 fn bounce(@builtin(global_invocation_id) id: vec3<u32>) {

@@ -48,6 +48,9 @@ crate::bind_group! {
         out_b: view = kind::write(HDR_FORMAT),
         /// Light irradiance with screen-space light occlusion (rgba16float; ssdo only).
         out_light_irradiance: view = kind::write(HDR_FORMAT),
+        /// The shadow maps as unfilterable floats, for the disc search's loads (GL cannot load
+        /// from a depth texture).
+        shadow_depths: view = kind::TEXTURE_ARRAY_UNFILTERABLE,
     }
 }
 

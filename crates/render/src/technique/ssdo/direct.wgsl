@@ -22,6 +22,7 @@
 @group(1) @binding(13) var out_a: texture_storage_2d<rgba16float, write>;
 @group(1) @binding(14) var out_b: texture_storage_2d<rgba16float, write>;
 @group(1) @binding(15) var out_light_irradiance: texture_storage_2d<rgba16float, write>;
+@group(1) @binding(16) var shadow_depths: texture_2d_array<f32>;
 
 fn luminance(c: vec3<f32>) -> f32 {
     return dot(c, vec3<f32>(0.2126, 0.7152, 0.0722));
