@@ -5,7 +5,8 @@
 //! shades a direct radiance of its own, and runs `ssdo` and `hbil` on those images through the
 //! documented inputs (`nearfield_render::contract::io::NearFieldInputs`). It reads `ao` back and
 //! prints its mean over the surface pixels. What it needs from nearfield besides the technique:
-//! the `Frame` uniform (camera matrices: `FrameUniforms`) and the environment (`GpuEnvironment`),
+//! the `View` uniform (camera matrices, size, frame index: `ViewUniforms`), the environment
+//! (`GpuEnvironment`, with its intensity in `FrameUniforms::environment_only`) and the far field,
 //! which together are group 0 of every pass.
 //!
 //! ```text
@@ -15,7 +16,7 @@
 //! checks that both give the same ao.
 
 use nearfield_render::contract::io::{NearFieldInputs, NearFieldOutputs};
-use nearfield_render::frame::{CameraMatrices, FrameInputs, FrameUniforms, PostUniforms, Tonemap};
+use nearfield_render::frame::{CameraMatrices, FrameInputs, FrameUniforms, ViewUniforms};
 use nearfield_render::gpu_env::GpuEnvironment;
 use nearfield_render::passes::FrameGroup;
 use nearfield_render::profiler::GpuProfiler;
@@ -290,35 +291,28 @@ pub fn ao_image(ctx: &GpuContext, method: &str) -> Result<(Vec<f32>, Vec<f32>), 
     };
     let (culled, unculled) = (pipeline(Some(wgpu::Face::Back)), pipeline(None));
 
-    // nearfield's group 0: the frame's uniforms and the environment.
+    // nearfield's group 0: the view, the environment (and its intensity) and the far field.
     let gpu_env = GpuEnvironment::new(device, queue, &env);
-    let frame = FrameUniforms::new(
-        &FrameInputs {
-            camera: &camera,
-            current: matrices,
-            previous: matrices,
-            size: SIZE,
-            frame_index: 0,
-            light_count: 0,
-            seed: 0,
-            previous_tan_half_fov: (0.5 * camera.yfov).tan(),
-            history: (false, 0),
-        },
-        gpu_env.params(),
-        PostUniforms {
-            exposure: 0.0,
-            tonemap: Tonemap::Aces,
-            shadow_normal_offset: 0.0,
-        },
-        0,
-    );
+    let view = ViewUniforms::new(&FrameInputs {
+        camera: &camera,
+        current: matrices,
+        previous: matrices,
+        size: SIZE,
+        frame_index: 0,
+        seed: 0,
+        previous_tan_half_fov: (0.5 * camera.yfov).tan(),
+        history: (false, 0),
+    });
+    let uniform = |label, bytes: &[u8]| buffer(label, bytes, wgpu::BufferUsages::UNIFORM);
+    let view_buffer = uniform("view", bytemuck::bytes_of(&view));
+    let frame = FrameUniforms::environment_only(gpu_env.params());
     let frame_buffer = buffer(
         "frame",
         bytemuck::bytes_of(&frame),
-        wgpu::BufferUsages::UNIFORM,
+        wgpu::BufferUsages::STORAGE,
     );
     let far = nearfield_render::far::GpuFarField::sky(device, queue);
-    let frame_group = FrameGroup::new(device, &frame_buffer, &gpu_env, &far);
+    let frame_group = FrameGroup::new(device, &view_buffer, &frame_buffer, &gpu_env, &far);
 
     // The technique, on the engine's images.
     let inputs = NearFieldInputs {

@@ -237,9 +237,10 @@ crate::bind_group! {
     /// Group 0 of every pass of the frame: the frame's uniforms, the environment and the far
     /// field (common.wgsl, env.wgsl, far.wgsl).
     pub struct FrameBindings: VERTEX | FRAGMENT | COMPUTE {
-        /// `Frame` (common.wgsl): camera matrices of this and last frame, image size,
-        /// projection, environment parameters, post settings, counts.
-        frame: buffer = kind::UNIFORM,
+        /// `View` (common.wgsl, [`crate::frame::ViewUniforms`]): camera matrices of this and
+        /// last frame, image size, projection, frame index, seed, history: all a near-field
+        /// kernel reads of the frame.
+        view: buffer = kind::UNIFORM,
         /// The environment's radiance, lat-long rgba16float with box-filtered mips.
         env_radiance: view = kind::TEXTURE,
         /// GGX-prefiltered radiance, one roughness per mip (rgba16float).
@@ -257,6 +258,10 @@ crate::bind_group! {
         far_visibility: view = kind::TEXTURE,
         /// The probes' octahedral E(n)/π (rgba16float atlas).
         far_irradiance_atlas: view = kind::TEXTURE,
+        /// `Frame` (common.wgsl, [`crate::frame::FrameUniforms`]): environment parameters,
+        /// exposure, tone mapping, light count, the AOV shown. A read-only storage buffer: a
+        /// second uniform buffer in group 0 crashes lavapipe (Mesa 22.3) in every technique.
+        frame: buffer = kind::STORAGE_READ,
     }
 }
 

@@ -1,6 +1,6 @@
-//! Per-frame uniforms shared by every pass (`Frame` in shaders/common.wgsl).
+//! Per-frame uniforms shared by every pass: `View` (shaders/view.wgsl), what the near-field
+//! kernels read, and `Frame` (shaders/common.wgsl), the rest of nearfield's own frame.
 
-use bytemuck::{Pod, Zeroable};
 use glam::{Mat4, Vec3};
 use nearfield_scene::{Aabb, Camera};
 
@@ -33,54 +33,65 @@ impl Tonemap {
     }
 }
 
-/// `Frame` in common.wgsl, field for field (16-byte rows, no vec3).
-#[repr(C)]
-#[derive(Clone, Copy, Debug, Pod, Zeroable)]
-pub struct FrameUniforms {
-    pub clip_from_world: [[f32; 4]; 4],
-    pub world_from_clip: [[f32; 4]; 4],
-    pub view_from_world: [[f32; 4]; 4],
-    pub world_from_view: [[f32; 4]; 4],
-    pub prev_clip_from_world: [[f32; 4]; 4],
-    pub prev_view_from_world: [[f32; 4]; 4],
-    pub prev_world_from_view: [[f32; 4]; 4],
-    /// xyz camera position; w unused.
-    pub camera_position: [f32; 4],
-    /// Width, height (pixels).
-    pub size: [f32; 2],
-    /// 1/width, 1/height.
-    pub inv_size: [f32; 2],
-    /// Near and far plane (m), aspect (w/h), tan(yfov/2).
-    pub near: f32,
-    pub far: f32,
-    pub aspect: f32,
-    pub tan_half_fov: f32,
-    /// The environment's rotation about +Y (rad), intensity, specular and radiance mip counts.
-    pub env_rotation: f32,
-    pub env_intensity: f32,
-    pub env_specular_mips: f32,
-    pub env_radiance_mips: f32,
-    /// Exposure (EV), tonemap operator ([`Tonemap::index`]), shadow normal offset (texels).
-    pub exposure: f32,
-    pub tonemap: u32,
-    pub shadow_normal_offset: f32,
-    pub _pad0: f32,
-    /// Last frame's near, far, aspect, tan(yfov/2).
-    pub prev_near: f32,
-    pub prev_far: f32,
-    pub prev_aspect: f32,
-    pub prev_tan_half_fov: f32,
-    /// Frame index, light count, seed, selected AOV.
-    pub frame_index: u32,
-    pub light_count: u32,
-    pub seed: u32,
-    pub aov: u32,
-    /// 1 when last frame's buffers may be reused (0 on the first frame and after a camera cut);
-    /// frames since the last cut.
-    pub history_valid: u32,
-    pub frames_since_cut: u32,
-    pub _pad1: u32,
-    pub _pad2: u32,
+crate::gpu_struct! {
+    /// `View` in shaders/view.wgsl, field for field: what the near-field kernels read of the
+    /// frame — the camera of this and last frame, the image size, the frame's index and noise
+    /// seed, whether history may be reused. Nothing of exposure, tone mapping, AOVs or lights.
+    pub struct ViewUniforms {
+        pub clip_from_world: [[f32; 4]; 4],
+        pub world_from_clip: [[f32; 4]; 4],
+        pub view_from_world: [[f32; 4]; 4],
+        pub world_from_view: [[f32; 4]; 4],
+        pub prev_clip_from_world: [[f32; 4]; 4],
+        pub prev_view_from_world: [[f32; 4]; 4],
+        pub prev_world_from_view: [[f32; 4]; 4],
+        /// xyz camera position; w unused.
+        pub camera_position: [f32; 4],
+        /// Width, height (pixels).
+        pub size: [f32; 2],
+        /// 1/width, 1/height.
+        pub inv_size: [f32; 2],
+        /// Near and far plane (m), aspect (w/h), tan(yfov/2).
+        pub near: f32,
+        pub far: f32,
+        pub aspect: f32,
+        pub tan_half_fov: f32,
+        /// Last frame's near, far, aspect, tan(yfov/2).
+        pub prev_near: f32,
+        pub prev_far: f32,
+        pub prev_aspect: f32,
+        pub prev_tan_half_fov: f32,
+        /// Frame index and the noise seed.
+        pub frame_index: u32,
+        pub seed: u32,
+        /// 1 when last frame's buffers may be reused (0 on the first frame and after a camera
+        /// cut); frames since the last cut.
+        pub history_valid: u32,
+        pub frames_since_cut: u32,
+    }
+}
+
+crate::gpu_struct! {
+    /// `Frame` in shaders/common.wgsl, field for field: the rest of nearfield's own frame — the
+    /// environment's parameters, post settings, the light count and the AOV shown.
+    pub struct FrameUniforms {
+        /// The environment's rotation about +Y (rad), intensity, specular and radiance mip
+        /// counts.
+        pub env_rotation: f32,
+        pub env_intensity: f32,
+        pub env_specular_mips: f32,
+        pub env_radiance_mips: f32,
+        /// Exposure (EV), tonemap operator ([`Tonemap::index`]), shadow normal offset (texels).
+        pub exposure: f32,
+        pub tonemap: u32,
+        pub shadow_normal_offset: f32,
+        /// Light count, selected AOV.
+        pub light_count: u32,
+        pub aov: u32,
+        pub _pad0: u32,
+        pub _pad1: u32,
+        pub _pad2: u32,
+    }
 }
 
 /// The camera matrices of one frame.
@@ -119,14 +130,13 @@ pub struct PostUniforms {
     pub shadow_normal_offset: f32,
 }
 
-/// Everything that goes into [`FrameUniforms`] besides the environment and post settings.
+/// Everything that goes into [`ViewUniforms`].
 pub struct FrameInputs<'a> {
     pub camera: &'a Camera,
     pub current: CameraMatrices,
     pub previous: CameraMatrices,
     pub size: (u32, u32),
     pub frame_index: u32,
-    pub light_count: u32,
     pub seed: u32,
     /// Last frame's camera (tan(yfov/2) for its projection row).
     pub previous_tan_half_fov: f32,
@@ -134,12 +144,12 @@ pub struct FrameInputs<'a> {
     pub history: (bool, u32),
 }
 
-impl FrameUniforms {
-    pub fn new(f: &FrameInputs, env_params: [f32; 4], post: PostUniforms, aov: u32) -> Self {
+impl ViewUniforms {
+    pub fn new(f: &FrameInputs) -> Self {
         let clip_from_world = f.current.clip_from_world();
         let world_from_view = f.current.view_from_world.inverse();
         let eye: Vec3 = f.camera.eye;
-        FrameUniforms {
+        ViewUniforms {
             clip_from_world: clip_from_world.to_cols_array_2d(),
             world_from_clip: clip_from_world.inverse().to_cols_array_2d(),
             view_from_world: f.current.view_from_world.to_cols_array_2d(),
@@ -154,6 +164,37 @@ impl FrameUniforms {
             far: f.current.far,
             aspect: f.size.0 as f32 / f.size.1 as f32,
             tan_half_fov: (0.5 * f.camera.yfov).tan(),
+            prev_near: f.previous.near,
+            prev_far: f.previous.far,
+            prev_aspect: f.size.0 as f32 / f.size.1 as f32,
+            prev_tan_half_fov: f.previous_tan_half_fov,
+            frame_index: f.frame_index,
+            seed: f.seed,
+            history_valid: f.history.0 as u32,
+            frames_since_cut: f.history.1,
+        }
+    }
+}
+
+impl FrameUniforms {
+    /// The frame of a host that hands in its own images: the environment's parameters
+    /// ([`crate::gpu_env::GpuEnvironment::params`]) and nothing else of nearfield's frame (no
+    /// lights, no exposure; the techniques read none of it).
+    pub fn environment_only(env_params: [f32; 4]) -> Self {
+        Self::new(
+            env_params,
+            PostUniforms {
+                exposure: 0.0,
+                tonemap: Tonemap::Aces,
+                shadow_normal_offset: 0.0,
+            },
+            0,
+            0,
+        )
+    }
+
+    pub fn new(env_params: [f32; 4], post: PostUniforms, light_count: u32, aov: u32) -> Self {
+        FrameUniforms {
             env_rotation: env_params[0],
             env_intensity: env_params[1],
             env_specular_mips: env_params[2],
@@ -161,17 +202,9 @@ impl FrameUniforms {
             exposure: post.exposure,
             tonemap: post.tonemap.index(),
             shadow_normal_offset: post.shadow_normal_offset,
-            _pad0: 0.0,
-            prev_near: f.previous.near,
-            prev_far: f.previous.far,
-            prev_aspect: f.size.0 as f32 / f.size.1 as f32,
-            prev_tan_half_fov: f.previous_tan_half_fov,
-            frame_index: f.frame_index,
-            light_count: f.light_count,
-            seed: f.seed,
+            light_count,
             aov,
-            history_valid: f.history.0 as u32,
-            frames_since_cut: f.history.1,
+            _pad0: 0,
             _pad1: 0,
             _pad2: 0,
         }

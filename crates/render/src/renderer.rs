@@ -6,7 +6,9 @@ use crate::RenderError;
 use crate::aov::Aov;
 use crate::context::GpuContext;
 use crate::far::{FarMode, GpuFarField};
-use crate::frame::{CameraMatrices, FrameInputs, FrameUniforms, PostUniforms, Tonemap};
+use crate::frame::{
+    CameraMatrices, FrameInputs, FrameUniforms, PostUniforms, Tonemap, ViewUniforms,
+};
 use crate::gpu_env::GpuEnvironment;
 use crate::gpu_scene::GpuScene;
 use crate::passes::{
@@ -57,6 +59,7 @@ pub struct Renderer {
     pub far: GpuFarField,
     pub targets: FrameTargets,
     frame_buffer: wgpu::Buffer,
+    view_buffer: wgpu::Buffer,
     /// Group 0 of every pass: the frame's uniforms and the environment.
     frame_group: FrameGroup,
     gbuffer: GBufferPass,
@@ -119,13 +122,19 @@ impl Renderer {
         let frame_buffer = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("frame uniforms"),
             size: std::mem::size_of::<FrameUniforms>() as u64,
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let view_buffer = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("view uniforms"),
+            size: std::mem::size_of::<ViewUniforms>() as u64,
             usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
         let shadows = ShadowPass::new(&device, &gpu_scene, settings.shadows);
         gpu_scene.write_lights(&queue, &shadows.light_layers);
         let far = GpuFarField::sky(&device, &queue);
-        let frame_group = FrameGroup::new(&device, &frame_buffer, &gpu_env, &far);
+        let frame_group = FrameGroup::new(&device, &view_buffer, &frame_buffer, &gpu_env, &far);
         let gbuffer = GBufferPass::new(&device, &frame_group, &gpu_scene);
         let passes = Passes::new(
             &device,
@@ -151,6 +160,7 @@ impl Renderer {
             far,
             targets,
             frame_buffer,
+            view_buffer,
             frame_group,
             gbuffer,
             shadows,
@@ -285,7 +295,13 @@ impl Renderer {
         );
         let old_group = std::mem::replace(
             &mut self.frame_group,
-            FrameGroup::new(&self.device, &self.frame_buffer, &self.env, &self.far),
+            FrameGroup::new(
+                &self.device,
+                &self.view_buffer,
+                &self.frame_buffer,
+                &self.env,
+                &self.far,
+            ),
         );
         let (spec, params) = (self.technique_spec.clone(), self.technique_params.clone());
         if let Err(e) = self.rebuild_passes(&spec, &params) {
@@ -319,7 +335,13 @@ impl Renderer {
         let old_far = std::mem::replace(&mut self.far, far);
         let old_group = std::mem::replace(
             &mut self.frame_group,
-            FrameGroup::new(&self.device, &self.frame_buffer, &self.env, &self.far),
+            FrameGroup::new(
+                &self.device,
+                &self.view_buffer,
+                &self.frame_buffer,
+                &self.env,
+                &self.far,
+            ),
         );
         let (spec, params) = (self.technique_spec.clone(), self.technique_params.clone());
         if let Err(e) = self.rebuild_passes(&spec, &params) {
@@ -445,29 +467,38 @@ impl Renderer {
         self.frame_index
     }
 
-    fn uniforms(&self, current: CameraMatrices, aov: Aov) -> FrameUniforms {
+    fn uniforms(&self, current: CameraMatrices, aov: Aov) -> (ViewUniforms, FrameUniforms) {
         let s = &self.settings;
         let previous_camera = self.previous_camera.as_ref().unwrap_or(&self.camera);
-        FrameUniforms::new(
-            &FrameInputs {
-                camera: &self.camera,
-                current,
-                previous: self.previous.unwrap_or(current),
-                size: s.size,
-                frame_index: self.frame_index,
-                light_count: self.scene.light_count,
-                seed: s.seed,
-                previous_tan_half_fov: (0.5 * previous_camera.yfov).tan(),
-                history: (self.history_valid(), self.frames_since_cut),
-            },
+        let view = ViewUniforms::new(&FrameInputs {
+            camera: &self.camera,
+            current,
+            previous: self.previous.unwrap_or(current),
+            size: s.size,
+            frame_index: self.frame_index,
+            seed: s.seed,
+            previous_tan_half_fov: (0.5 * previous_camera.yfov).tan(),
+            history: (self.history_valid(), self.frames_since_cut),
+        });
+        let frame = FrameUniforms::new(
             self.env.params(),
             PostUniforms {
                 exposure: s.exposure,
                 tonemap: s.tonemap,
                 shadow_normal_offset: s.shadows.normal_offset_texels,
             },
+            self.scene.light_count,
             aov.shader_id(),
-        )
+        );
+        (view, frame)
+    }
+
+    /// Writes group 0's two uniforms.
+    fn write_uniforms(&self, (view, frame): (ViewUniforms, FrameUniforms)) {
+        self.queue
+            .write_buffer(&self.view_buffer, 0, bytemuck::bytes_of(&view));
+        self.queue
+            .write_buffer(&self.frame_buffer, 0, bytemuck::bytes_of(&frame));
     }
 
     /// Whether the next frame may reuse this one's buffers.
@@ -486,9 +517,7 @@ impl Renderer {
         }
         let history = self.history_valid();
         let current = CameraMatrices::new(&self.camera, self.settings.size, self.scene.bounds);
-        let u = self.uniforms(current, Aov::Final);
-        self.queue
-            .write_buffer(&self.frame_buffer, 0, bytemuck::bytes_of(&u));
+        self.write_uniforms(self.uniforms(current, Aov::Final));
         self.passes.technique.prepare(&self.queue, &self.camera);
         if self
             .shadows

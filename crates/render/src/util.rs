@@ -1,6 +1,6 @@
 //! Small helpers: shader composition, the raster pipeline of every mesh pass, readback.
 
-/// Shared WGSL: the `Frame` uniform and view-space helpers.
+/// Shared WGSL: the `View` and `Frame` uniforms and view-space helpers.
 pub const COMMON_WGSL: &str = include_str!("shaders/common.wgsl");
 /// Shared WGSL: environment bindings (group 0), lat-long lookups and SH irradiance.
 pub const ENV_WGSL: &str = include_str!("shaders/env.wgsl");

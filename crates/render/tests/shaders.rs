@@ -2,7 +2,7 @@
 //! between host and shader has the same size and member offsets on both sides.
 
 use nearfield_render::{
-    frame::FrameUniforms,
+    frame::{FrameUniforms, ViewUniforms},
     gpu_env::PrefilterParams,
     gpu_scene::{GpuLight, GpuMaterial},
 };
@@ -65,14 +65,15 @@ fn host_and_shader_structs_agree() {
     }
     check(
         common,
+        "View",
+        size_of::<ViewUniforms>(),
+        ViewUniforms::FIELDS,
+    );
+    check(
+        common,
         "Frame",
         size_of::<FrameUniforms>(),
-        &offsets!(FrameUniforms: clip_from_world, world_from_clip, view_from_world,
-            world_from_view, prev_clip_from_world, prev_view_from_world, prev_world_from_view,
-            camera_position, size, inv_size, near, far, aspect, tan_half_fov, env_rotation,
-            env_intensity, env_specular_mips, env_radiance_mips, exposure, tonemap,
-            shadow_normal_offset, _pad0, prev_near, prev_far, prev_aspect, prev_tan_half_fov,
-            frame_index, light_count, seed, aov, history_valid, frames_since_cut, _pad1, _pad2),
+        FrameUniforms::FIELDS,
     );
     use nearfield_render::passes::reproject::ReprojectParams;
     use nearfield_render::technique::horizon::HorizonParams;

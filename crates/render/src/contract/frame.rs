@@ -1,4 +1,4 @@
-//! Group 0 of every pass: the frame's uniforms, the environment and the far field
+//! Group 0 of every pass: the view and the frame's uniforms, the environment and the far field
 //! ([`crate::bindings::FrameBindings`]), one bind group made by the renderer (docs/src/architecture.md).
 
 use crate::bindings::FrameBindings;
@@ -15,13 +15,14 @@ pub struct FrameGroup {
 impl FrameGroup {
     pub fn new(
         device: &wgpu::Device,
+        view: &wgpu::Buffer,
         frame: &wgpu::Buffer,
         env: &GpuEnvironment,
         far: &GpuFarField,
     ) -> Self {
         let layout = FrameBindings::layout(device);
         let bind_group = FrameBindings {
-            frame,
+            view,
             env_radiance: &env.radiance_view,
             env_specular: &env.specular_view,
             env_sampler: &env.sampler,
@@ -30,6 +31,7 @@ impl FrameGroup {
             far_probes: &far.probes_view,
             far_visibility: &far.visibility_view,
             far_irradiance_atlas: &far.irradiance_view,
+            frame,
         }
         .bind_group(device, &layout);
         FrameGroup { layout, bind_group }

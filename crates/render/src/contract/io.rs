@@ -4,9 +4,10 @@
 //! G-buffer pass (`examples/external_gbuffer.rs`); nearfield's own [`crate::Renderer`] is one
 //! provider of them.
 //!
-//! Besides these images a technique binds group 0 ([`crate::contract::frame::FrameGroup`]: the `Frame`
-//! uniform of [`crate::frame::FrameUniforms`], camera matrices of this and last frame, and the
-//! environment of [`crate::gpu_env::GpuEnvironment`]).
+//! Besides these images a technique binds group 0 ([`crate::contract::frame::FrameGroup`]: the
+//! `View` uniform of [`crate::frame::ViewUniforms`], camera matrices of this and last frame, the
+//! environment of [`crate::gpu_env::GpuEnvironment`] with its parameters in
+//! [`crate::frame::FrameUniforms::environment_only`], and the far field).
 
 use crate::contract::lights::LightResources;
 use crate::gpu_scene::GpuScene;

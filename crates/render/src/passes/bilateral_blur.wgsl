@@ -43,10 +43,10 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     let n = normalize(nw.xyz);
     // Positions in view space (no matrix per tap); the centre's normal there for the plane test.
-    let n_view = (frame.view_from_world * vec4<f32>(n, 0.0)).xyz;
+    let n_view = (view.view_from_world * vec4<f32>(n, 0.0)).xyz;
     let z = textureLoad(gb_view_depth, pixel, 0).r;
     let x = view_position(pixel, z);
-    let size = vec2<i32>(frame.size);
+    let size = vec2<i32>(view.size);
     let sigma = max(f32(blur.radius) * 0.5, 0.5);
     let spatial = -1.0 / (2.0 * sigma * sigma);
     let plane = -1.0 / (blur.depth_sigma * z);

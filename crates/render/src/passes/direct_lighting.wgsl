@@ -81,7 +81,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     let emission = textureLoad(gb_emissive, pixel, 0).rgb;
     let depth = textureLoad(gb_view_depth, pixel, 0).r;
     let p = world_position(pixel, depth);
-    let v = normalize(frame.camera_position.xyz - p);
+    let v = normalize(view.camera_position.xyz - p);
     let n_v = max(dot(n, v), 1e-4);
     let f0 = mix(vec3<f32>(0.04), albedo, metallic);
 

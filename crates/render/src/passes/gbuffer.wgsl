@@ -18,7 +18,7 @@
 
 @vertex
 fn vs_main(v: VertexIn) -> VertexOut {
-    return transform_vertex(v, frame.clip_from_world);
+    return transform_vertex(v, view.clip_from_world);
 }
 
 struct GBufferOut {
@@ -45,7 +45,7 @@ fn fs_main(in: VertexOut, @builtin(front_facing) front: bool) -> GBufferOut {
     o.albedo = vec4<f32>(m.base, 1.0);
     o.material = vec4<f32>(m.metallic, m.roughness, 0.0, 1.0);
     o.emissive = vec4<f32>(m.emissive, 1.0);
-    o.motion = vec4<f32>(to_screen(frame.prev_clip_from_world, in.world) - in.clip.xy, 0.0, 0.0);
-    o.view_depth = vec4<f32>(-(frame.view_from_world * vec4<f32>(in.world, 1.0)).z, 0.0, 0.0, 0.0);
+    o.motion = vec4<f32>(to_screen(view.prev_clip_from_world, in.world) - in.clip.xy, 0.0, 0.0);
+    o.view_depth = vec4<f32>(-(view.view_from_world * vec4<f32>(in.world, 1.0)).z, 0.0, 0.0, 0.0);
     return o;
 }

@@ -49,13 +49,13 @@ fn land(pixel: vec2<u32>) -> Landing {
     if g.w <= 0.0 {
         return l;
     }
-    let world = (frame.prev_world_from_view * vec4<f32>(prev_view_position(pixel, g.w), 1.0)).xyz;
-    let d = -(frame.view_from_world * vec4<f32>(world, 1.0)).z;
+    let world = (view.prev_world_from_view * vec4<f32>(prev_view_position(pixel, g.w), 1.0)).xyz;
+    let d = -(view.view_from_world * vec4<f32>(world, 1.0)).z;
     if d <= 0.0 {
         return l;
     }
-    let s = floor(to_screen(frame.clip_from_world, world));
-    if any(s < vec2<f32>(0.0)) || any(s >= frame.size) {
+    let s = floor(to_screen(view.clip_from_world, world));
+    if any(s < vec2<f32>(0.0)) || any(s >= view.size) {
         return l;
     }
     let q = vec2<u32>(s);
@@ -67,7 +67,7 @@ fn land(pixel: vec2<u32>) -> Landing {
     if !same_surface(world_position(q, qd), normalize(nw.xyz), qd, world, g.xyz, params.reject_depth, params.reject_normal) {
         return l;
     }
-    l.index = q.y * u32(frame.size.x) + q.x;
+    l.index = q.y * u32(view.size.x) + q.x;
     l.depth_bits = bitcast<u32>(d);
     l.ok = true;
     return l;
@@ -101,7 +101,7 @@ fn scatter_resolve(@builtin(global_invocation_id) id: vec3<u32>) {
     if !in_bounds(pixel) {
         return;
     }
-    let i = pixel.y * u32(frame.size.x) + pixel.x;
+    let i = pixel.y * u32(view.size.x) + pixel.x;
     var out = vec4<f32>(0.0);
     if atomicLoad(&zbuffer[i]) != EMPTY {
         out = colors[i];

@@ -15,9 +15,8 @@ impl Renderer {
         });
         // Same matrices as the last frame; only the AOV selector differs.
         let mut u = self.uniforms(current, aov);
-        u.frame_index = last;
-        self.queue
-            .write_buffer(&self.frame_buffer, 0, bytemuck::bytes_of(&u));
+        u.0.frame_index = last;
+        self.write_uniforms(u);
         let mut encoder = self.device.create_command_encoder(&Default::default());
         self.passes
             .aov

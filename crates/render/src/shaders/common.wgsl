@@ -4,7 +4,10 @@
 // offsets). Conventions (docs/src/conventions.md): right-handed world, +Y up, view space looks
 // down −Z, pixel centres at (x + 0.5, y + 0.5) with row 0 at the top, wgpu clip depth 0..1.
 
-struct Frame {
+// The view the near-field kernels read (crate::frame::ViewUniforms): the camera of this and
+// last frame, the image, the frame's index and seed. Nothing of exposure, tone mapping, AOVs or
+// lights.
+struct View {
     clip_from_world: mat4x4<f32>,
     world_from_clip: mat4x4<f32>,
     view_from_world: mat4x4<f32>,
@@ -23,6 +26,22 @@ struct Frame {
     far: f32,
     aspect: f32,
     tan_half_fov: f32,
+    // Last frame's near, far, aspect, tan(yfov / 2).
+    prev_near: f32,
+    prev_far: f32,
+    prev_aspect: f32,
+    prev_tan_half_fov: f32,
+    // Frame index and noise seed.
+    frame_index: u32,
+    seed: u32,
+    // 1 when last frame's buffers may be reused (0 on the first frame and after a camera cut);
+    // frames since the last cut.
+    history_valid: u32,
+    frames_since_cut: u32,
+}
+
+// The rest of nearfield's own frame (crate::frame::FrameUniforms).
+struct Frame {
     // The environment's rotation about +Y (rad), intensity, specular and radiance mip counts.
     env_rotation: f32,
     env_intensity: f32,
@@ -33,26 +52,16 @@ struct Frame {
     exposure: f32,
     tonemap: u32,
     shadow_normal_offset: f32,
-    _pad0: f32,
-    // Last frame's near, far, aspect, tan(yfov / 2).
-    prev_near: f32,
-    prev_far: f32,
-    prev_aspect: f32,
-    prev_tan_half_fov: f32,
-    // Frame index, light count, seed, selected AOV (for the AOV pass).
-    frame_index: u32,
+    // Light count, selected AOV (for the AOV pass).
     light_count: u32,
-    seed: u32,
     aov: u32,
-    // 1 when last frame's buffers may be reused (0 on the first frame and after a camera cut);
-    // frames since the last cut.
-    history_valid: u32,
-    frames_since_cut: u32,
+    _pad0: u32,
     _pad1: u32,
     _pad2: u32,
 }
 
-@group(0) @binding(0) var<uniform> frame: Frame;
+@group(0) @binding(0) var<uniform> view: View;
+@group(0) @binding(9) var<storage, read> frame: Frame;
 
 // One view of the extra layers (passes/layers/, `LayerView` there): a peeled depth layer of the
 // main camera or an additional camera. 256 bytes, so that one buffer serves as a storage array and
@@ -83,46 +92,46 @@ fn layer_position(v: LayerView, pixel: vec2<u32>, depth: f32) -> vec3<f32> {
     let p = (vec2<f32>(pixel) + 0.5) * v.inv_size;
     let ndc = vec2<f32>(2.0 * p.x - 1.0, 1.0 - 2.0 * p.y);
     let t = v.tan_half_fov;
-    let view = vec3<f32>(ndc.x * t * v.aspect, ndc.y * t, -1.0) * depth;
-    return (v.world_from_view * vec4<f32>(view, 1.0)).xyz;
+    let pv = vec3<f32>(ndc.x * t * v.aspect, ndc.y * t, -1.0) * depth;
+    return (v.world_from_view * vec4<f32>(pv, 1.0)).xyz;
 }
 
 const PI: f32 = 3.14159265358979;
 
 // View-space position of pixel `pixel` (integer coordinates) at view depth `view_depth` (> 0, m).
 fn view_position(pixel: vec2<u32>, view_depth: f32) -> vec3<f32> {
-    let p = (vec2<f32>(pixel) + 0.5) * frame.inv_size;
+    let p = (vec2<f32>(pixel) + 0.5) * view.inv_size;
     let ndc = vec2<f32>(2.0 * p.x - 1.0, 1.0 - 2.0 * p.y);
-    let t = frame.tan_half_fov;
-    return vec3<f32>(ndc.x * t * frame.aspect, ndc.y * t, -1.0) * view_depth;
+    let t = view.tan_half_fov;
+    return vec3<f32>(ndc.x * t * view.aspect, ndc.y * t, -1.0) * view_depth;
 }
 
 // Last frame's view-space position of pixel `pixel` at view depth `view_depth`.
 fn prev_view_position(pixel: vec2<u32>, view_depth: f32) -> vec3<f32> {
-    let p = (vec2<f32>(pixel) + 0.5) * frame.inv_size;
+    let p = (vec2<f32>(pixel) + 0.5) * view.inv_size;
     let ndc = vec2<f32>(2.0 * p.x - 1.0, 1.0 - 2.0 * p.y);
-    let t = frame.prev_tan_half_fov;
-    return vec3<f32>(ndc.x * t * frame.prev_aspect, ndc.y * t, -1.0) * view_depth;
+    let t = view.prev_tan_half_fov;
+    return vec3<f32>(ndc.x * t * view.prev_aspect, ndc.y * t, -1.0) * view_depth;
 }
 
 // Pixel coordinates (continuous, centres at +0.5) of world point `p` through `clip_from_world`.
 fn to_screen(clip_from_world: mat4x4<f32>, p: vec3<f32>) -> vec2<f32> {
     let c = clip_from_world * vec4<f32>(p, 1.0);
     let ndc = c.xy / c.w;
-    return vec2<f32>(0.5 * ndc.x + 0.5, 0.5 - 0.5 * ndc.y) * frame.size;
+    return vec2<f32>(0.5 * ndc.x + 0.5, 0.5 - 0.5 * ndc.y) * view.size;
 }
 
 fn world_position(pixel: vec2<u32>, view_depth: f32) -> vec3<f32> {
-    return (frame.world_from_view * vec4<f32>(view_position(pixel, view_depth), 1.0)).xyz;
+    return (view.world_from_view * vec4<f32>(view_position(pixel, view_depth), 1.0)).xyz;
 }
 
 // Unit world direction from the camera through the centre of `pixel`.
 fn view_ray(pixel: vec2<u32>) -> vec3<f32> {
-    return normalize((frame.world_from_view * vec4<f32>(view_position(pixel, 1.0), 0.0)).xyz);
+    return normalize((view.world_from_view * vec4<f32>(view_position(pixel, 1.0), 0.0)).xyz);
 }
 
 fn in_bounds(pixel: vec2<u32>) -> bool {
-    return f32(pixel.x) < frame.size.x && f32(pixel.y) < frame.size.y;
+    return f32(pixel.x) < view.size.x && f32(pixel.y) < view.size.y;
 }
 
 // Whether `p` (a point last frame saw, with normal `pn`) is the surface point `x` (normal `n`,
@@ -135,8 +144,8 @@ fn same_surface(x: vec3<f32>, n: vec3<f32>, depth: f32, p: vec3<f32>, pn: vec3<f
     if abs(dot(p - x, n)) > max_plane * depth || dot(pn, n) < min_cos {
         return false;
     }
-    let footprint = depth * 2.0 * frame.tan_half_fov * frame.inv_size.y;
-    let facing = max(abs(dot(n, normalize(frame.camera_position.xyz - x))), 0.1);
+    let footprint = depth * 2.0 * view.tan_half_fov * view.inv_size.y;
+    let facing = max(abs(dot(n, normalize(view.camera_position.xyz - x))), 0.1);
     let d = p - x;
     let reach = 2.5 * footprint / facing;
     return dot(d, d) <= reach * reach;
@@ -169,14 +178,14 @@ fn history_taps(prev_geometry: texture_2d<f32>, prev: vec2<f32>, x: vec3<f32>, n
         // A tap of bilinear weight below 1e-3 is not fetched (it would move the mean by less than
         // that; a still camera lands on pixel centres, where three of the four weigh ~0).
         let w = select(1.0 - f.x, f.x, o.x == 1) * select(1.0 - f.y, f.y, o.y == 1);
-        if w < 1e-3 || any(q < vec2<i32>(0)) || any(q >= vec2<i32>(frame.size)) {
+        if w < 1e-3 || any(q < vec2<i32>(0)) || any(q >= vec2<i32>(view.size)) {
             continue;
         }
         let g = textureLoad(prev_geometry, q, 0);
         if g.w <= 0.0 {
             continue;
         }
-        let pw = (frame.prev_world_from_view * vec4<f32>(prev_view_position(vec2<u32>(q), g.w), 1.0)).xyz;
+        let pw = (view.prev_world_from_view * vec4<f32>(prev_view_position(vec2<u32>(q), g.w), 1.0)).xyz;
         if !same_surface(x, n, depth, pw, g.xyz, max_plane, min_cos) {
             continue;
         }

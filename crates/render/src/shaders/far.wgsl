@@ -205,12 +205,12 @@ fn far_irradiance_at(p: vec3<f32>, n: vec3<f32>, v: vec3<f32>) -> vec3<f32> {
 
 // far_irradiance_at at a surface point of the frame, seen from the camera.
 fn far_irradiance_here(p: vec3<f32>, n: vec3<f32>) -> vec3<f32> {
-    return far_irradiance_at(p, n, normalize(frame.camera_position.xyz - p));
+    return far_irradiance_at(p, n, normalize(view.camera_position.xyz - p));
 }
 
 // The far field at a surface point of the frame: world `p`, unit normal `n`, seen from the camera.
 fn far_sh_here(p: vec3<f32>, n: vec3<f32>) -> FarSh {
-    return far_sh_at(p, n, normalize(frame.camera_position.xyz - p));
+    return far_sh_at(p, n, normalize(view.camera_position.xyz - p));
 }
 
 // E(n)/π of the far field (Ramamoorthi & Hanrahan 2001, as env_irradiance_sh).

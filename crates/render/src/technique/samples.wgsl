@@ -56,11 +56,11 @@ fn sample_local(i: u32, pixel: vec2<u32>, cfg: SampleConfig) -> vec4<f32> {
     let cos_e = 1.0 - alpha;
     let sin_e = sqrt(max(0.0, 1.0 - cos_e * cos_e));
     // Seed 0 gives the chapter's rotation exactly; other seeds turn it further.
-    let phi = PI * fract(interleaved_gradient_noise(pixel) + f32(hash(frame.seed) >> 8u) / 16777216.0 * f32(min(frame.seed, 1u)));
+    let phi = PI * fract(interleaved_gradient_noise(pixel) + f32(hash(view.seed) >> 8u) / 16777216.0 * f32(min(view.seed, 1u)));
     let theta = 2.0 * PI * alpha * (7.0 * f32(n) / 9.0) + phi;
     // Random length λ ∈ (0, 1] per pixel and sample (with the frame seed), λ = u^(1/3): the
     // sampling points are uniform in the hemisphere's volume.
-    let h = hash(pixel.x * 1973u + pixel.y * 9277u + i * 26699u + frame.seed * 103u);
+    let h = hash(pixel.x * 1973u + pixel.y * 9277u + i * 26699u + view.seed * 103u);
     let lambda = pow((f32(h >> 8u) + 1.0) / 16777216.0, 1.0 / 3.0);
     return vec4<f32>(sin_e * cos(theta), sin_e * sin(theta), cos_e, lambda);
 }
@@ -141,7 +141,7 @@ fn main_view_verdict(p: vec3<f32>, s: vec3<f32>, lambda: f32, cfg: SampleConfig)
     v.informed = false;
     v.free = true;
     v.o.amount = 0.0;
-    let c = frame.clip_from_world * vec4<f32>(s, 1.0);
+    let c = view.clip_from_world * vec4<f32>(s, 1.0);
     // Chapter condition 1: outside the screen (or behind the camera) — no information.
     if c.w <= 0.0 {
         return v;
@@ -152,7 +152,7 @@ fn main_view_verdict(p: vec3<f32>, s: vec3<f32>, lambda: f32, cfg: SampleConfig)
         return v;
     }
     v.informed = true;
-    let q = vec2<u32>(uv * frame.size);
+    let q = vec2<u32>(uv * view.size);
     let surf = surface_at(q);
     // Chapter condition 2: background — open.
     if !surf.valid {
@@ -213,8 +213,8 @@ fn camera_verdict(p: vec3<f32>, s: vec3<f32>, lambda: f32, c: u32, cfg: SampleCo
     v.informed = false;
     v.free = true;
     v.o.amount = 0.0;
-    let view = layer_views[CAMERA_VIEW_BASE + c];
-    let h = view.clip_from_world * vec4<f32>(s, 1.0);
+    let cam = layer_views[CAMERA_VIEW_BASE + c];
+    let h = cam.clip_from_world * vec4<f32>(s, 1.0);
     if h.w <= 0.0 {
         return v;
     }
@@ -224,7 +224,7 @@ fn camera_verdict(p: vec3<f32>, s: vec3<f32>, lambda: f32, c: u32, cfg: SampleCo
         return v;
     }
     v.informed = true;
-    let q = vec2<u32>(uv * view.size);
+    let q = vec2<u32>(uv * cam.size);
     let surf = camera_surface(q, c);
     if !surf.valid || dot(s - surf.p, surf.n) >= -1e-4 * h.w {
         return v;
@@ -282,9 +282,9 @@ fn bounce_steps(steps: u32, paper_steps: u32, cfg: SampleConfig) -> u32 {
 
 // Where a world point falls on the main view, in pixels.
 fn screen_pixel(x: vec3<f32>) -> vec2<f32> {
-    let c = frame.clip_from_world * vec4<f32>(x, 1.0);
+    let c = view.clip_from_world * vec4<f32>(x, 1.0);
     let ndc = c.xy / max(c.w, 1e-12);
-    return vec2<f32>(ndc.x * 0.5 + 0.5, 0.5 - ndc.y * 0.5) * frame.size;
+    return vec2<f32>(ndc.x * 0.5 + 0.5, 0.5 - ndc.y * 0.5) * view.size;
 }
 
 // The blocker test along a direction (ray marching): `steps` points at λ·k/steps, k = 1..steps;

@@ -41,7 +41,7 @@ fn atrous(@builtin(global_invocation_id) id: vec3<u32>) {
     let n = normalize(nw.xyz);
     let n_view = to_view(n);
     let x = view_position(pixel, depth);
-    let size = vec2<i32>(frame.size);
+    let size = vec2<i32>(view.size);
     var sig: array<vec4<f32>, 9>;
     var env: array<vec3<f32>, 9>;
     var ind: array<vec3<f32>, 9>;

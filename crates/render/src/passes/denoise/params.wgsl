@@ -32,5 +32,5 @@ fn svgf_geometry_weight(x_view: vec3<f32>, n_view: vec3<f32>, n: vec3<f32>, dept
 
 // A world-space direction in view space.
 fn to_view(n: vec3<f32>) -> vec3<f32> {
-    return vec3<f32>(dot(frame.world_from_view[0].xyz, n), dot(frame.world_from_view[1].xyz, n), dot(frame.world_from_view[2].xyz, n));
+    return vec3<f32>(dot(view.world_from_view[0].xyz, n), dot(view.world_from_view[1].xyz, n), dot(view.world_from_view[2].xyz, n));
 }

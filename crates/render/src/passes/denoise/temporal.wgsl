@@ -47,7 +47,7 @@ fn temporal(@builtin(global_invocation_id) id: vec3<u32>) {
     let l = svgf_luma(indirect);
     var moments = vec4<f32>(ao, ao * ao, l, l * l);
     var count = 1.0;
-    if params.temporal == 1u && frame.history_valid == 1u {
+    if params.temporal == 1u && view.history_valid == 1u {
         let prev = vec2<f32>(pixel) + 0.5 + textureLoad(gb_motion, pixel, 0).xy;
         let taps = history_taps(prev_geometry, prev, x, n, depth, params.reject_depth, params.reject_normal);
         if taps.total > 1e-3 {

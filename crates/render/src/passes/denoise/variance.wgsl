@@ -36,7 +36,7 @@ fn variance(@builtin(global_invocation_id) id: vec3<u32>) {
         let x = view_position(pixel, depth);
         var sum = vec4<f32>(0.0);
         var wsum = 0.0;
-        let size = vec2<i32>(frame.size);
+        let size = vec2<i32>(view.size);
         for (var dy = -2; dy <= 2; dy++) {
             for (var dx = -2; dx <= 2; dx++) {
                 let q = vec2<i32>(pixel) + vec2<i32>(dx, dy);

@@ -97,7 +97,7 @@ fn search_pixel(texel: vec2<u32>, layer: u32, pixel: vec2<u32>, centre: vec4<f32
     let volume = FAR && params.far == FAR_SLICES && far_volume();
     var far_sh: FarSh;
     if volume {
-        let xw = (frame.world_from_view * vec4<f32>(x, 1.0)).xyz;
+        let xw = (view.world_from_view * vec4<f32>(x, 1.0)).xyz;
         far_sh = far_sh_here(xw, normalize(centre.xyz));
     }
 
@@ -107,10 +107,10 @@ fn search_pixel(texel: vec2<u32>, layer: u32, pixel: vec2<u32>, centre: vec4<f32
     m.x = x;
     m.omega_o = lf.o;
     m.r_layer = march_reach(depth);
-    m.step_jitter = fract(noise(pixel) + golden(frame.frame_index + 7u));
+    m.step_jitter = fract(noise(pixel) + golden(view.frame_index + 7u));
     m.fade_width = max(params.falloff * params.radius, 1e-6);
     let cell = cell_index(pixel);
-    let frame_jitter = golden(frame.frame_index);
+    let frame_jitter = golden(view.frame_index);
 
     var ao = 0.0;
     var unoccluded = 0.0;

@@ -94,8 +94,8 @@ fn resolve(pixel: vec2<u32>, raw_cone: vec4<f32>, raw_near: vec3<f32>, raw_far: 
     var far = raw_far;
     // Without near-field light (gtao) the near texture only keeps the frame count (w).
     var near = vec4<f32>(raw_near, 1.0);
-    if params.temporal == 1u && frame.history_valid == 1u {
-        let taps = history_taps(prev_geometry, to_screen(frame.prev_clip_from_world, x), x, n, depth, params.reject_depth, params.reject_normal);
+    if params.temporal == 1u && view.history_valid == 1u {
+        let taps = history_taps(prev_geometry, to_screen(view.prev_clip_from_world, x), x, n, depth, params.reject_depth, params.reject_normal);
         var sum_cone = vec4<f32>(0.0);
         var sum_near = vec4<f32>(0.0);
         var sum_far = vec4<f32>(0.0);

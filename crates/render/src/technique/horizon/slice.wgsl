@@ -22,7 +22,7 @@ fn layer_pixel(texel: vec2<u32>, layer: u32) -> vec2<u32> {
 // centre is not what the slice sees there, and the sample is skipped).
 fn on_slice_line(pos: vec2<f32>, layer: u32, centre: vec3<f32>, n: vec3<f32>) -> vec4<f32> {
     let r = to_world(view_dir(layer_to_full(pos, layer)));
-    let eye = frame.camera_position.xyz;
+    let eye = view.camera_position.xyz;
     let denom = dot(n, r);
     let along = dot(n, centre - eye) / denom;
     if abs(denom) < 1e-4 * length(r) || along <= 0.0 {
@@ -48,11 +48,11 @@ struct LocalFrame {
 
 fn local_frame(x: vec3<f32>) -> LocalFrame {
     var f: LocalFrame;
-    f.o = normalize(frame.camera_position.xyz - x);
-    let up = normalize(frame.world_from_view[1].xyz);
+    f.o = normalize(view.camera_position.xyz - x);
+    let up = normalize(view.world_from_view[1].xyz);
     var ox = cross(up, f.o);
     if dot(ox, ox) < 1e-8 {
-        ox = normalize(frame.world_from_view[0].xyz);
+        ox = normalize(view.world_from_view[0].xyz);
     }
     f.x = normalize(ox);
     f.y = cross(f.o, f.x);
@@ -62,14 +62,14 @@ fn local_frame(x: vec3<f32>) -> LocalFrame {
 // Screen length of R at view depth `depth` in layer texels, as if the occluder were up to R
 // nearer the camera (capped by `max_pixels` at full resolution).
 fn march_reach(depth: f32) -> f32 {
-    let focal = 0.5 * frame.size.y / frame.tan_half_fov;
+    let focal = 0.5 * view.size.y / view.tan_half_fov;
     let r_px = min(params.max_pixels, params.radius * focal / max(depth - params.radius, 0.2 * depth));
     return r_px / f32(params.scale);
 }
 
 // Unit screen direction (pixels) of slice direction `d` at x (x_screen: x on screen).
 fn slice_screen_dir(x: vec3<f32>, x_screen: vec2<f32>, d: vec3<f32>, depth: f32) -> vec2<f32> {
-    var dir = to_screen(frame.clip_from_world, x + d * (0.01 * depth)) - x_screen;
+    var dir = to_screen(view.clip_from_world, x + d * (0.01 * depth)) - x_screen;
     if dot(dir, dir) < 1e-12 {
         dir = vec2<f32>(1.0, 0.0);
     }
@@ -81,18 +81,18 @@ fn slice_screen_dir(x: vec3<f32>, x_screen: vec2<f32>, d: vec3<f32>, depth: f32)
 
 // A world direction in view space, and back.
 fn to_view(v: vec3<f32>) -> vec3<f32> {
-    return (frame.view_from_world * vec4<f32>(v, 0.0)).xyz;
+    return (view.view_from_world * vec4<f32>(v, 0.0)).xyz;
 }
 
 fn to_world(v: vec3<f32>) -> vec3<f32> {
-    return (frame.world_from_view * vec4<f32>(v, 0.0)).xyz;
+    return (view.world_from_view * vec4<f32>(v, 0.0)).xyz;
 }
 
 // The view-space direction (z = −1) through full-resolution position `full` (pixel units).
 fn view_dir(full: vec2<f32>) -> vec3<f32> {
-    let uv = full * frame.inv_size;
-    let t = frame.tan_half_fov;
-    return vec3<f32>((2.0 * uv.x - 1.0) * t * frame.aspect, (1.0 - 2.0 * uv.y) * t, -1.0);
+    let uv = full * view.inv_size;
+    let t = view.tan_half_fov;
+    return vec3<f32>((2.0 * uv.x - 1.0) * t * view.aspect, (1.0 - 2.0 * uv.y) * t, -1.0);
 }
 
 // Full-resolution position of layer position `pos` (continuous texel coordinates).

@@ -21,7 +21,7 @@ fn filter_pass(@builtin(global_invocation_id) id: vec3<u32>) {
         return;
     }
     let z = textureLoad(gb_view_depth, pixel, 0).r;
-    let size = vec2<i32>(frame.size);
+    let size = vec2<i32>(view.size);
     var sum = array<f32, 16>();
     var weight = 0.0;
     for (var dy = -3; dy <= 4; dy++) {

@@ -142,8 +142,8 @@ fn bitmask(@builtin(global_invocation_id) id: vec3<u32>) {
     if volume {
         far_sh = far_sh_here(x, n);
     }
-    let eye = frame.camera_position.xyz;
-    let forward = -normalize(frame.world_from_view[2].xyz);
+    let eye = view.camera_position.xyz;
+    let forward = -normalize(view.world_from_view[2].xyz);
     let lf = local_frame(x);
     let omega_o = lf.o;
     let omega_x = lf.x;
@@ -151,13 +151,13 @@ fn bitmask(@builtin(global_invocation_id) id: vec3<u32>) {
 
     let r_layer = march_reach(depth);
     let cell = cell_index(pixel);
-    let frame_jitter = golden(frame.frame_index);
-    let step_jitter = fract(noise(pixel) + golden(frame.frame_index + 7u));
+    let frame_jitter = golden(view.frame_index);
+    let step_jitter = fract(noise(pixel) + golden(view.frame_index + 7u));
     // Stochastic rounding of the sector boundaries: every sample of the pixel rounds with the
     // same offset, so neighbouring samples' ranges tile without gaps, and over frames a sector's
     // expected coverage is the exact fraction of it that the range covers.
-    let round_jitter = fract(noise(pixel + vec2<u32>(17u, 29u)) + golden(frame.frame_index + 3u));
-    let x_screen = to_screen(frame.clip_from_world, x);
+    let round_jitter = fract(noise(pixel + vec2<u32>(17u, 29u)) + golden(view.frame_index + 3u));
+    let x_screen = to_screen(view.clip_from_world, x);
     let layer_size = vec2<i32>(i32(params.layer_width), i32(params.layer_height));
     let all_sectors = bit_range(0u, SECTORS);
     let groups = min(SECTORS, 16u);
