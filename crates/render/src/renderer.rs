@@ -293,16 +293,8 @@ impl Renderer {
             &mut self.env,
             GpuEnvironment::new(&self.device, &self.queue, env),
         );
-        let old_group = std::mem::replace(
-            &mut self.frame_group,
-            FrameGroup::new(
-                &self.device,
-                &self.view_buffer,
-                &self.frame_buffer,
-                &self.env,
-                &self.far,
-            ),
-        );
+        let group = self.new_frame_group();
+        let old_group = std::mem::replace(&mut self.frame_group, group);
         let (spec, params) = (self.technique_spec.clone(), self.technique_params.clone());
         if let Err(e) = self.rebuild_passes(&spec, &params) {
             self.env = old;
@@ -333,16 +325,8 @@ impl Renderer {
         };
         scopes.pop()?;
         let old_far = std::mem::replace(&mut self.far, far);
-        let old_group = std::mem::replace(
-            &mut self.frame_group,
-            FrameGroup::new(
-                &self.device,
-                &self.view_buffer,
-                &self.frame_buffer,
-                &self.env,
-                &self.far,
-            ),
-        );
+        let group = self.new_frame_group();
+        let old_group = std::mem::replace(&mut self.frame_group, group);
         let (spec, params) = (self.technique_spec.clone(), self.technique_params.clone());
         if let Err(e) = self.rebuild_passes(&spec, &params) {
             self.far = old_far;
@@ -491,6 +475,17 @@ impl Renderer {
             aov.shader_id(),
         );
         (view, frame)
+    }
+
+    /// Group 0 over the current environment and far field.
+    fn new_frame_group(&self) -> FrameGroup {
+        FrameGroup::new(
+            &self.device,
+            &self.view_buffer,
+            &self.frame_buffer,
+            &self.env,
+            &self.far,
+        )
     }
 
     /// Writes group 0's two uniforms.
