@@ -36,13 +36,18 @@ figures:
 	./scripts/figures.sh
 
 # Every test: unit, naga shader validation, GPU tests (lavapipe without a GPU), real assets from
-# ../shared/assets, bad-input handling. REQUIRE_GPU=1 makes a missing adapter a failure.
+# ../shared/assets, bad-input handling. REQUIRE_GPU=1 makes a missing adapter a failure. Then the
+# Bevy plugin (its own workspace; Bevy 0.20.1 declares rust 1.97.1, so the nightly toolchain
+# builds it, about 10 minutes cold on 2 cores) and its one test binary.
 test: setup
 	$(CARGO) test --workspace
+	cd bevy_nearfield && $(CARGO) +nightly test --release --ignore-rust-version
 
 lint:
 	$(CARGO) fmt --all -- --check
 	$(CARGO) clippy --workspace --all-targets -- -D warnings
+	cd bevy_nearfield && $(CARGO) +nightly fmt -- --check
+	cd bevy_nearfield && $(CARGO) +nightly clippy --release --ignore-rust-version --all-targets -- -D warnings
 
 # The fuzzing harness of every input format (crates/fuzz) for FUZZ_SECONDS per format (default
 # 60), from FUZZ_SEED (default 1). CI runs the same for 8 s per format in `make test`.

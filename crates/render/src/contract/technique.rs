@@ -77,7 +77,7 @@ impl FrameInfo {
 }
 
 /// A created technique: records its passes each frame.
-pub trait Technique {
+pub trait Technique: Send + Sync {
     fn name(&self) -> &'static str;
     /// Uploads what this frame needs from the CPU (e.g. the additional cameras' matrices, which
     /// follow the main camera) before [`Self::encode`].

@@ -21,7 +21,7 @@ pub mod sampling;
 
 /// Generic settings from the command line, interpreted by each technique: `--samples`,
 /// `--radius` and `--set key=value`.
-#[derive(Clone, Debug, Default)]
+#[derive(Clone, Debug, Default, PartialEq)]
 pub struct TechniqueParams {
     /// Samples per pixel (`--samples`); `None` = the technique's default.
     pub samples: Option<u32>,

@@ -48,7 +48,7 @@ pub struct MarchIo<'a> {
 }
 
 /// A slice march: the kernel that fills the raw cone, near-field and far-field images.
-pub trait March {
+pub trait March: Send + Sync {
     /// Group 1 of the kernel.
     fn layout(&self) -> &wgpu::BindGroupLayout;
     fn bind_group(&self, device: &wgpu::Device, io: MarchIo) -> wgpu::BindGroup;

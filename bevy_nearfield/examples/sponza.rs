@@ -1,0 +1,416 @@
+//! Crytek Sponza in Bevy with nearfield's near-field light, and nearfield's probe volume as Bevy's
+//! irradiance volume for the far field.
+//!
+//! ```text
+//! cargo +nightly run --release --ignore-rust-version --example sponza -- [SCENE] [options]
+//!   --technique gtao|hbil|vbgi|off|bevy-ssao   what the camera runs (default vbgi)
+//!   --quality low|medium|high|ultra             the preset (default high)
+//!   --volume FILE.ktx2                          `nearfield bake --format bevy`'s volume
+//!   --size WxH                                  window size (default 1280x720)
+//!   --screenshot FILE.png                       save the window after --frames frames and exit
+//!   --frames N                                  (default 60)
+//!   --bench                                     time off, bevy-ssao and the three techniques
+//!                                               A B A B and print a table
+//! ```
+//! Keys in the window: 0 off, 1 gtao, 2 hbil, 3 vbgi, 4 Bevy's SSAO High.
+//!
+//! SCENE defaults to `../shared/assets/scenes/crytek_sponza/Sponza.gltf` (beside the repository).
+//! The camera is the one nearfield's fits use in Sponza (`docs/src/fits/sponza-camera.json`).
+
+use bevy::camera::Hdr;
+use bevy::core_pipeline::prepass::{
+    DeferredPrepass, DepthPrepass, MotionVectorPrepass, NormalPrepass,
+};
+use bevy::core_pipeline::tonemapping::Tonemapping;
+use bevy::light::{IrradianceVolume, LightProbe};
+use bevy::pbr::{ScreenSpaceAmbientOcclusion, ScreenSpaceAmbientOcclusionQualityLevel};
+use bevy::prelude::*;
+use bevy::render::render_resource::{Extent3d, TextureDimension, TextureFormat};
+use bevy::render::view::Msaa;
+use bevy::render::view::screenshot::{Screenshot, save_to_disk};
+use bevy::window::{PresentMode, WindowResolution};
+use bevy_nearfield::scene::{self, Shading};
+use bevy_nearfield::{NearField, NearFieldPlugin, NearFieldQuality, NearFieldTechnique};
+use std::path::PathBuf;
+use std::time::Instant;
+
+#[derive(Resource, Clone)]
+struct Options {
+    scene: PathBuf,
+    technique: String,
+    quality: NearFieldQuality,
+    volume: Option<PathBuf>,
+    size: (u32, u32),
+    screenshot: Option<PathBuf>,
+    frames: u32,
+    bench: bool,
+}
+
+fn fail(msg: &str) -> ! {
+    eprintln!("sponza: {msg}");
+    std::process::exit(2);
+}
+
+fn options() -> Options {
+    let mut o = Options {
+        scene: PathBuf::from(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../shared/assets/scenes/crytek_sponza/Sponza.gltf"
+        )),
+        technique: "vbgi".into(),
+        quality: NearFieldQuality::High,
+        volume: None,
+        size: (1280, 720),
+        screenshot: None,
+        frames: 60,
+        bench: false,
+    };
+    let mut args = std::env::args().skip(1);
+    while let Some(a) = args.next() {
+        let mut value = || {
+            args.next()
+                .unwrap_or_else(|| fail(&format!("{a} needs a value")))
+        };
+        match a.as_str() {
+            "--technique" => o.technique = value(),
+            "--quality" => {
+                o.quality = match value().as_str() {
+                    "low" => NearFieldQuality::Low,
+                    "medium" => NearFieldQuality::Medium,
+                    "high" => NearFieldQuality::High,
+                    "ultra" => NearFieldQuality::Ultra,
+                    q => fail(&format!("--quality {q}: one of low, medium, high, ultra")),
+                }
+            }
+            "--volume" => o.volume = Some(value().into()),
+            "--screenshot" => o.screenshot = Some(value().into()),
+            "--frames" => {
+                o.frames = value()
+                    .parse()
+                    .ok()
+                    .filter(|n| *n > 0)
+                    .unwrap_or_else(|| fail("--frames: a whole number > 0"))
+            }
+            "--size" => {
+                let v = value();
+                o.size = v
+                    .split_once('x')
+                    .and_then(|(w, h)| Some((w.parse().ok()?, h.parse().ok()?)))
+                    .filter(|(w, h)| *w > 0 && *h > 0 && *w <= 8192 && *h <= 8192)
+                    .unwrap_or_else(|| fail(&format!("--size {v}: WxH, each 1..=8192")))
+            }
+            "--bench" => o.bench = true,
+            s if !s.starts_with("--") => o.scene = s.into(),
+            s => fail(&format!("unknown option {s}")),
+        }
+    }
+    if !["off", "bevy-ssao", "gtao", "hbil", "vbgi"].contains(&o.technique.as_str()) {
+        fail(&format!(
+            "--technique {}: one of off, bevy-ssao, gtao, hbil, vbgi",
+            o.technique
+        ));
+    }
+    o
+}
+
+/// Bevy's irradiance volume from `nearfield bake --format bevy`'s KTX2 (RGBA16F, 3D, with the
+/// volume's transform in the key/value `nearfield.transform`).
+fn load_volume(path: &std::path::Path) -> Result<(Image, Transform, f32), String> {
+    let bytes = std::fs::read(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    let reader = ktx2::Reader::new(&bytes[..]).map_err(|e| format!("{}: {e:?}", path.display()))?;
+    let h = reader.header();
+    let level = reader
+        .levels()
+        .next()
+        .ok_or_else(|| format!("{}: no image level", path.display()))?;
+    let transform = reader
+        .key_value_data()
+        .find(|(k, _)| *k == "nearfield.transform")
+        .map(|(_, v)| {
+            String::from_utf8_lossy(v)
+                .trim_end_matches('\0')
+                .to_string()
+        })
+        .ok_or_else(|| {
+            format!(
+                "{}: not written by nearfield bake --format bevy",
+                path.display()
+            )
+        })?;
+    let t: serde_json::Value =
+        serde_json::from_str(&transform).map_err(|e| format!("{}: {e}", path.display()))?;
+    let v3 = |k: &str| -> Option<Vec3> {
+        let a = t.get(k)?.as_array()?;
+        Some(Vec3::new(
+            a.first()?.as_f64()? as f32,
+            a.get(1)?.as_f64()? as f32,
+            a.get(2)?.as_f64()? as f32,
+        ))
+    };
+    let (Some(translation), Some(scale)) = (v3("translation"), v3("scale")) else {
+        return Err(format!(
+            "{}: nearfield.transform without translation and scale",
+            path.display()
+        ));
+    };
+    let intensity = t.get("intensity").and_then(|i| i.as_f64()).unwrap_or(1.0) as f32;
+    let image = Image::new(
+        Extent3d {
+            width: h.pixel_width,
+            height: h.pixel_height,
+            depth_or_array_layers: h.pixel_depth,
+        },
+        TextureDimension::D3,
+        level.data.to_vec(),
+        TextureFormat::Rgba16Float,
+        bevy::asset::RenderAssetUsages::RENDER_WORLD,
+    );
+    Ok((
+        image,
+        Transform::from_translation(translation).with_scale(scale),
+        intensity,
+    ))
+}
+
+fn main() {
+    let o = options();
+    if o.bench && o.screenshot.is_some() {
+        fail("--bench and --screenshot: one at a time");
+    }
+    let loaded = nearfield_scene::load_scene(&o.scene).unwrap_or_else(|e| fail(&e.to_string()));
+    let volume = o
+        .volume
+        .as_ref()
+        .map(|p| load_volume(p).unwrap_or_else(|e| fail(&e)));
+    let (w, h) = o.size;
+    App::new()
+        .add_plugins(DefaultPlugins.set(WindowPlugin {
+            primary_window: Some(Window {
+                title: "bevy_nearfield: sponza".into(),
+                resolution: WindowResolution::new(w, h).with_scale_factor_override(1.0),
+                present_mode: PresentMode::AutoNoVsync,
+                ..default()
+            }),
+            ..default()
+        }))
+        .add_plugins(NearFieldPlugin)
+        .insert_resource(GlobalAmbientLight {
+            color: Color::srgb(0.6, 0.75, 1.0),
+            brightness: if volume.is_some() { 0.0 } else { 0.4 },
+            ..default()
+        })
+        .insert_resource(Scene(loaded, volume.map(|v| (v.0, v.1, v.2))))
+        .insert_resource(Run {
+            frame: 0,
+            phase: 0,
+            last: None,
+            times: Vec::new(),
+        })
+        .insert_resource(o)
+        .add_systems(Startup, setup)
+        .add_systems(Update, (keys, step))
+        .run();
+}
+
+#[derive(Resource)]
+struct Scene(nearfield_scene::Scene, Option<(Image, Transform, f32)>);
+
+#[derive(Resource)]
+struct Run {
+    frame: u32,
+    phase: usize,
+    last: Option<Instant>,
+    /// (configuration, frame time in ms) of every timed frame.
+    times: Vec<(String, f64)>,
+}
+
+#[derive(Component)]
+struct TheCamera;
+
+fn setup(
+    mut commands: Commands,
+    mut loaded: ResMut<Scene>,
+    options: Res<Options>,
+    mut meshes: ResMut<Assets<Mesh>>,
+    mut materials: ResMut<Assets<StandardMaterial>>,
+    mut images: ResMut<Assets<Image>>,
+) {
+    scene::spawn_scene(
+        &mut commands,
+        &mut meshes,
+        &mut materials,
+        &mut images,
+        &loaded.0,
+        Shading::Lit,
+    );
+    let camera = nearfield_scene::Camera::new(
+        glam::Vec3::new(9.0, 1.5, -0.4),
+        glam::Vec3::new(-5.0, 3.5, 0.2),
+        60.0,
+    );
+    let (transform, projection) = scene::camera(&camera, options.size, 0.05);
+    let id = commands
+        .spawn((
+            Camera3d::default(),
+            TheCamera,
+            transform,
+            projection,
+            Msaa::Off,
+            Hdr,
+            Tonemapping::AcesFitted,
+            DepthPrepass,
+            NormalPrepass,
+            MotionVectorPrepass,
+            DeferredPrepass,
+        ))
+        .id();
+    configure(&mut commands, id, &options.technique, options.quality);
+    commands.spawn((
+        DirectionalLight {
+            illuminance: 8000.0,
+            shadow_maps_enabled: true,
+            ..default()
+        },
+        Transform::from_xyz(2.0, 20.0, 3.0).looking_at(Vec3::ZERO, Vec3::Y),
+    ));
+    if let Some((image, t, intensity)) = loaded.1.take() {
+        commands.spawn((
+            LightProbe::default(),
+            IrradianceVolume {
+                voxels: images.add(image),
+                intensity: intensity * 2000.0,
+                ..default()
+            },
+            t,
+        ));
+    }
+}
+
+/// Puts configuration `name` on the camera.
+fn configure(commands: &mut Commands, camera: Entity, name: &str, quality: NearFieldQuality) {
+    let mut c = commands.entity(camera);
+    c.remove::<(NearField, ScreenSpaceAmbientOcclusion)>();
+    let technique = match name {
+        "gtao" => NearFieldTechnique::Gtao,
+        "hbil" => NearFieldTechnique::Hbil,
+        "vbgi" => NearFieldTechnique::Vbgi,
+        "bevy-ssao" => {
+            c.insert(ScreenSpaceAmbientOcclusion {
+                quality_level: ScreenSpaceAmbientOcclusionQualityLevel::High,
+                ..default()
+            });
+            return;
+        }
+        _ => return,
+    };
+    c.insert(NearField {
+        technique,
+        quality,
+        radius: Some(1.0),
+        ..default()
+    });
+}
+
+fn keys(
+    mut commands: Commands,
+    input: Res<ButtonInput<KeyCode>>,
+    camera: Single<Entity, With<TheCamera>>,
+    options: Res<Options>,
+) {
+    for (key, name) in [
+        (KeyCode::Digit0, "off"),
+        (KeyCode::Digit1, "gtao"),
+        (KeyCode::Digit2, "hbil"),
+        (KeyCode::Digit3, "vbgi"),
+        (KeyCode::Digit4, "bevy-ssao"),
+    ] {
+        if input.just_pressed(key) {
+            configure(&mut commands, *camera, name, options.quality);
+        }
+    }
+}
+
+const BENCH: [&str; 5] = ["off", "bevy-ssao", "gtao", "hbil", "vbgi"];
+const BENCH_WARMUP: u32 = 10;
+const BENCH_FRAMES: u32 = 30;
+const BENCH_ROUNDS: usize = 2;
+
+fn median(v: &mut [f64]) -> f64 {
+    v.sort_by(f64::total_cmp);
+    v[v.len() / 2]
+}
+
+/// Screenshot after `--frames`, or the benchmark's phases: round 0 untimed (pipelines compile),
+/// then every configuration in turn, `BENCH_ROUNDS` times.
+fn step(
+    mut commands: Commands,
+    mut run: ResMut<Run>,
+    options: Res<Options>,
+    camera: Single<Entity, With<TheCamera>>,
+    mut exit: MessageWriter<AppExit>,
+) {
+    run.frame += 1;
+    if !options.bench {
+        if let Some(path) = &options.screenshot {
+            if run.frame == options.frames {
+                commands
+                    .spawn(Screenshot::primary_window())
+                    .observe(save_to_disk(path.clone()));
+            }
+            if run.frame == options.frames + 5 {
+                exit.write(AppExit::Success);
+            }
+        }
+        return;
+    }
+    let now = Instant::now();
+    let per_phase = BENCH_WARMUP + BENCH_FRAMES;
+    let phase = (run.frame / per_phase) as usize;
+    let in_phase = run.frame % per_phase;
+    let phases = BENCH.len() * (BENCH_ROUNDS + 1);
+    if phase >= phases {
+        let mut table: Vec<(String, f64)> = Vec::new();
+        for name in BENCH {
+            let mut t: Vec<f64> = run
+                .times
+                .iter()
+                .filter(|(n, _)| n == name)
+                .map(|(_, t)| *t)
+                .collect();
+            table.push((name.to_string(), median(&mut t)));
+        }
+        let off = table[0].1;
+        let ssao = table[1].1 - off;
+        println!(
+            "| configuration | median frame (ms) | overhead (ms) | overhead / Bevy SSAO High |"
+        );
+        println!("|---|---:|---:|---:|");
+        for (name, t) in &table {
+            println!(
+                "| {name} | {t:.2} | {:.2} | {:.2} |",
+                t - off,
+                (t - off) / ssao
+            );
+        }
+        exit.write(AppExit::Success);
+        return;
+    }
+    if phase != run.phase || run.frame == 1 {
+        run.phase = phase;
+        configure(
+            &mut commands,
+            *camera,
+            BENCH[phase % BENCH.len()],
+            options.quality,
+        );
+        run.last = None;
+    }
+    let timed = phase >= BENCH.len() && in_phase >= BENCH_WARMUP;
+    if let Some(last) = run.last
+        && timed
+    {
+        let ms = (now - last).as_secs_f64() * 1e3;
+        run.times.push((BENCH[phase % BENCH.len()].to_string(), ms));
+    }
+    run.last = Some(now);
+}

@@ -1,0 +1,112 @@
+// bevy_nearfield's glue: the only shader of the plugin. It turns Bevy's prepass images into
+// nearfield's documented inputs (docs/src/architecture.md, "Lifting a pass into another engine"),
+// hands nearfield's ao to Bevy's PBR, keeps Bevy's lit colour as next frame's radiance, and adds
+// the near-field indirect light as a diffuse term (docs/src/bevy.md).
+
+struct Glue {
+    // Bevy's inverse projection (clip → view), infinite reverse-z.
+    view_from_clip: mat4x4<f32>,
+    size: vec2<f32>,
+    // 1 where Bevy's motion-vector prepass is bound.
+    has_motion: u32,
+    // Scale of the indirect light added.
+    indirect_intensity: f32,
+    // 0: Bevy's ambient light is not darkened (the ao written is 1).
+    ambient_occlusion: u32,
+}
+
+@group(0) @binding(0) var<uniform> glue: Glue;
+
+@vertex
+fn vs_fullscreen(@builtin(vertex_index) i: u32) -> @builtin(position) vec4<f32> {
+    let uv = vec2<f32>(f32((i << 1u) & 2u), f32(i & 2u));
+    return vec4<f32>(uv * 2.0 - 1.0, 0.0, 1.0);
+}
+
+// --- Bevy's prepass → nearfield's inputs -------------------------------------------------------
+
+// Bevy's depth prepass, read as an unfilterable float texture (reverse-z: 0 = nothing drawn).
+@group(1) @binding(0) var bevy_depth: texture_2d<f32>;
+// Bevy's normal prepass: world normal × 0.5 + 0.5 (rgb10a2unorm).
+@group(1) @binding(1) var bevy_normal: texture_2d<f32>;
+// Bevy's motion vectors: current − previous position in uv units (rg16float), when bound.
+@group(1) @binding(2) var bevy_motion: texture_2d<f32>;
+
+struct Inputs {
+    // nearfield's view depth (r32float): metres along the view direction, 0 on background.
+    @location(0) view_depth: vec4<f32>,
+    // nearfield's world normal (rgba16float), w = 1 on surfaces.
+    @location(1) normal: vec4<f32>,
+    // nearfield's motion (rg16float): previous − current pixel position.
+    @location(2) motion: vec4<f32>,
+}
+
+@fragment
+fn fs_inputs(@builtin(position) p: vec4<f32>) -> Inputs {
+    let px = vec2<i32>(p.xy);
+    let d = textureLoad(bevy_depth, px, 0).r;
+    var o: Inputs;
+    o.view_depth = vec4<f32>(0.0);
+    o.normal = vec4<f32>(0.0);
+    o.motion = vec4<f32>(0.0);
+    if d <= 0.0 {
+        return o;
+    }
+    let ndc = vec2<f32>(p.x / glue.size.x * 2.0 - 1.0, 1.0 - p.y / glue.size.y * 2.0);
+    let v = glue.view_from_clip * vec4<f32>(ndc, d, 1.0);
+    o.view_depth = vec4<f32>(-v.z / v.w, 0.0, 0.0, 0.0);
+    let n = textureLoad(bevy_normal, px, 0).xyz * 2.0 - 1.0;
+    o.normal = vec4<f32>(normalize(n), 1.0);
+    if glue.has_motion != 0u {
+        let mv = textureLoad(bevy_motion, px, 0).xy;
+        o.motion = vec4<f32>(-mv * glue.size, 0.0, 0.0);
+    }
+    return o;
+}
+
+// --- Bevy's lit colour → next frame's radiance -------------------------------------------------
+
+@group(1) @binding(0) var bevy_colour: texture_2d<f32>;
+
+@fragment
+fn fs_capture(@builtin(position) p: vec4<f32>) -> @location(0) vec4<f32> {
+    return vec4<f32>(textureLoad(bevy_colour, vec2<i32>(p.xy), 0).rgb, 1.0);
+}
+
+// --- the indirect light as a diffuse term ------------------------------------------------------
+
+// Bevy's deferred G-buffer (rgba32uint): x = base colour (sRGB-ish, γ 2.2) and roughness,
+// z = reflectance, metallic, diffuse occlusion, clearcoat (4 × unorm8).
+@group(1) @binding(0) var bevy_gbuffer: texture_2d<u32>;
+// nearfield's indirect-irradiance: (1/π) ∫ (1 − V_R) L_o cos θ dω.
+@group(1) @binding(1) var indirect_irradiance: texture_2d<f32>;
+
+@fragment
+fn fs_add_indirect(@builtin(position) p: vec4<f32>) -> @location(0) vec4<f32> {
+    let px = vec2<i32>(p.xy);
+    let g = textureLoad(bevy_gbuffer, px, 0);
+    let base_rough = unpack4x8unorm(g.x);
+    let props = unpack4x8unorm(g.z);
+    let albedo = pow(base_rough.rgb, vec3<f32>(2.2));
+    let metallic = props.y;
+    let e = textureLoad(indirect_irradiance, px, 0).rgb;
+    // Outgoing diffuse radiance of the irradiance E/π: ρ (1 − metallic) · E/π.
+    return vec4<f32>(glue.indirect_intensity * (1.0 - metallic) * albedo * e, 0.0);
+}
+
+// --- nearfield's ao → Bevy's PBR ---------------------------------------------------------------
+
+@group(1) @binding(0) var near_field_ao: texture_2d<f32>;
+@group(1) @binding(1) var bevy_ao: texture_storage_2d<AO_FORMAT, write>;
+
+@compute @workgroup_size(8, 8)
+fn cs_ao(@builtin(global_invocation_id) id: vec3<u32>) {
+    if any(id.xy >= textureDimensions(bevy_ao)) {
+        return;
+    }
+    var ao = 1.0;
+    if glue.ambient_occlusion != 0u {
+        ao = textureLoad(near_field_ao, id.xy, 0).r;
+    }
+    textureStore(bevy_ao, id.xy, vec4<f32>(ao, 0.0, 0.0, 1.0));
+}

@@ -1,0 +1,337 @@
+//! bevy_nearfield against `nearfield render`: the built-in Cornell box written by nearfield's
+//! exporter (`nearfield export`'s code) and loaded back, rendered by Bevy with the plugin and by
+//! nearfield's own `Renderer` from the same camera at 320×180. The plugin's images are read back
+//! by copies inside Bevy's frame (`NearFieldReadback`), not from screenshots.
+//!
+//! One test binary (Bevy is built once): ao, indirect light, refused settings.
+
+use bevy::camera::Hdr;
+use bevy::camera::RenderTarget;
+use bevy::core_pipeline::tonemapping::{DebandDither, Tonemapping};
+use bevy::prelude::*;
+use bevy::render::render_resource::{TextureFormat, TextureUsages};
+use bevy::render::view::Msaa;
+use bevy::render::view::screenshot::{Screenshot, ScreenshotCaptured};
+use bevy::window::ExitCondition;
+use bevy_nearfield::scene::{self, Shading};
+use bevy_nearfield::{
+    NearField, NearFieldChecked, NearFieldImages, NearFieldPlugin, NearFieldQuality,
+    NearFieldReadback, NearFieldTechnique, ReadbackImages,
+};
+use nearfield_render::{Aov, GpuContext, RenderSettings, Renderer, TechniqueParams};
+use std::sync::{Arc, Mutex};
+
+const SIZE: (u32, u32) = (320, 180);
+/// Frames each app renders before its images are compared (pipelines compile during the first).
+const FRAMES: u32 = 24;
+
+/// The Cornell box as `nearfield export` writes it, loaded back.
+fn exported_cornell() -> nearfield_scene::Scene {
+    let scene = nearfield_scene::builtin::scene("cornell").unwrap();
+    let dir = std::env::temp_dir().join(format!("bevy-nearfield-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("cornell.glb");
+    let camera = scene.default_camera();
+    nearfield_scene::export::write_gltf(&scene, &camera, SIZE.0 as f32 / SIZE.1 as f32, &path)
+        .unwrap();
+    nearfield_scene::load_scene(&path).unwrap()
+}
+
+/// Frames of warm-up: Bevy compiles its pipelines asynchronously, so its first frames draw
+/// nothing (measured on lavapipe: the scene appears in the third).
+const WARMUP: u32 = 6;
+
+/// Runs a headless Bevy app on `scene` with `near_field` on the camera for `frames` frames and
+/// returns the last images read back (None when the plugin produced none). With `warmup`, the
+/// camera first renders [`WARMUP`] frames with the technique at quality Low: the technique is
+/// then made anew, so its running mean starts on frames that see Bevy's colour (the indirect
+/// light gathers the frame before's colour; frames drawn before Bevy's pipelines are ready are
+/// black and would stay in the mean for its `history` frames).
+fn run_bevy(
+    scene: &nearfield_scene::Scene,
+    shading: Shading,
+    near_field: NearField,
+    frames: u32,
+    warmup: bool,
+) -> Run {
+    let mut app = App::new();
+    app.add_plugins(
+        DefaultPlugins
+            .set(WindowPlugin {
+                primary_window: None,
+                exit_condition: ExitCondition::DontExit,
+                close_when_requested: false,
+                ..default()
+            })
+            .disable::<bevy::winit::WinitPlugin>(),
+    )
+    .add_plugins(NearFieldPlugin)
+    .insert_resource(GlobalAmbientLight {
+        brightness: 0.0,
+        ..default()
+    })
+    .insert_resource(ClearColor(Color::BLACK));
+    let scene_copy = scene.clone();
+    let mut image = Image::new_target_texture(SIZE.0, SIZE.1, TextureFormat::Rgba16Float, None);
+    image.texture_descriptor.usage |= TextureUsages::COPY_SRC;
+    let target = app.world_mut().resource_mut::<Assets<Image>>().add(image);
+    let target_copy = target.clone();
+    let camera_entity = app.world_mut().spawn_empty().id();
+    app.add_systems(
+        Startup,
+        move |mut commands: Commands,
+              mut meshes: ResMut<Assets<Mesh>>,
+              mut materials: ResMut<Assets<StandardMaterial>>,
+              mut images: ResMut<Assets<Image>>| {
+            scene::spawn_scene(
+                &mut commands,
+                &mut meshes,
+                &mut materials,
+                &mut images,
+                &scene_copy,
+                shading,
+            );
+            let (transform, projection) = scene::camera(&scene_copy.default_camera(), SIZE, 0.01);
+            commands.entity(camera_entity).insert((
+                Camera3d::default(),
+                RenderTarget::Image(target_copy.clone().into()),
+                transform,
+                projection,
+                Msaa::Off,
+                Hdr,
+                Tonemapping::None,
+                DebandDither::Disabled,
+                NearFieldReadback,
+            ));
+        },
+    );
+    app.finish();
+    app.cleanup();
+    if warmup {
+        let low = NearField {
+            quality: NearFieldQuality::Low,
+            ..near_field.clone()
+        };
+        app.world_mut().entity_mut(camera_entity).insert(low);
+        for _ in 0..WARMUP {
+            app.update();
+        }
+    }
+    app.world_mut().entity_mut(camera_entity).insert(near_field);
+    for _ in 0..frames {
+        app.update();
+    }
+    let images = app.world().resource::<NearFieldImages>().get(camera_entity);
+    let checked = app.world().get::<NearFieldChecked>(camera_entity).cloned();
+    // What the camera presented: its target image, read back by Bevy.
+    let presented = Arc::new(Mutex::new(None));
+    let slot = presented.clone();
+    app.world_mut().spawn(Screenshot::image(target)).observe(
+        move |shot: On<ScreenshotCaptured>| {
+            *slot.lock().unwrap() = shot.image.data.clone();
+        },
+    );
+    for _ in 0..16 {
+        app.update();
+        if presented.lock().unwrap().is_some() {
+            break;
+        }
+    }
+    let bytes = presented.lock().unwrap().take().unwrap_or_default();
+    let lit = bytes
+        .chunks_exact(8)
+        .filter(|p| half::f16::from_le_bytes([p[0], p[1]]).to_f32() > 0.0)
+        .count();
+    Run {
+        images,
+        checked,
+        lit,
+    }
+}
+
+/// What a run of the Bevy app gave.
+struct Run {
+    images: Option<ReadbackImages>,
+    checked: Option<NearFieldChecked>,
+    /// Pixels of the camera's target with a red channel above 0.
+    lit: usize,
+}
+
+/// nearfield's own frame `frames` of the same view: its ao, indirect irradiance and coverage.
+fn reference(
+    scene: &nearfield_scene::Scene,
+    env: &nearfield_scene::Environment,
+    method: &str,
+    params: &TechniqueParams,
+    frames: u32,
+) -> Reference {
+    let ctx = GpuContext::new(None).expect("an adapter (lavapipe in CI)");
+    let mut r = Renderer::new(
+        &ctx,
+        scene,
+        env,
+        scene.default_camera(),
+        method,
+        params,
+        RenderSettings {
+            size: SIZE,
+            ..Default::default()
+        },
+    )
+    .unwrap();
+    for _ in 0..frames {
+        r.render_frame();
+    }
+    let ao = r.read_aov(Aov::Ao);
+    let mut rgb = |aov| -> Vec<[f32; 3]> {
+        r.read_aov(aov)
+            .pixels
+            .iter()
+            .map(|p| [p[0], p[1], p[2]])
+            .collect()
+    };
+    let indirect = rgb(Aov::IndirectIrradiance);
+    let direct = rgb(Aov::DirectRadiance);
+    Reference {
+        covered: ao.pixels.iter().map(|p| p[3] > 0.0).collect(),
+        ao: ao.pixels.iter().map(|p| p[0]).collect(),
+        indirect,
+        direct,
+    }
+}
+
+/// nearfield's images of a frame.
+struct Reference {
+    ao: Vec<f32>,
+    indirect: Vec<[f32; 3]>,
+    /// The radiance its techniques gather (the plugin's is Bevy's colour).
+    direct: Vec<[f32; 3]>,
+    /// Where the frame sees a surface.
+    covered: Vec<bool>,
+}
+
+/// Σ |a − b| / Σ b over the covered pixels and the three channels.
+fn relative_error(a: &[[f32; 3]], b: &[[f32; 3]], covered: &[bool]) -> f64 {
+    let (mut diff, mut total) = (0.0f64, 0.0f64);
+    for ((a, b), c) in a.iter().zip(b).zip(covered) {
+        if *c {
+            for k in 0..3 {
+                diff += (a[k] - b[k]).abs() as f64;
+                total += b[k] as f64;
+            }
+        }
+    }
+    assert!(total > 0.0, "nothing to compare");
+    diff / total
+}
+
+#[test]
+fn the_plugin_matches_nearfield_render() {
+    let scene = exported_cornell();
+    let env = scene.default_env.load().unwrap();
+
+    // 1. ao of each technique at the High preset: MAE ≤ 0.01 over the surface pixels.
+    for technique in [
+        NearFieldTechnique::Gtao,
+        NearFieldTechnique::Hbil,
+        NearFieldTechnique::Vbgi,
+    ] {
+        let near_field = NearField {
+            technique,
+            quality: NearFieldQuality::High,
+            ..default()
+        };
+        let params = near_field.params().unwrap();
+        let images = run_bevy(&scene, Shading::Lit, near_field, FRAMES, true)
+            .images
+            .expect("the plugin's images");
+        assert_eq!(images.size, SIZE);
+        let reference = reference(&scene, &env, technique.name(), &params, images.frames);
+        let (sum, n) = images
+            .ao
+            .iter()
+            .zip(&reference.ao)
+            .zip(&reference.covered)
+            .filter(|(_, c)| **c)
+            .fold((0.0f64, 0usize), |(s, n), ((a, b), _)| {
+                (s + (a - b).abs() as f64, n + 1)
+            });
+        let mae = sum / n as f64;
+        eprintln!(
+            "{}: ao MAE {mae:.5} over {n} pixels (frame {})",
+            technique.name(),
+            images.frames
+        );
+        assert!(n > (SIZE.0 * SIZE.1 / 4) as usize, "coverage {n}");
+        assert!(mae <= 0.01, "{}: ao MAE {mae}", technique.name());
+    }
+
+    // 2. indirect irradiance: Bevy's surfaces unlit, showing ρ, which is nearfield's radiance
+    // under a white sky with no other light; relative error ≤ 5 % (sum over the surface).
+    let mut dark = scene.clone();
+    dark.lights.clear();
+    for m in &mut dark.materials {
+        m.emissive = glam::Vec3::ZERO;
+        m.emissive_texture = None;
+    }
+    let white = nearfield_scene::Environment::constant(glam::Vec3::ONE);
+    for technique in [NearFieldTechnique::Hbil, NearFieldTechnique::Vbgi] {
+        let near_field = NearField {
+            technique,
+            quality: NearFieldQuality::High,
+            ambient_occlusion: false,
+            ..default()
+        };
+        let params = near_field.params().unwrap();
+        let images = run_bevy(&dark, Shading::Unlit(1.0), near_field, FRAMES, true)
+            .images
+            .expect("the plugin's images");
+        let r = reference(&dark, &white, technique.name(), &params, images.frames);
+        // The inputs agree: Bevy's colour is nearfield's direct radiance.
+        let radiance = relative_error(&images.radiance, &r.direct, &r.covered);
+        let rel = relative_error(&images.indirect_irradiance, &r.indirect, &r.covered);
+        eprintln!(
+            "{}: indirect relative error {rel:.4} (radiance gathered: {radiance:.4})",
+            technique.name()
+        );
+        assert!(radiance <= 0.01, "radiance relative error {radiance}");
+        assert!(
+            rel <= 0.05,
+            "{}: indirect relative error {rel}",
+            technique.name()
+        );
+    }
+
+    // 3. refused settings: one line, no effect, the camera still renders.
+    for bad in [
+        NearField {
+            radius: Some(f32::NAN),
+            ..default()
+        },
+        NearField {
+            settings: vec![("slices".into(), "0".into())],
+            ..default()
+        },
+        // Valid settings the render world cannot make: a second depth layer Bevy does not have.
+        NearField {
+            settings: vec![("thickness".into(), "layer".into())],
+            ..default()
+        },
+    ] {
+        let e = match bad.params() {
+            Err(e) => e,
+            Ok(_) => "refused when made".into(),
+        };
+        assert!(!e.contains('\n'), "one line: {e}");
+        let run = run_bevy(&scene, Shading::Unlit(1.0), bad, WARMUP, false);
+        assert!(run.images.is_none(), "a refused NearField produced images");
+        assert!(run.checked.is_some_and(|c| c.is_refused()));
+        // The camera renders on without the effect: the box's unlit walls are on its target.
+        eprintln!("refused ({e}): {} pixels lit", run.lit);
+        assert!(
+            run.lit > (SIZE.0 * SIZE.1 / 4) as usize,
+            "{} pixels lit",
+            run.lit
+        );
+    }
+}
