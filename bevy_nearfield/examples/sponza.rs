@@ -37,6 +37,8 @@ use std::time::Instant;
 #[derive(Resource, Clone)]
 struct Options {
     scene: PathBuf,
+    /// SCENE was named (its own camera is used).
+    scene_given: bool,
     technique: String,
     quality: NearFieldQuality,
     volume: Option<PathBuf>,
@@ -57,6 +59,7 @@ fn options() -> Options {
             env!("CARGO_MANIFEST_DIR"),
             "/../../shared/assets/scenes/crytek_sponza/Sponza.gltf"
         )),
+        scene_given: false,
         technique: "vbgi".into(),
         quality: NearFieldQuality::High,
         volume: None,
@@ -100,7 +103,10 @@ fn options() -> Options {
                     .unwrap_or_else(|| fail(&format!("--size {v}: WxH, each 1..=8192")))
             }
             "--bench" => o.bench = true,
-            s if !s.starts_with("--") => o.scene = s.into(),
+            s if !s.starts_with("--") => {
+                o.scene = s.into();
+                o.scene_given = true;
+            }
             s => fail(&format!("unknown option {s}")),
         }
     }
@@ -196,9 +202,10 @@ fn main() {
         .add_plugins(NearFieldPlugin)
         .insert_resource(GlobalAmbientLight {
             color: Color::srgb(0.6, 0.75, 1.0),
-            brightness: if volume.is_some() { 0.0 } else { 0.4 },
+            brightness: if volume.is_some() { 0.0 } else { 1500.0 },
             ..default()
         })
+        .insert_resource(ClearColor(Color::srgb(0.45, 0.6, 0.85)))
         .insert_resource(Scene(loaded, volume.map(|v| (v.0, v.1, v.2))))
         .insert_resource(Run {
             frame: 0,
@@ -243,11 +250,17 @@ fn setup(
         &loaded.0,
         Shading::Lit,
     );
-    let camera = nearfield_scene::Camera::new(
-        glam::Vec3::new(9.0, 1.5, -0.4),
-        glam::Vec3::new(-5.0, 3.5, 0.2),
-        60.0,
-    );
+    // Sponza's view of nearfield's fits, else the scene's own camera (a glTF camera, or one
+    // that frames the scene).
+    let camera = if options.scene_given {
+        loaded.0.default_camera()
+    } else {
+        nearfield_scene::Camera::new(
+            glam::Vec3::new(9.0, 1.5, -0.4),
+            glam::Vec3::new(-5.0, 3.5, 0.2),
+            60.0,
+        )
+    };
     let (transform, projection) = scene::camera(&camera, options.size, 0.05);
     let id = commands
         .spawn((
@@ -258,13 +271,9 @@ fn setup(
             Msaa::Off,
             Hdr,
             Tonemapping::AcesFitted,
-            DepthPrepass,
-            NormalPrepass,
-            MotionVectorPrepass,
-            DeferredPrepass,
         ))
         .id();
-    configure(&mut commands, id, &options.technique, options.quality);
+    configure(&mut commands, id, &options.technique, &options);
     commands.spawn((
         DirectionalLight {
             illuminance: 8000.0,
@@ -286,10 +295,20 @@ fn setup(
     }
 }
 
-/// Puts configuration `name` on the camera.
-fn configure(commands: &mut Commands, camera: Entity, name: &str, quality: NearFieldQuality) {
+/// Puts configuration `name` on the camera: `off` is the camera without prepasses (what turning
+/// an effect on costs includes them); the techniques also get the motion-vector and deferred
+/// prepasses for their indirect term, except under `--bench`, which times all configurations in
+/// Bevy's forward path (the added indirect term's one full-screen pass is then not drawn).
+fn configure(commands: &mut Commands, camera: Entity, name: &str, options: &Options) {
     let mut c = commands.entity(camera);
-    c.remove::<(NearField, ScreenSpaceAmbientOcclusion)>();
+    c.remove::<(
+        NearField,
+        ScreenSpaceAmbientOcclusion,
+        DepthPrepass,
+        NormalPrepass,
+        MotionVectorPrepass,
+        DeferredPrepass,
+    )>();
     let technique = match name {
         "gtao" => NearFieldTechnique::Gtao,
         "hbil" => NearFieldTechnique::Hbil,
@@ -305,10 +324,13 @@ fn configure(commands: &mut Commands, camera: Entity, name: &str, quality: NearF
     };
     c.insert(NearField {
         technique,
-        quality,
+        quality: options.quality,
         radius: Some(1.0),
         ..default()
     });
+    if !options.bench {
+        c.insert((MotionVectorPrepass, DeferredPrepass));
+    }
 }
 
 fn keys(
@@ -325,7 +347,7 @@ fn keys(
         (KeyCode::Digit4, "bevy-ssao"),
     ] {
         if input.just_pressed(key) {
-            configure(&mut commands, *camera, name, options.quality);
+            configure(&mut commands, *camera, name, &options);
         }
     }
 }
@@ -397,12 +419,7 @@ fn step(
     }
     if phase != run.phase || run.frame == 1 {
         run.phase = phase;
-        configure(
-            &mut commands,
-            *camera,
-            BENCH[phase % BENCH.len()],
-            options.quality,
-        );
+        configure(&mut commands, *camera, BENCH[phase % BENCH.len()], &options);
         run.last = None;
     }
     let timed = phase >= BENCH.len() && in_phase >= BENCH_WARMUP;

@@ -18,7 +18,7 @@ pub mod readback;
 pub mod render;
 pub mod scene;
 
-use bevy::app::{App, Plugin, Update};
+use bevy::app::{App, Plugin};
 use bevy::core_pipeline::prepass::{DepthPrepass, NormalPrepass};
 use bevy::ecs::query::QueryItem;
 use bevy::log::error;
@@ -198,12 +198,17 @@ impl Plugin for NearFieldPlugin {
 
 /// A camera's [`NearField`] as checked: the resolved parameters, or `None` when refused.
 #[derive(Component, Clone, Debug)]
-pub struct NearFieldChecked(Option<TechniqueParams>);
+pub struct NearFieldChecked {
+    /// The component as checked (a camera whose component changed since is not extracted
+    /// until it is checked again).
+    of: NearField,
+    params: Option<TechniqueParams>,
+}
 
 impl NearFieldChecked {
     /// Whether the settings were refused (the camera renders without the effect).
     pub fn is_refused(&self) -> bool {
-        self.0.is_none()
+        self.params.is_none()
     }
 }
 
@@ -212,15 +217,13 @@ impl NearFieldChecked {
 #[derive(Resource, Clone, Default)]
 pub(crate) struct Refusals(pub(crate) Arc<Mutex<HashSet<Entity>>>);
 
-fn apply_refusals(
-    mut commands: Commands,
-    refusals: Res<Refusals>,
-    checked: Query<&NearFieldChecked>,
-) {
+fn apply_refusals(refusals: Res<Refusals>, mut checked: Query<&mut NearFieldChecked>) {
     let list: Vec<Entity> = refusals.0.lock().unwrap().iter().copied().collect();
     for entity in list {
-        if checked.get(entity).is_ok_and(|c| !c.is_refused()) {
-            commands.entity(entity).insert(NearFieldChecked(None));
+        if let Ok(mut c) = checked.get_mut(entity)
+            && !c.is_refused()
+        {
+            c.params = None;
         }
     }
 }
@@ -262,7 +265,10 @@ fn check_settings(
                 None
             }
         };
-        commands.entity(entity).insert(NearFieldChecked(checked));
+        commands.entity(entity).insert(NearFieldChecked {
+            of: near_field.clone(),
+            params: checked,
+        });
     }
 }
 
@@ -296,7 +302,10 @@ impl ExtractComponent<RenderApp> for NearField {
     fn extract_component(
         (near_field, checked): QueryItem<'_, '_, Self::QueryData>,
     ) -> Option<Self::Out> {
-        let params = checked.0.clone()?;
+        if checked.of != *near_field {
+            return None;
+        }
+        let params = checked.params.clone()?;
         let extracted = ExtractedNearField {
             technique: near_field.technique,
             params,
