@@ -291,35 +291,8 @@ struct GlueUniform {
     _pad: [u32; 3],
 }
 
-pub struct Image {
-    pub(crate) texture: wgpu::Texture,
-    pub(crate) view: wgpu::TextureView,
-}
-
-fn image(
-    device: &wgpu::Device,
-    label: &str,
-    size: UVec2,
-    format: wgpu::TextureFormat,
-    usage: wgpu::TextureUsages,
-) -> Image {
-    let texture = device.create_texture(&wgpu::TextureDescriptor {
-        label: Some(label),
-        size: wgpu::Extent3d {
-            width: size.x,
-            height: size.y,
-            depth_or_array_layers: 1,
-        },
-        mip_level_count: 1,
-        sample_count: 1,
-        dimension: wgpu::TextureDimension::D2,
-        format,
-        usage,
-        view_formats: &[],
-    });
-    let view = texture.create_view(&Default::default());
-    Image { texture, view }
-}
+/// A texture and its full view (nearfield's own).
+pub use nearfield_render::targets::Target as Image;
 
 /// nearfield's images of one view (NearFieldInputs and NearFieldOutputs).
 pub struct Images {
@@ -342,7 +315,8 @@ impl Images {
         use wgpu::TextureUsages as U;
         let target = U::RENDER_ATTACHMENT | U::TEXTURE_BINDING | U::COPY_SRC;
         let storage = U::STORAGE_BINDING | U::TEXTURE_BINDING | U::COPY_SRC;
-        let image = |label, format, usage| image(device, label, size, format, usage);
+        let image =
+            |label, format, usage| Image::new(device, label, (size.x, size.y), format, usage);
         Images {
             view_depth: image("nearfield view depth", F::R32Float, target),
             normal: image("nearfield normal", F::Rgba16Float, target),

@@ -13,7 +13,7 @@ pub struct Target {
 }
 
 impl Target {
-    fn new(
+    pub fn new(
         device: &wgpu::Device,
         label: &str,
         size: (u32, u32),
