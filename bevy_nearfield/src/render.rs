@@ -20,7 +20,7 @@ use bevy::render::view::{ExtractedView, ViewTarget};
 use bevy::render::{Render, RenderSystems};
 use nearfield_render::contract::io::{NearFieldInputs, NearFieldOutputs};
 use nearfield_render::far::GpuFarField;
-use nearfield_render::frame::{CameraMatrices, FrameInputs, FrameUniforms, ViewUniforms};
+use nearfield_render::frame::{CameraMatrices, FrameInputs, ViewUniforms};
 use nearfield_render::gpu_env::GpuEnvironment;
 use nearfield_render::passes::FrameGroup;
 use nearfield_render::profiler::GpuProfiler;
@@ -362,7 +362,7 @@ pub struct NearFieldView {
     state: Mutex<State>,
     ambient_occlusion: bool,
     pub(crate) readback: Mutex<Option<ReadbackBuffers>>,
-    _keep: (GpuEnvironment, GpuFarField, wgpu::Buffer),
+    _keep: (GpuEnvironment, GpuFarField),
 }
 
 /// nearfield's camera of a Bevy view: eye, view direction, up and vertical field of view; near
@@ -439,15 +439,9 @@ impl NearFieldView {
         // own environment light is shaded by Bevy and darkened by the ao.
         let env = nearfield_scene::Environment::constant(glam::Vec3::ONE);
         let gpu_env = GpuEnvironment::new(device, queue, &env);
-        let frame = FrameUniforms::environment_only(gpu_env.params());
-        let frame_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("nearfield frame"),
-            contents: bytemuck::bytes_of(&frame),
-            usage: wgpu::BufferUsages::STORAGE,
-        });
         let far_field = GpuFarField::sky(device, queue);
-        let frame_group =
-            FrameGroup::new(device, &view_buffer, &frame_buffer, &gpu_env, &far_field);
+        // gtao, hbil and vbgi read nothing of nearfield's own frame: no `Frame` buffer.
+        let frame_group = FrameGroup::new(device, &view_buffer, None, &gpu_env, &far_field);
         let inputs = NearFieldInputs {
             size: size_t,
             view_depth: &images.view_depth.view,
@@ -516,7 +510,7 @@ impl NearFieldView {
             }),
             ambient_occlusion: near_field.ambient_occlusion,
             readback: Mutex::new(None),
-            _keep: (gpu_env, far_field, frame_buffer),
+            _keep: (gpu_env, far_field),
         })
     }
 

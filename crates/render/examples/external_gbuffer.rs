@@ -5,9 +5,10 @@
 //! shades a direct radiance of its own, and runs `ssdo` and `hbil` on those images through the
 //! documented inputs (`nearfield_render::contract::io::NearFieldInputs`). It reads `ao` back and
 //! prints its mean over the surface pixels. What it needs from nearfield besides the technique:
-//! the `View` uniform (camera matrices, size, frame index: `ViewUniforms`), the environment
-//! (`GpuEnvironment`, with its intensity in `FrameUniforms::environment_only`) and the far field,
-//! which together are group 0 of every pass.
+//! the narrow `View` uniform (camera matrices, size, frame index: `ViewUniforms`), the
+//! environment (`GpuEnvironment`, whose own uniform holds its rotation and intensity) and the far
+//! field, which together are group 0 of every pass. Nothing of nearfield's own frame (exposure,
+//! tone mapping, lights, AOVs): `FrameGroup::new` takes `None` for it.
 //!
 //! ```text
 //! cargo run --release -p nearfield-render --example external_gbuffer
@@ -16,7 +17,7 @@
 //! checks that both give the same ao.
 
 use nearfield_render::contract::io::{NearFieldInputs, NearFieldOutputs};
-use nearfield_render::frame::{CameraMatrices, FrameInputs, FrameUniforms, ViewUniforms};
+use nearfield_render::frame::{CameraMatrices, FrameInputs, ViewUniforms};
 use nearfield_render::gpu_env::GpuEnvironment;
 use nearfield_render::passes::FrameGroup;
 use nearfield_render::profiler::GpuProfiler;
@@ -291,7 +292,7 @@ pub fn ao_image(ctx: &GpuContext, method: &str) -> Result<(Vec<f32>, Vec<f32>), 
     };
     let (culled, unculled) = (pipeline(Some(wgpu::Face::Back)), pipeline(None));
 
-    // nearfield's group 0: the view, the environment (and its intensity) and the far field.
+    // nearfield's group 0: the view, the environment and the far field.
     let gpu_env = GpuEnvironment::new(device, queue, &env);
     let view = ViewUniforms::new(&FrameInputs {
         camera: &camera,
@@ -305,14 +306,8 @@ pub fn ao_image(ctx: &GpuContext, method: &str) -> Result<(Vec<f32>, Vec<f32>), 
     });
     let uniform = |label, bytes: &[u8]| buffer(label, bytes, wgpu::BufferUsages::UNIFORM);
     let view_buffer = uniform("view", bytemuck::bytes_of(&view));
-    let frame = FrameUniforms::environment_only(gpu_env.params());
-    let frame_buffer = buffer(
-        "frame",
-        bytemuck::bytes_of(&frame),
-        wgpu::BufferUsages::STORAGE,
-    );
     let far = nearfield_render::far::GpuFarField::sky(device, queue);
-    let frame_group = FrameGroup::new(device, &view_buffer, &frame_buffer, &gpu_env, &far);
+    let frame_group = FrameGroup::new(device, &view_buffer, None, &gpu_env, &far);
 
     // The technique, on the engine's images.
     let inputs = NearFieldInputs {

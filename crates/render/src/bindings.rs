@@ -234,8 +234,9 @@ macro_rules! bind_group {
 }
 
 crate::bind_group! {
-    /// Group 0 of every pass of the frame: the frame's uniforms, the environment and the far
-    /// field (common.wgsl, env.wgsl, far.wgsl).
+    /// Group 0 of every pass of the frame: the view, the environment, the far field and the
+    /// rest of the frame, as shaders/frame_bindings.wgsl declares them (the libraries
+    /// common.wgsl, env.wgsl and far.wgsl take them as parameters).
     pub struct FrameBindings: VERTEX | FRAGMENT | COMPUTE {
         /// `View` (common.wgsl, [`crate::frame::ViewUniforms`]): camera matrices of this and
         /// last frame, image size, projection, frame index, seed, history: all a near-field
@@ -247,8 +248,9 @@ crate::bind_group! {
         env_specular: view = kind::TEXTURE,
         /// Repeats in u, clamps in v, linear.
         env_sampler: sampler = kind::SAMPLER,
-        /// Order-3 SH projection of the radiance (16 RGB coefficients in .xyz).
-        env_sh: buffer = kind::UNIFORM,
+        /// `EnvUniforms` (env.wgsl, [`crate::gpu_env::EnvUniforms`]): rotation, intensity, mip
+        /// counts, the order-3 SH projection of the radiance.
+        env: buffer = kind::UNIFORM,
         /// The pre-convolved diffuse map E(n)/π, lat-long rgba16float.
         env_irradiance_map: view = kind::TEXTURE,
         /// The far field ([`crate::far`], far.wgsl): row 0 the grid (`FarGrid`: sky or probe
@@ -258,9 +260,9 @@ crate::bind_group! {
         far_visibility: view = kind::TEXTURE,
         /// The probes' octahedral E(n)/π (rgba16float atlas).
         far_irradiance_atlas: view = kind::TEXTURE,
-        /// `Frame` (common.wgsl, [`crate::frame::FrameUniforms`]): environment parameters,
-        /// exposure, tone mapping, light count, the AOV shown. A read-only storage buffer: a
-        /// second uniform buffer in group 0 crashes lavapipe (Mesa 22.3) in every technique.
+        /// `Frame` (common.wgsl, [`crate::frame::FrameUniforms`]): exposure, tone mapping,
+        /// light count, the AOV shown. A read-only storage buffer: a third uniform buffer in
+        /// group 0 crashes lavapipe (Mesa 22.3) in every technique.
         frame: buffer = kind::STORAGE_READ,
     }
 }

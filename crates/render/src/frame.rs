@@ -1,5 +1,6 @@
-//! Per-frame uniforms shared by every pass: `View` (shaders/view.wgsl), what the near-field
-//! kernels read, and `Frame` (shaders/common.wgsl), the rest of nearfield's own frame.
+//! Per-frame uniforms shared by every pass: `View` (shaders/common.wgsl), what the near-field
+//! kernels read, and `Frame` (shaders/common.wgsl), the rest of nearfield's own frame. The
+//! environment's parameters are the environment's own uniform ([`crate::gpu_env::EnvUniforms`]).
 
 use glam::{Mat4, Vec3};
 use nearfield_scene::{Aabb, Camera};
@@ -34,7 +35,7 @@ impl Tonemap {
 }
 
 crate::gpu_struct! {
-    /// `View` in shaders/view.wgsl, field for field: what the near-field kernels read of the
+    /// `View` in shaders/common.wgsl, field for field: what the near-field kernels read of the
     /// frame — the camera of this and last frame, the image size, the frame's index and noise
     /// seed, whether history may be reused. Nothing of exposure, tone mapping, AOVs or lights.
     pub struct ViewUniforms {
@@ -72,15 +73,11 @@ crate::gpu_struct! {
 }
 
 crate::gpu_struct! {
-    /// `Frame` in shaders/common.wgsl, field for field: the rest of nearfield's own frame — the
-    /// environment's parameters, post settings, the light count and the AOV shown.
+    /// `Frame` in shaders/common.wgsl, field for field: the rest of nearfield's own frame — post
+    /// settings, the light count and the AOV shown. Read by nearfield's own passes and by the
+    /// techniques that shade with the light table (ssdo, s3ho); a host that runs gtao, hbil or
+    /// vbgi never writes it ([`crate::passes::FrameGroup::new`] with `None`).
     pub struct FrameUniforms {
-        /// The environment's rotation about +Y (rad), intensity, specular and radiance mip
-        /// counts.
-        pub env_rotation: f32,
-        pub env_intensity: f32,
-        pub env_specular_mips: f32,
-        pub env_radiance_mips: f32,
         /// Exposure (EV), tonemap operator ([`Tonemap::index`]), shadow normal offset (texels).
         pub exposure: f32,
         pub tonemap: u32,
@@ -177,28 +174,8 @@ impl ViewUniforms {
 }
 
 impl FrameUniforms {
-    /// The frame of a host that hands in its own images: the environment's parameters
-    /// ([`crate::gpu_env::GpuEnvironment::params`]) and nothing else of nearfield's frame (no
-    /// lights, no exposure; the techniques read none of it).
-    pub fn environment_only(env_params: [f32; 4]) -> Self {
-        Self::new(
-            env_params,
-            PostUniforms {
-                exposure: 0.0,
-                tonemap: Tonemap::Aces,
-                shadow_normal_offset: 0.0,
-            },
-            0,
-            0,
-        )
-    }
-
-    pub fn new(env_params: [f32; 4], post: PostUniforms, light_count: u32, aov: u32) -> Self {
+    pub fn new(post: PostUniforms, light_count: u32, aov: u32) -> Self {
         FrameUniforms {
-            env_rotation: env_params[0],
-            env_intensity: env_params[1],
-            env_specular_mips: env_params[2],
-            env_radiance_mips: env_params[3],
             exposure: post.exposure,
             tonemap: post.tonemap.index(),
             shadow_normal_offset: post.shadow_normal_offset,

@@ -57,6 +57,45 @@ pub struct PrefilterParams {
     pub source_mips: f32,
 }
 
+crate::gpu_struct! {
+    /// `EnvUniforms` in shaders/env.wgsl, field for field: the environment's own uniform (group 0,
+    /// binding 4), all that env.wgsl's lookups read besides the maps.
+    pub struct EnvUniforms {
+        /// Rotation about +Y (rad).
+        pub rotation: f32,
+        /// Multiplies the (raw) maps; already applied to `sh`.
+        pub intensity: f32,
+        /// Mip counts of the GGX-prefiltered map and of the radiance chain.
+        pub specular_mips: f32,
+        pub radiance_mips: f32,
+        /// Order-3 SH projection of the radiance: 16 rgb coefficients (w unused), rotation and
+        /// intensity applied.
+        pub sh: [[f32; 4]; 16],
+    }
+}
+
+impl EnvUniforms {
+    fn new(
+        rotation: f32,
+        intensity: f32,
+        specular_mips: u32,
+        radiance_mips: u32,
+        sh: &[Vec3],
+    ) -> Self {
+        let mut padded = [[0f32; 4]; 16];
+        for (p, c) in padded.iter_mut().zip(sh) {
+            *p = [c.x, c.y, c.z, 0.0];
+        }
+        EnvUniforms {
+            rotation,
+            intensity,
+            specular_mips: specular_mips as f32,
+            radiance_mips: radiance_mips as f32,
+            sh: padded,
+        }
+    }
+}
+
 /// GPU resources of one environment.
 pub struct GpuEnvironment {
     pub radiance: wgpu::Texture,
@@ -66,9 +105,9 @@ pub struct GpuEnvironment {
     /// `IRRADIANCE_SIZE`, unrotated and without intensity like the other textures.
     pub irradiance_view: wgpu::TextureView,
     pub sampler: wgpu::Sampler,
-    /// 16 × vec4 (rgb SH coefficients, intensity and rotation applied).
-    pub sh_buffer: wgpu::Buffer,
-    /// The coefficients in `sh_buffer`.
+    /// [`EnvUniforms`]: rotation, intensity, mip counts and the SH (env.wgsl's `EnvUniforms`).
+    pub uniform_buffer: wgpu::Buffer,
+    /// The coefficients in `uniform_buffer`.
     pub sh: Vec<Vec3>,
     pub radiance_mips: u32,
     pub rotation: f32,
@@ -80,15 +119,6 @@ pub struct GpuEnvironment {
 impl GpuEnvironment {
     pub fn new(device: &wgpu::Device, queue: &wgpu::Queue, env: &Environment) -> Self {
         let sh_coeffs = sh::project_environment(env, 16);
-        let mut padded = [[0f32; 4]; 16];
-        for (p, c) in padded.iter_mut().zip(&sh_coeffs) {
-            *p = [c.x, c.y, c.z, 0.0];
-        }
-        let sh_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("env SH"),
-            contents: bytemuck::cast_slice(&padded),
-            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-        });
 
         // Level 0 texels as f16, box-downsampled on the CPU if the map is very wide.
         let (w, h, texels) = env.box_downsampled(MAX_RADIANCE_WIDTH);
@@ -268,13 +298,26 @@ impl GpuEnvironment {
             wgpu::util::TextureDataOrder::LayerMajor,
             bytemuck::cast_slice(&irradiance_half),
         );
+        let specular_mips = specular.mip_level_count();
+        let uniforms = EnvUniforms::new(
+            env.rotation,
+            env.intensity,
+            specular_mips,
+            radiance_mips,
+            &sh_coeffs,
+        );
+        let uniform_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("env uniforms"),
+            contents: bytemuck::bytes_of(&uniforms),
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+        });
         GpuEnvironment {
             irradiance_view: irradiance.create_view(&Default::default()),
             radiance,
             radiance_view,
             specular_view: specular.create_view(&Default::default()),
             sampler,
-            sh_buffer,
+            uniform_buffer,
             sh: sh_coeffs,
             radiance_mips,
             rotation: env.rotation,
@@ -283,7 +326,7 @@ impl GpuEnvironment {
         }
     }
 
-    /// Turns the environment about +Y: lookups take the new angle from the frame uniforms, the SH
+    /// Turns the environment about +Y: lookups take the new angle from [`EnvUniforms`], the SH
     /// coefficients are re-projected here. Nothing else needs rebuilding.
     pub fn set_rotation(&mut self, queue: &wgpu::Queue, rotation: f32) {
         self.rotation = rotation;
@@ -291,8 +334,8 @@ impl GpuEnvironment {
         self.write_sh(queue);
     }
 
-    /// Multiplies the radiance by `intensity` (≥ 0): lookups take it from the frame uniforms,
-    /// the SH coefficients are re-projected here.
+    /// Multiplies the radiance by `intensity` (≥ 0): lookups take it from [`EnvUniforms`], the
+    /// SH coefficients are re-projected here.
     pub fn set_intensity(&mut self, queue: &wgpu::Queue, intensity: f32) {
         self.intensity = intensity;
         self.source.intensity = intensity;
@@ -301,26 +344,26 @@ impl GpuEnvironment {
 
     fn write_sh(&mut self, queue: &wgpu::Queue) {
         self.sh = sh::project_environment(&self.source, 16);
-        let mut padded = [[0f32; 4]; 16];
-        for (p, c) in padded.iter_mut().zip(&self.sh) {
-            *p = [c.x, c.y, c.z, 0.0];
-        }
-        queue.write_buffer(&self.sh_buffer, 0, bytemuck::cast_slice(&padded));
+        queue.write_buffer(
+            &self.uniform_buffer,
+            0,
+            bytemuck::bytes_of(&self.uniforms()),
+        );
+    }
+
+    /// What `uniform_buffer` holds.
+    pub fn uniforms(&self) -> EnvUniforms {
+        EnvUniforms::new(
+            self.rotation,
+            self.intensity,
+            self.specular_view.texture().mip_level_count(),
+            self.radiance_mips,
+            &self.sh,
+        )
     }
 
     /// The CPU map (rotation applied in its `rotation`; raw texels without `intensity`).
     pub fn source(&self) -> &Environment {
         &self.source
-    }
-
-    /// `Frame`'s env_rotation, env_intensity (already in the SH; textures are raw),
-    /// env_specular_mips, env_radiance_mips.
-    pub fn params(&self) -> [f32; 4] {
-        [
-            self.rotation,
-            self.intensity,
-            self.specular_view.texture().mip_level_count() as f32,
-            self.radiance_mips as f32,
-        ]
     }
 }

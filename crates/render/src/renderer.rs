@@ -134,7 +134,8 @@ impl Renderer {
         let shadows = ShadowPass::new(&device, &gpu_scene, settings.shadows);
         gpu_scene.write_lights(&queue, &shadows.light_layers);
         let far = GpuFarField::sky(&device, &queue);
-        let frame_group = FrameGroup::new(&device, &view_buffer, &frame_buffer, &gpu_env, &far);
+        let frame_group =
+            FrameGroup::new(&device, &view_buffer, Some(&frame_buffer), &gpu_env, &far);
         let gbuffer = GBufferPass::new(&device, &frame_group, &gpu_scene);
         let passes = Passes::new(
             &device,
@@ -465,7 +466,6 @@ impl Renderer {
             history: (self.history_valid(), self.frames_since_cut),
         });
         let frame = FrameUniforms::new(
-            self.env.params(),
             PostUniforms {
                 exposure: s.exposure,
                 tonemap: s.tonemap,
@@ -482,7 +482,7 @@ impl Renderer {
         FrameGroup::new(
             &self.device,
             &self.view_buffer,
-            &self.frame_buffer,
+            Some(&self.frame_buffer),
             &self.env,
             &self.far,
         )

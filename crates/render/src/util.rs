@@ -1,23 +1,26 @@
 //! Small helpers: shader composition, the raster pipeline of every mesh pass, readback.
 
-/// Shared WGSL: the `View` and `Frame` uniforms and view-space helpers.
+/// WGSL library: the `View` and `Frame` structs and view-space helpers (no bindings).
 pub const COMMON_WGSL: &str = include_str!("shaders/common.wgsl");
-/// Shared WGSL: environment bindings (group 0), lat-long lookups and SH irradiance.
+/// WGSL library: the environment's uniform, lat-long lookups and SH irradiance (no bindings).
 pub const ENV_WGSL: &str = include_str!("shaders/env.wgsl");
-/// Shared WGSL (after [`ENV_WGSL`]): the far field, sky or probe volume (group 0).
+/// WGSL library (with [`ENV_WGSL`]): the far field, sky or probe volume (no bindings).
 pub const FAR_WGSL: &str = include_str!("shaders/far.wgsl");
-/// Shared WGSL: light table, shadow maps and light irradiance (names the bindings its passes
-/// declare).
+/// nearfield's glue for group 0 ([`crate::bindings::FrameBindings`]): the view, environment,
+/// far-field and frame bindings that its entry files pass to the libraries. The one shared WGSL
+/// file that declares bindings.
+pub const FRAME_BINDINGS_WGSL: &str = include_str!("shaders/frame_bindings.wgsl");
+/// WGSL library: one light's incident light and shadow-map visibility (the maps as parameters).
 pub const LIGHTS_WGSL: &str = include_str!("shaders/lights.wgsl");
 
-/// Shared WGSL: `GpuMaterial` and `NO_TEXTURE`.
+/// WGSL library: `GpuMaterial` and `NO_TEXTURE`.
 pub const GPU_MATERIAL_WGSL: &str = include_str!("shaders/gpu_material.wgsl");
-/// Shared WGSL (after [`GPU_MATERIAL_WGSL`]): the scene's vertices and materials for raster passes (names the bindings its
-/// passes declare).
+/// WGSL library (after [`GPU_MATERIAL_WGSL`]): a material's surface at a fragment (its maps as
+/// parameters).
 pub const MATERIALS_WGSL: &str = include_str!("shaders/materials.wgsl");
-/// Shared WGSL: the G-buffer surface at a pixel (names the bindings its passes declare).
+/// WGSL library: the G-buffer surface at a pixel (the images as parameters).
 pub const SURFACE_WGSL: &str = include_str!("shaders/surface.wgsl");
-/// Shared WGSL: tonemap operators and the sRGB transfer function.
+/// WGSL library: tonemap operators and the sRGB transfer function.
 pub const TONEMAP_OPS_WGSL: &str = include_str!("shaders/tonemap_ops.wgsl");
 
 /// Concatenates WGSL sources (shared preludes first).

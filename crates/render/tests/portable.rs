@@ -128,3 +128,154 @@ fn every_kernel_translates_to_spirv_msl_hlsl_and_glsl() {
         failures.join("\n")
     );
 }
+
+/// The WGSL libraries (docs/src/architecture.md, "Lifting a pass into another engine"), each with
+/// the libraries it is composed after. A library declares no binding and reads no name it does
+/// not declare or take as a parameter: it validates on its own with only its prelude, no entry
+/// file and no bindings glue.
+const LIBRARIES: &[(&str, &[&str])] = &[
+    ("shaders/common.wgsl", &[]),
+    ("shaders/env.wgsl", &["shaders/common.wgsl"]),
+    (
+        "shaders/far.wgsl",
+        &["shaders/common.wgsl", "shaders/env.wgsl"],
+    ),
+    ("shaders/lights.wgsl", &[]),
+    ("shaders/surface.wgsl", &["shaders/common.wgsl"]),
+    ("shaders/gpu_material.wgsl", &[]),
+    ("shaders/materials.wgsl", &["shaders/gpu_material.wgsl"]),
+    ("shaders/tonemap_ops.wgsl", &[]),
+    ("technique/horizon/params.wgsl", &["shaders/common.wgsl"]),
+    (
+        "technique/horizon/slice.wgsl",
+        &["shaders/common.wgsl", "technique/horizon/params.wgsl"],
+    ),
+    (
+        "technique/horizon/march.wgsl",
+        &[
+            "shaders/common.wgsl",
+            "shaders/env.wgsl",
+            "shaders/far.wgsl",
+            "technique/horizon/params.wgsl",
+            "technique/horizon/slice.wgsl",
+        ],
+    ),
+    (
+        "technique/horizon/resolve.wgsl",
+        &[
+            "shaders/common.wgsl",
+            "shaders/env.wgsl",
+            "shaders/far.wgsl",
+            "technique/horizon/params.wgsl",
+        ],
+    ),
+    (
+        "technique/samples.wgsl",
+        &["shaders/common.wgsl", "shaders/surface.wgsl"],
+    ),
+    (
+        "technique/senders.wgsl",
+        &[
+            "shaders/common.wgsl",
+            "shaders/surface.wgsl",
+            "technique/samples.wgsl",
+        ],
+    ),
+    ("technique/ssdo/params.wgsl", &["shaders/common.wgsl"]),
+    (
+        "technique/ssdo/segment.wgsl",
+        &[
+            "shaders/common.wgsl",
+            "shaders/lights.wgsl",
+            "shaders/surface.wgsl",
+            "technique/samples.wgsl",
+            "technique/ssdo/params.wgsl",
+        ],
+    ),
+    (
+        "technique/s3ho/sh.wgsl",
+        &["shaders/common.wgsl", "shaders/env.wgsl"],
+    ),
+    ("passes/denoise/params.wgsl", &["shaders/common.wgsl"]),
+];
+
+/// nearfield's own glue for group 0: the one shared file that declares bindings.
+const GLUE: &str = "shaders/frame_bindings.wgsl";
+
+fn wgsl_files(dir: &std::path::Path, out: &mut Vec<std::path::PathBuf>) {
+    for e in std::fs::read_dir(dir).unwrap() {
+        let p = e.unwrap().path();
+        if p.is_dir() {
+            wgsl_files(&p, out);
+        } else if p.extension().is_some_and(|x| x == "wgsl") {
+            out.push(p);
+        }
+    }
+}
+
+#[test]
+fn shared_wgsl_declares_no_globals() {
+    let src = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let read = |rel: &str| std::fs::read_to_string(src.join(rel)).unwrap();
+    // Every WGSL file is an entry file (it has an entry point and declares its own bindings),
+    // the glue, or a library listed above.
+    let mut files = Vec::new();
+    wgsl_files(&src, &mut files);
+    let mut unlisted = Vec::new();
+    for f in &files {
+        let rel = f
+            .strip_prefix(&src)
+            .unwrap()
+            .to_string_lossy()
+            .replace('\\', "/");
+        let text = std::fs::read_to_string(f).unwrap();
+        let entry = ["@compute", "@vertex", "@fragment"]
+            .iter()
+            .any(|s| text.contains(s));
+        if !entry && rel != GLUE && !LIBRARIES.iter().any(|(l, _)| *l == rel) {
+            unlisted.push(rel);
+        }
+    }
+    assert!(
+        unlisted.is_empty(),
+        "WGSL files with no entry point that are not listed as libraries: {unlisted:?}"
+    );
+    for (lib, prelude) in LIBRARIES {
+        let mut parts: Vec<String> = prelude.iter().map(|p| read(p)).collect();
+        parts.push(read(lib));
+        let source = parts.join("\n");
+        let module = naga::front::wgsl::parse_str(&source)
+            .unwrap_or_else(|e| panic!("{lib} alone: {}", e.emit_to_string(&source)));
+        let globals: Vec<_> = module
+            .global_variables
+            .iter()
+            .map(|(_, g)| g.name.clone().unwrap_or_default())
+            .collect();
+        assert!(globals.is_empty(), "{lib} declares {globals:?}");
+        validate(lib, &source, &module);
+    }
+    // The glue declares group 0 in FrameBindings' order, and nothing else.
+    let glue = read(GLUE);
+    let source = [
+        read("shaders/common.wgsl"),
+        read("shaders/env.wgsl"),
+        glue.clone(),
+    ]
+    .join("\n");
+    let module = naga::front::wgsl::parse_str(&source).unwrap();
+    let names: Vec<(u32, String)> = module
+        .global_variables
+        .iter()
+        .map(|(_, g)| {
+            let b = g.binding.as_ref().expect("a binding");
+            assert_eq!(b.group, 0, "{GLUE}: group");
+            (b.binding, g.name.clone().unwrap())
+        })
+        .collect();
+    let expected: Vec<(u32, String)> = nearfield_render::bindings::FrameBindings::SLOTS
+        .iter()
+        .enumerate()
+        .map(|(i, (name, _))| (i as u32, name.to_string()))
+        .collect();
+    assert_eq!(names, expected, "{GLUE} against FrameBindings");
+}

@@ -75,6 +75,13 @@ fn host_and_shader_structs_agree() {
         size_of::<FrameUniforms>(),
         FrameUniforms::FIELDS,
     );
+    use nearfield_render::gpu_env::EnvUniforms;
+    check(
+        &nearfield_render::util::compose(&[common, nearfield_render::util::ENV_WGSL]),
+        "EnvUniforms",
+        size_of::<EnvUniforms>(),
+        EnvUniforms::FIELDS,
+    );
     use nearfield_render::passes::reproject::ReprojectParams;
     use nearfield_render::technique::horizon::HorizonParams;
     check(

@@ -10,23 +10,37 @@ use crate::gpu_env::GpuEnvironment;
 pub struct FrameGroup {
     pub layout: wgpu::BindGroupLayout,
     pub bind_group: wgpu::BindGroup,
+    /// The zeroed `Frame` made when none was handed in (kept alive with the bind group).
+    _own_frame: Option<wgpu::Buffer>,
 }
 
 impl FrameGroup {
+    /// Group 0 over `view` ([`crate::frame::ViewUniforms`]), the environment and the far field.
+    /// `frame` ([`crate::frame::FrameUniforms`]) is nearfield's own frame; a host that runs only
+    /// gtao, hbil or vbgi (which read none of it) passes `None`, and a zeroed one is bound.
     pub fn new(
         device: &wgpu::Device,
         view: &wgpu::Buffer,
-        frame: &wgpu::Buffer,
+        frame: Option<&wgpu::Buffer>,
         env: &GpuEnvironment,
         far: &GpuFarField,
     ) -> Self {
+        let own_frame = frame.is_none().then(|| {
+            device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("frame (unused)"),
+                size: std::mem::size_of::<crate::frame::FrameUniforms>() as u64,
+                usage: wgpu::BufferUsages::STORAGE,
+                mapped_at_creation: false,
+            })
+        });
+        let frame = frame.or(own_frame.as_ref()).expect("a frame buffer");
         let layout = FrameBindings::layout(device);
         let bind_group = FrameBindings {
             view,
             env_radiance: &env.radiance_view,
             env_specular: &env.specular_view,
             env_sampler: &env.sampler,
-            env_sh: &env.sh_buffer,
+            env: &env.uniform_buffer,
             env_irradiance_map: &env.irradiance_view,
             far_probes: &far.probes_view,
             far_visibility: &far.visibility_view,
@@ -34,6 +48,10 @@ impl FrameGroup {
             frame,
         }
         .bind_group(device, &layout);
-        FrameGroup { layout, bind_group }
+        FrameGroup {
+            layout,
+            bind_group,
+            _own_frame: own_frame,
+        }
     }
 }

@@ -6,8 +6,9 @@
 //!
 //! Besides these images a technique binds group 0 ([`crate::contract::frame::FrameGroup`]: the
 //! `View` uniform of [`crate::frame::ViewUniforms`], camera matrices of this and last frame, the
-//! environment of [`crate::gpu_env::GpuEnvironment`] with its parameters in
-//! [`crate::frame::FrameUniforms::environment_only`], and the far field).
+//! environment of [`crate::gpu_env::GpuEnvironment`] with its own uniform
+//! ([`crate::gpu_env::EnvUniforms`]), and the far field; nearfield's own `Frame` only where the
+//! technique shades with the light table).
 
 use crate::contract::lights::LightResources;
 use crate::gpu_scene::GpuScene;

@@ -14,7 +14,12 @@ use wgpu::util::DeviceExt;
 pub const SHADER: &str = include_str!("bilateral_blur.wgsl");
 
 pub fn source() -> String {
-    util::compose(&[util::COMMON_WGSL, SHADER])
+    util::compose(&[
+        util::COMMON_WGSL,
+        util::ENV_WGSL,
+        util::FRAME_BINDINGS_WGSL,
+        SHADER,
+    ])
 }
 
 /// `BlurParams` in bilateral_blur.wgsl.

@@ -32,7 +32,7 @@ struct BlurParams {
 @compute @workgroup_size(8, 8, 1)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     let pixel = id.xy;
-    if !in_bounds(pixel) {
+    if !in_bounds(view, pixel) {
         return;
     }
     let centre = textureLoad(source, pixel, 0);
@@ -45,7 +45,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     // Positions in view space (no matrix per tap); the centre's normal there for the plane test.
     let n_view = (view.view_from_world * vec4<f32>(n, 0.0)).xyz;
     let z = textureLoad(gb_view_depth, pixel, 0).r;
-    let x = view_position(pixel, z);
+    let x = view_position(view, pixel, z);
     let size = vec2<i32>(view.size);
     let sigma = max(f32(blur.radius) * 0.5, 0.5);
     let spatial = -1.0 / (2.0 * sigma * sigma);
@@ -61,7 +61,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         if qn.w == 0.0 {
             continue;
         }
-        let qx = view_position(vec2<u32>(q), textureLoad(gb_view_depth, q, 0).r);
+        let qx = view_position(view, vec2<u32>(q), textureLoad(gb_view_depth, q, 0).r);
         let w = exp(f32(k * k) * spatial + abs(dot(qx - x, n_view)) * plane)
             * pow(max(0.0, dot(normalize(qn.xyz), n)), blur.normal_power);
         sum += textureLoad(source, q, 0) * w;

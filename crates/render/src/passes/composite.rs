@@ -9,7 +9,12 @@ use crate::util;
 pub const SHADER: &str = include_str!("composite.wgsl");
 
 pub fn source() -> String {
-    util::compose(&[util::COMMON_WGSL, util::ENV_WGSL, SHADER])
+    util::compose(&[
+        util::COMMON_WGSL,
+        util::ENV_WGSL,
+        util::FRAME_BINDINGS_WGSL,
+        SHADER,
+    ])
 }
 
 crate::bind_group! {

@@ -19,13 +19,13 @@
 @compute @workgroup_size(8, 8, 1)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     let pixel = id.xy;
-    if !in_bounds(pixel) {
+    if !in_bounds(view, pixel) {
         return;
     }
     let nw = textureLoad(gb_normal, pixel, 0);
     if nw.w == 0.0 {
         // Background: alpha 0 marks it for EXR output and metrics.
-        let bg = min(env_radiance_at(view_ray(pixel), 0.0), vec3<f32>(65000.0));
+        let bg = min(env_radiance_at(env_radiance, env_sampler, env, view_ray(view, pixel), 0.0), vec3<f32>(65000.0));
         textureStore(out_radiance, pixel, vec4<f32>(bg, 0.0));
         return;
     }

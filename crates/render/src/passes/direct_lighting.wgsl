@@ -33,6 +33,13 @@
 @group(1) @binding(12) var out_env_irradiance: texture_storage_2d<rgba16float, write>;
 @group(1) @binding(13) var shadow_depths: texture_2d_array<f32>;
 
+// lights.wgsl's shadow_visibility of light l at world p with normal n, from this pass's shadow
+// maps: the layer that sees p, its matrix, the frame's normal offset.
+fn shadow_map_visibility(l: GpuLight, p: vec3<f32>, n: vec3<f32>) -> f32 {
+    let layer = shadow_layer(l, p);
+    return shadow_visibility(shadow_maps, shadow_depths, shadow_sampler, frame.shadow_normal_offset, l, layer, shadow_clip_from_world[layer], p, n);
+}
+
 fn d_ggx(n_h: f32, a: f32) -> f32 {
     let a2 = a * a;
     let f = n_h * n_h * (a2 - 1.0) + 1.0;
@@ -61,7 +68,7 @@ fn env_brdf_approx(roughness: f32, n_v: f32) -> vec2<f32> {
 @compute @workgroup_size(8, 8, 1)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     let pixel = id.xy;
-    if !in_bounds(pixel) {
+    if !in_bounds(view, pixel) {
         return;
     }
     let nw = textureLoad(gb_normal, pixel, 0);
@@ -80,7 +87,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     let a = roughness * roughness;
     let emission = textureLoad(gb_emissive, pixel, 0).rgb;
     let depth = textureLoad(gb_view_depth, pixel, 0).r;
-    let p = world_position(pixel, depth);
+    let p = world_position(view, pixel, depth);
     let v = normalize(view.camera_position.xyz - p);
     let n_v = max(dot(n, v), 1e-4);
     let f0 = mix(vec3<f32>(0.04), albedo, metallic);
@@ -94,7 +101,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         if n_l <= 0.0 {
             continue;
         }
-        let e = inc.irradiance * n_l * shadow_visibility(l, p, n);
+        let e = inc.irradiance * n_l * shadow_map_visibility(l, p, n);
         irradiance += e;
         let h = normalize(v + inc.to_light);
         let spec = d_ggx(max(dot(n, h), 0.0), a) * v_smith_ggx_correlated(n_v, n_l, a)
@@ -104,13 +111,13 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     let light_irradiance = irradiance / PI;
     let r = reflect(-v, n);
     let ab = env_brdf_approx(roughness, n_v);
-    specular += env_specular_at(r, roughness) * (f0 * ab.x + ab.y);
+    specular += env_specular_at(env_specular, env_sampler, env, r, roughness) * (f0 * ab.x + ab.y);
     // The senders' light: the far field, the open sky's SH irradiance or the probe volume's.
     var far_e = vec3<f32>(0.0);
-    if far_volume() {
-        far_e = far_irradiance_here(p, n);
+    if far_volume(far_probes) {
+        far_e = far_irradiance_here(far_probes, far_visibility, far_irradiance_atlas, env_sampler, view, p, n);
     } else {
-        far_e = env_irradiance_sh(n);
+        far_e = env_irradiance_sh(env, n);
     }
     let direct = emission + albedo * (light_irradiance + far_e);
     textureStore(out_light_irradiance, pixel, vec4<f32>(light_irradiance, 1.0));

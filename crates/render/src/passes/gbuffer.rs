@@ -14,6 +14,8 @@ pub const SHADER: &str = include_str!("gbuffer.wgsl");
 pub fn source() -> String {
     util::compose(&[
         util::COMMON_WGSL,
+        util::ENV_WGSL,
+        util::FRAME_BINDINGS_WGSL,
         util::GPU_MATERIAL_WGSL,
         util::MATERIALS_WGSL,
         SHADER,

@@ -35,7 +35,7 @@ fn fs_main(in: VertexOut, @builtin(front_facing) front: bool) -> GBufferOut {
     // Gradients first, in uniform control flow; the texture fetches are conditional.
     let duv_dx = dpdx(in.uv);
     let duv_dy = dpdy(in.uv);
-    let m = surface_material(in, duv_dx, duv_dy);
+    let m = surface_material(materials[in.material], srgb_textures, linear_textures, material_sampler, in, duv_dx, duv_dy);
     var n = normalize(in.normal);
     if !front {
         n = -n;
@@ -45,7 +45,7 @@ fn fs_main(in: VertexOut, @builtin(front_facing) front: bool) -> GBufferOut {
     o.albedo = vec4<f32>(m.base, 1.0);
     o.material = vec4<f32>(m.metallic, m.roughness, 0.0, 1.0);
     o.emissive = vec4<f32>(m.emissive, 1.0);
-    o.motion = vec4<f32>(to_screen(view.prev_clip_from_world, in.world) - in.clip.xy, 0.0, 0.0);
+    o.motion = vec4<f32>(to_screen(view, view.prev_clip_from_world, in.world) - in.clip.xy, 0.0, 0.0);
     o.view_depth = vec4<f32>(-(view.view_from_world * vec4<f32>(in.world, 1.0)).z, 0.0, 0.0, 0.0);
     return o;
 }

@@ -15,7 +15,12 @@ use wgpu::util::DeviceExt;
 pub const SHADER: &str = include_str!("reproject.wgsl");
 
 pub fn source() -> String {
-    util::compose(&[util::COMMON_WGSL, SHADER])
+    util::compose(&[
+        util::COMMON_WGSL,
+        util::ENV_WGSL,
+        util::FRAME_BINDINGS_WGSL,
+        SHADER,
+    ])
 }
 
 pub use crate::settings::march::ReprojectMode;
@@ -113,7 +118,12 @@ pub fn pass_layouts() -> Vec<PassLayout> {
 }
 
 pub fn push_pull_source() -> String {
-    util::compose(&[util::COMMON_WGSL, include_str!("push_pull.wgsl")])
+    util::compose(&[
+        util::COMMON_WGSL,
+        util::ENV_WGSL,
+        util::FRAME_BINDINGS_WGSL,
+        include_str!("push_pull.wgsl"),
+    ])
 }
 
 pub struct Reprojection {

@@ -49,12 +49,12 @@ fn land(pixel: vec2<u32>) -> Landing {
     if g.w <= 0.0 {
         return l;
     }
-    let world = (view.prev_world_from_view * vec4<f32>(prev_view_position(pixel, g.w), 1.0)).xyz;
+    let world = (view.prev_world_from_view * vec4<f32>(prev_view_position(view, pixel, g.w), 1.0)).xyz;
     let d = -(view.view_from_world * vec4<f32>(world, 1.0)).z;
     if d <= 0.0 {
         return l;
     }
-    let s = floor(to_screen(view.clip_from_world, world));
+    let s = floor(to_screen(view, view.clip_from_world, world));
     if any(s < vec2<f32>(0.0)) || any(s >= view.size) {
         return l;
     }
@@ -64,7 +64,7 @@ fn land(pixel: vec2<u32>) -> Landing {
     if nw.w == 0.0 || qd <= 0.0 {
         return l;
     }
-    if !same_surface(world_position(q, qd), normalize(nw.xyz), qd, world, g.xyz, params.reject_depth, params.reject_normal) {
+    if !same_surface(view, world_position(view, q, qd), normalize(nw.xyz), qd, world, g.xyz, params.reject_depth, params.reject_normal) {
         return l;
     }
     l.index = q.y * u32(view.size.x) + q.x;
@@ -75,7 +75,7 @@ fn land(pixel: vec2<u32>) -> Landing {
 
 @compute @workgroup_size(8, 8, 1)
 fn scatter_depth(@builtin(global_invocation_id) id: vec3<u32>) {
-    if !in_bounds(id.xy) {
+    if !in_bounds(view, id.xy) {
         return;
     }
     let l = land(id.xy);
@@ -86,7 +86,7 @@ fn scatter_depth(@builtin(global_invocation_id) id: vec3<u32>) {
 
 @compute @workgroup_size(8, 8, 1)
 fn scatter_color(@builtin(global_invocation_id) id: vec3<u32>) {
-    if !in_bounds(id.xy) {
+    if !in_bounds(view, id.xy) {
         return;
     }
     let l = land(id.xy);
@@ -98,7 +98,7 @@ fn scatter_color(@builtin(global_invocation_id) id: vec3<u32>) {
 @compute @workgroup_size(8, 8, 1)
 fn scatter_resolve(@builtin(global_invocation_id) id: vec3<u32>) {
     let pixel = id.xy;
-    if !in_bounds(pixel) {
+    if !in_bounds(view, pixel) {
         return;
     }
     let i = pixel.y * u32(view.size.x) + pixel.x;
@@ -113,7 +113,7 @@ fn scatter_resolve(@builtin(global_invocation_id) id: vec3<u32>) {
 @compute @workgroup_size(8, 8, 1)
 fn gather(@builtin(global_invocation_id) id: vec3<u32>) {
     let pixel = id.xy;
-    if !in_bounds(pixel) {
+    if !in_bounds(view, pixel) {
         return;
     }
     let nw = textureLoad(gb_normal, pixel, 0);
@@ -123,10 +123,10 @@ fn gather(@builtin(global_invocation_id) id: vec3<u32>) {
         return;
     }
     let n = normalize(nw.xyz);
-    let x = world_position(pixel, depth);
+    let x = world_position(view, pixel, depth);
     // Motion = last − this frame's pixel position of the point.
     let prev = vec2<f32>(pixel) + 0.5 + textureLoad(gb_motion, pixel, 0).rg;
-    let taps = history_taps(prev_geometry, prev, x, n, depth, params.reject_depth, params.reject_normal);
+    let taps = history_taps(view, prev_geometry, prev, x, n, depth, params.reject_depth, params.reject_normal);
     var sum = vec3<f32>(0.0);
     for (var k = 0u; k < 4u; k++) {
         if taps.weights[k] > 0.0 {

@@ -60,6 +60,8 @@ pub const SHADER: &str = include_str!("rsm.wgsl");
 pub fn source() -> String {
     util::compose(&[
         util::COMMON_WGSL,
+        util::ENV_WGSL,
+        util::FRAME_BINDINGS_WGSL,
         util::GPU_MATERIAL_WGSL,
         util::MATERIALS_WGSL,
         SHADER,

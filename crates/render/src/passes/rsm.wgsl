@@ -29,7 +29,7 @@ struct RsmOut {
 fn fs_rsm(in: VertexOut) -> RsmOut {
     let duv_dx = dpdx(in.uv);
     let duv_dy = dpdy(in.uv);
-    let m = surface_material(in, duv_dx, duv_dy);
+    let m = surface_material(materials[in.material], srgb_textures, linear_textures, material_sampler, in, duv_dx, duv_dy);
     let l = rsm_view.to_light.xyz - in.world * rsm_view.to_light.w;
     var n = normalize(in.normal);
     if dot(n, l) < 0.0 {

@@ -9,7 +9,13 @@ use crate::util;
 pub const SHADER: &str = include_str!("tonemap.wgsl");
 
 pub fn source() -> String {
-    util::compose(&[util::COMMON_WGSL, util::TONEMAP_OPS_WGSL, SHADER])
+    util::compose(&[
+        util::COMMON_WGSL,
+        util::ENV_WGSL,
+        util::FRAME_BINDINGS_WGSL,
+        util::TONEMAP_OPS_WGSL,
+        SHADER,
+    ])
 }
 
 crate::bind_group! {

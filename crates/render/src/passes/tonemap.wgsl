@@ -9,7 +9,7 @@
 @compute @workgroup_size(8, 8, 1)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     let pixel = id.xy;
-    if !in_bounds(pixel) {
+    if !in_bounds(view, pixel) {
         return;
     }
     let c = max(textureLoad(radiance, pixel, 0).rgb, vec3<f32>(0.0)) * exp2(frame.exposure);

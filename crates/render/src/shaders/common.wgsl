@@ -1,7 +1,10 @@
-// common.wgsl — prepended to every screen-space and G-buffer shader.
+// common.wgsl — a library prepended to every screen-space and G-buffer shader: the `View` and
+// `Frame` structs and view-space helpers. It declares no bindings; each helper takes the `View`
+// it reads as its first parameter (nearfield binds its own in group 0,
+// shaders/frame_bindings.wgsl; a host binds its own the same way: docs/src/architecture.md).
 //
-// `Frame` mirrors `crate::frame::FrameUniforms` field for field (a naga layout test checks the
-// offsets). Conventions (docs/src/conventions.md): right-handed world, +Y up, view space looks
+// `View` and `Frame` mirror `crate::frame::ViewUniforms` and `FrameUniforms` field for field (a
+// naga layout test checks the offsets). Conventions (docs/src/conventions.md): right-handed world, +Y up, view space looks
 // down −Z, pixel centres at (x + 0.5, y + 0.5) with row 0 at the top, wgpu clip depth 0..1.
 
 // The view the near-field kernels read (crate::frame::ViewUniforms): the camera of this and
@@ -40,13 +43,10 @@ struct View {
     frames_since_cut: u32,
 }
 
-// The rest of nearfield's own frame (crate::frame::FrameUniforms).
+// The rest of nearfield's own frame (crate::frame::FrameUniforms), read by nearfield's own
+// passes (lighting, tone mapping, AOV display) and by the techniques that shade with the light
+// table (ssdo, s3ho): nothing a horizon kernel reads.
 struct Frame {
-    // The environment's rotation about +Y (rad), intensity, specular and radiance mip counts.
-    env_rotation: f32,
-    env_intensity: f32,
-    env_specular_mips: f32,
-    env_radiance_mips: f32,
     // Exposure (EV), tonemap operator (0 aces, 1 neutral, 2 linear), shadow normal offset (in
     // shadow-map texels).
     exposure: f32,
@@ -59,9 +59,6 @@ struct Frame {
     _pad1: u32,
     _pad2: u32,
 }
-
-@group(0) @binding(0) var<uniform> view: View;
-@group(0) @binding(9) var<storage, read> frame: Frame;
 
 // One view of the extra layers (passes/layers/, `LayerView` there): a peeled depth layer of the
 // main camera or an additional camera. 256 bytes, so that one buffer serves as a storage array and
@@ -99,39 +96,39 @@ fn layer_position(v: LayerView, pixel: vec2<u32>, depth: f32) -> vec3<f32> {
 const PI: f32 = 3.14159265358979;
 
 // View-space position of pixel `pixel` (integer coordinates) at view depth `view_depth` (> 0, m).
-fn view_position(pixel: vec2<u32>, view_depth: f32) -> vec3<f32> {
-    let p = (vec2<f32>(pixel) + 0.5) * view.inv_size;
+fn view_position(cam: View, pixel: vec2<u32>, view_depth: f32) -> vec3<f32> {
+    let p = (vec2<f32>(pixel) + 0.5) * cam.inv_size;
     let ndc = vec2<f32>(2.0 * p.x - 1.0, 1.0 - 2.0 * p.y);
-    let t = view.tan_half_fov;
-    return vec3<f32>(ndc.x * t * view.aspect, ndc.y * t, -1.0) * view_depth;
+    let t = cam.tan_half_fov;
+    return vec3<f32>(ndc.x * t * cam.aspect, ndc.y * t, -1.0) * view_depth;
 }
 
 // Last frame's view-space position of pixel `pixel` at view depth `view_depth`.
-fn prev_view_position(pixel: vec2<u32>, view_depth: f32) -> vec3<f32> {
-    let p = (vec2<f32>(pixel) + 0.5) * view.inv_size;
+fn prev_view_position(cam: View, pixel: vec2<u32>, view_depth: f32) -> vec3<f32> {
+    let p = (vec2<f32>(pixel) + 0.5) * cam.inv_size;
     let ndc = vec2<f32>(2.0 * p.x - 1.0, 1.0 - 2.0 * p.y);
-    let t = view.prev_tan_half_fov;
-    return vec3<f32>(ndc.x * t * view.prev_aspect, ndc.y * t, -1.0) * view_depth;
+    let t = cam.prev_tan_half_fov;
+    return vec3<f32>(ndc.x * t * cam.prev_aspect, ndc.y * t, -1.0) * view_depth;
 }
 
 // Pixel coordinates (continuous, centres at +0.5) of world point `p` through `clip_from_world`.
-fn to_screen(clip_from_world: mat4x4<f32>, p: vec3<f32>) -> vec2<f32> {
+fn to_screen(cam: View, clip_from_world: mat4x4<f32>, p: vec3<f32>) -> vec2<f32> {
     let c = clip_from_world * vec4<f32>(p, 1.0);
     let ndc = c.xy / c.w;
-    return vec2<f32>(0.5 * ndc.x + 0.5, 0.5 - 0.5 * ndc.y) * view.size;
+    return vec2<f32>(0.5 * ndc.x + 0.5, 0.5 - 0.5 * ndc.y) * cam.size;
 }
 
-fn world_position(pixel: vec2<u32>, view_depth: f32) -> vec3<f32> {
-    return (view.world_from_view * vec4<f32>(view_position(pixel, view_depth), 1.0)).xyz;
+fn world_position(cam: View, pixel: vec2<u32>, view_depth: f32) -> vec3<f32> {
+    return (cam.world_from_view * vec4<f32>(view_position(cam, pixel, view_depth), 1.0)).xyz;
 }
 
 // Unit world direction from the camera through the centre of `pixel`.
-fn view_ray(pixel: vec2<u32>) -> vec3<f32> {
-    return normalize((view.world_from_view * vec4<f32>(view_position(pixel, 1.0), 0.0)).xyz);
+fn view_ray(cam: View, pixel: vec2<u32>) -> vec3<f32> {
+    return normalize((cam.world_from_view * vec4<f32>(view_position(cam, pixel, 1.0), 0.0)).xyz);
 }
 
-fn in_bounds(pixel: vec2<u32>) -> bool {
-    return f32(pixel.x) < view.size.x && f32(pixel.y) < view.size.y;
+fn in_bounds(cam: View, pixel: vec2<u32>) -> bool {
+    return f32(pixel.x) < cam.size.x && f32(pixel.y) < cam.size.y;
 }
 
 // Whether `p` (a point last frame saw, with normal `pn`) is the surface point `x` (normal `n`,
@@ -140,12 +137,12 @@ fn in_bounds(pixel: vec2<u32>) -> bool {
 // x along the surface than 2.5 pixel footprints (stretched by 1/cos of the viewing angle, at
 // most 10×). The last test tells a neighbouring pixel of the same plane from a point of that
 // plane far behind a silhouette.
-fn same_surface(x: vec3<f32>, n: vec3<f32>, depth: f32, p: vec3<f32>, pn: vec3<f32>, max_plane: f32, min_cos: f32) -> bool {
+fn same_surface(cam: View, x: vec3<f32>, n: vec3<f32>, depth: f32, p: vec3<f32>, pn: vec3<f32>, max_plane: f32, min_cos: f32) -> bool {
     if abs(dot(p - x, n)) > max_plane * depth || dot(pn, n) < min_cos {
         return false;
     }
-    let footprint = depth * 2.0 * view.tan_half_fov * view.inv_size.y;
-    let facing = max(abs(dot(n, normalize(view.camera_position.xyz - x))), 0.1);
+    let footprint = depth * 2.0 * cam.tan_half_fov * cam.inv_size.y;
+    let facing = max(abs(dot(n, normalize(cam.camera_position.xyz - x))), 0.1);
     let d = p - x;
     let reach = 2.5 * footprint / facing;
     return dot(d, d) <= reach * reach;
@@ -165,7 +162,7 @@ fn tap_offset(k: u32) -> vec2<i32> {
     return vec2<i32>(i32(k % 2u), i32(k / 2u));
 }
 
-fn history_taps(prev_geometry: texture_2d<f32>, prev: vec2<f32>, x: vec3<f32>, n: vec3<f32>, depth: f32, max_plane: f32, min_cos: f32) -> HistoryTaps {
+fn history_taps(cam: View, prev_geometry: texture_2d<f32>, prev: vec2<f32>, x: vec3<f32>, n: vec3<f32>, depth: f32, max_plane: f32, min_cos: f32) -> HistoryTaps {
     var t: HistoryTaps;
     let p = prev - 0.5;
     t.base = vec2<i32>(floor(p));
@@ -178,15 +175,15 @@ fn history_taps(prev_geometry: texture_2d<f32>, prev: vec2<f32>, x: vec3<f32>, n
         // A tap of bilinear weight below 1e-3 is not fetched (it would move the mean by less than
         // that; a still camera lands on pixel centres, where three of the four weigh ~0).
         let w = select(1.0 - f.x, f.x, o.x == 1) * select(1.0 - f.y, f.y, o.y == 1);
-        if w < 1e-3 || any(q < vec2<i32>(0)) || any(q >= vec2<i32>(view.size)) {
+        if w < 1e-3 || any(q < vec2<i32>(0)) || any(q >= vec2<i32>(cam.size)) {
             continue;
         }
         let g = textureLoad(prev_geometry, q, 0);
         if g.w <= 0.0 {
             continue;
         }
-        let pw = (view.prev_world_from_view * vec4<f32>(prev_view_position(vec2<u32>(q), g.w), 1.0)).xyz;
-        if !same_surface(x, n, depth, pw, g.xyz, max_plane, min_cos) {
+        let pw = (cam.prev_world_from_view * vec4<f32>(prev_view_position(cam, vec2<u32>(q), g.w), 1.0)).xyz;
+        if !same_surface(cam, x, n, depth, pw, g.xyz, max_plane, min_cos) {
             continue;
         }
         t.weights[k] = w;

@@ -1,5 +1,6 @@
-// far.wgsl — the far field, prepended (after env.wgsl) to passes that light what lies beyond R.
-// Its bindings are group 0 (crate::bindings::FrameBindings); crate::far uploads them.
+// far.wgsl — the far field, a library (after env.wgsl) for passes that light what lies beyond R.
+// It declares no bindings: its functions take the three far-field textures and the sampler
+// (nearfield binds them in group 0, shaders/frame_bindings.wgsl; crate::far uploads them).
 //
 // With `--far sky` (far_volume() false) passes keep their own environment terms. With a probe
 // volume (nearfield_scene::probes, the book's "The far field") a point P with normal n seen from
@@ -9,36 +10,35 @@
 // normalised sum of their order-2 SH radiance is the far field at P. ProbeVolume::weights is the
 // same arithmetic on the CPU (a GPU test compares the two).
 
-// rgba32float. Row 0, texels 0..3: the grid (FarGrid below; counts as exact floats); texel 4:
+// The textures the functions take:
+// `probes`, rgba32float. Row 0, texels 0..3: the grid (FarGrid below; counts as exact floats); texel 4:
 // 1 / the irradiance atlas's size. From row 1:
 // FAR_TEXELS texels per probe, `counts.w` probes per row: (offset xyz, active), then 9 SH rgb.
 // (The grid rides in the texture rather than a uniform: one more uniform buffer in group 0
 // crashes lavapipe 22.3's pipelines with many bindings.)
-@group(0) @binding(6) var far_probes: texture_2d<f32>;
-// rg16float, a FAR_TILE² tile per probe (`counts.w` per row): (mean, mean²) of the distance /
+// `visibility`, rg16float, a FAR_TILE² tile per probe (`counts.w` per row): (mean, mean²) of the distance /
 // max distance over an octahedral map with a one-texel border.
-@group(0) @binding(7) var far_visibility: texture_2d<f32>;
-// rgba16float, a FAR_IRR_TILE² tile per probe (`counts.w` per row): E(n)/π over an octahedral
-// map of n with a one-texel border; 1 / its size in row 0's texel 4 of far_probes.
-@group(0) @binding(8) var far_irradiance_atlas: texture_2d<f32>;
+// `atlas`, rgba16float, a FAR_IRR_TILE² tile per probe (`counts.w` per row): E(n)/π over an octahedral
+// map of n with a one-texel border; 1 / its size in row 0's texel 4 of `probes`.
+// `smp`: linear filtering (the environment's sampler).
 
 struct FarGrid {
     // xyz: position of probe (0, 0, 0) (m); w: 1 with a volume, 0 for the sky.
     origin: vec4<f32>,
     // xyz: spacing (m); w: the lookup's bias (m).
     spacing: vec4<f32>,
-    // Probes per axis; w: probes per row of far_probes and far_visibility.
+    // Probes per axis; w: probes per row of the probe texture and the visibility atlas.
     counts: vec4<u32>,
     // x: largest recorded distance (m); yz: 1 / atlas size; w: unused.
     vis: vec4<f32>,
 }
 
-fn far_grid() -> FarGrid {
+fn far_grid(probes: texture_2d<f32>) -> FarGrid {
     var g: FarGrid;
-    g.origin = textureLoad(far_probes, vec2<u32>(0u, 0u), 0);
-    g.spacing = textureLoad(far_probes, vec2<u32>(1u, 0u), 0);
-    g.counts = vec4<u32>(textureLoad(far_probes, vec2<u32>(2u, 0u), 0));
-    g.vis = textureLoad(far_probes, vec2<u32>(3u, 0u), 0);
+    g.origin = textureLoad(probes, vec2<u32>(0u, 0u), 0);
+    g.spacing = textureLoad(probes, vec2<u32>(1u, 0u), 0);
+    g.counts = vec4<u32>(textureLoad(probes, vec2<u32>(2u, 0u), 0));
+    g.vis = textureLoad(probes, vec2<u32>(3u, 0u), 0);
     return g;
 }
 
@@ -49,8 +49,8 @@ const FAR_IRR_RES: f32 = 12.0;
 const FAR_IRR_TILE: u32 = 14u;
 
 // 1 / the irradiance atlas's size.
-fn far_irr_texel() -> vec2<f32> {
-    return textureLoad(far_probes, vec2<u32>(4u, 0u), 0).xy;
+fn far_irr_texel(probes: texture_2d<f32>) -> vec2<f32> {
+    return textureLoad(probes, vec2<u32>(4u, 0u), 0).xy;
 }
 
 // The radiance arriving at a point: order-2 SH (nearfield_scene::sh's basis), rgb.
@@ -58,8 +58,8 @@ struct FarSh {
     c: array<vec4<f32>, 9>,
 }
 
-fn far_volume() -> bool {
-    return textureLoad(far_probes, vec2<u32>(0u, 0u), 0).w > 0.5;
+fn far_volume(probes: texture_2d<f32>) -> bool {
+    return textureLoad(probes, vec2<u32>(0u, 0u), 0).w > 0.5;
 }
 
 fn far_sign(v: vec2<f32>) -> vec2<f32> {
@@ -75,17 +75,17 @@ fn far_oct_encode(d: vec3<f32>) -> vec2<f32> {
     return (vec2<f32>(1.0) - abs(p.yx)) * far_sign(p);
 }
 
-fn far_texel(g: FarGrid, index: u32, k: u32) -> vec4<f32> {
+fn far_texel(probes: texture_2d<f32>, g: FarGrid, index: u32, k: u32) -> vec4<f32> {
     let row = g.counts.w;
-    return textureLoad(far_probes, vec2<u32>((index % row) * FAR_TEXELS + k, 1u + index / row), 0);
+    return textureLoad(probes, vec2<u32>((index % row) * FAR_TEXELS + k, 1u + index / row), 0);
 }
 
 // (mean, mean²) of probe `index`'s distances towards unit `d`, in metres and metres².
-fn far_moments(g: FarGrid, index: u32, d: vec3<f32>) -> vec2<f32> {
+fn far_moments(visibility: texture_2d<f32>, smp: sampler, g: FarGrid, index: u32, d: vec3<f32>) -> vec2<f32> {
     let row = g.counts.w;
     let tile = vec2<f32>(f32((index % row) * FAR_TILE), f32((index / row) * FAR_TILE));
     let t = tile + (far_oct_encode(d) * 0.5 + 0.5) * FAR_VIS_RES + 1.0;
-    let m = textureSampleLevel(far_visibility, env_sampler, t * g.vis.yz, 0.0).xy;
+    let m = textureSampleLevel(visibility, smp, t * g.vis.yz, 0.0).xy;
     let maxd = g.vis.x;
     return vec2<f32>(m.x * maxd, m.y * maxd * maxd);
 }
@@ -106,9 +106,9 @@ struct FarCell {
     alpha: vec3<f32>,
 }
 
-fn far_cell(p: vec3<f32>, n: vec3<f32>, v: vec3<f32>) -> FarCell {
+fn far_cell(probes: texture_2d<f32>, p: vec3<f32>, n: vec3<f32>, v: vec3<f32>) -> FarCell {
     var cell: FarCell;
-    cell.grid = far_grid();
+    cell.grid = far_grid(probes);
     cell.p = p;
     cell.n = n;
     let counts = vec3<f32>(cell.grid.counts.xyz);
@@ -121,14 +121,14 @@ fn far_cell(p: vec3<f32>, n: vec3<f32>, v: vec3<f32>) -> FarCell {
 }
 
 // Corner `c` (bit 0: +x, 1: +y, 2: +z) of the cell with its unnormalised weight.
-fn far_corner(cell: FarCell, c: u32) -> FarCorner {
+fn far_corner(probes: texture_2d<f32>, visibility: texture_2d<f32>, smp: sampler, cell: FarCell, c: u32) -> FarCorner {
     let g = cell.grid;
     let o = vec3<u32>(c & 1u, (c >> 1u) & 1u, (c >> 2u) & 1u);
     let coords = min(vec3<u32>(cell.base) + o, g.counts.xyz - 1u);
     var out: FarCorner;
     out.index = coords.x + g.counts.x * (coords.y + g.counts.y * coords.z);
     out.w = 0.0;
-    let state = far_texel(g, out.index, 0u);
+    let state = far_texel(probes, g, out.index, 0u);
     if state.w < 0.5 {
         return out;
     }
@@ -141,7 +141,7 @@ fn far_corner(cell: FarCell, c: u32) -> FarCorner {
     var w = wrap * wrap + 0.2;
     let from_probe = cell.biased - pos;
     let dist = length(from_probe);
-    let m = far_moments(g, out.index, from_probe / max(dist, 1e-12));
+    let m = far_moments(visibility, smp, g, out.index, from_probe / max(dist, 1e-12));
     if dist > m.x {
         let variance = max(abs(m.y - m.x * m.x), 1e-6 * g.vis.x);
         let cheb = variance / (variance + (dist - m.x) * (dist - m.x));
@@ -156,20 +156,20 @@ fn far_corner(cell: FarCell, c: u32) -> FarCorner {
 }
 
 // The far field's radiance SH at world point `p` with unit normal `n`, seen from unit `v`.
-fn far_sh_at(p: vec3<f32>, n: vec3<f32>, v: vec3<f32>) -> FarSh {
+fn far_sh_at(probes: texture_2d<f32>, visibility: texture_2d<f32>, smp: sampler, p: vec3<f32>, n: vec3<f32>, v: vec3<f32>) -> FarSh {
     var out: FarSh;
     for (var k = 0u; k < 9u; k++) {
         out.c[k] = vec4<f32>(0.0);
     }
-    let cell = far_cell(p, n, v);
+    let cell = far_cell(probes, p, n, v);
     var total = 0.0;
     for (var c = 0u; c < 8u; c++) {
-        let corner = far_corner(cell, c);
+        let corner = far_corner(probes, visibility, smp, cell, c);
         if corner.w <= 0.0 {
             continue;
         }
         for (var k = 0u; k < 9u; k++) {
-            out.c[k] += corner.w * far_texel(cell.grid, corner.index, 1u + k);
+            out.c[k] += corner.w * far_texel(probes, cell.grid, corner.index, 1u + k);
         }
         total += corner.w;
     }
@@ -184,33 +184,34 @@ fn far_sh_at(p: vec3<f32>, n: vec3<f32>, v: vec3<f32>) -> FarSh {
 // E(n)/π of the far field at world `p` with unit normal `n` seen from unit `v`: the same weights
 // as far_sh_at over each probe's pre-convolved octahedral irradiance (one bilinear fetch a probe
 // instead of 9 SH texels; ProbeVolume::irradiance_tile, within IRRADIANCE_TILE_ERROR of the SH).
-fn far_irradiance_at(p: vec3<f32>, n: vec3<f32>, v: vec3<f32>) -> vec3<f32> {
-    let cell = far_cell(p, n, v);
+fn far_irradiance_at(probes: texture_2d<f32>, visibility: texture_2d<f32>, atlas: texture_2d<f32>, smp: sampler, p: vec3<f32>, n: vec3<f32>, v: vec3<f32>) -> vec3<f32> {
+    let cell = far_cell(probes, p, n, v);
     let row = cell.grid.counts.w;
     let within = (far_oct_encode(n) * 0.5 + 0.5) * FAR_IRR_RES + 1.0;
     var e = vec3<f32>(0.0);
     var total = 0.0;
     for (var c = 0u; c < 8u; c++) {
-        let corner = far_corner(cell, c);
+        let corner = far_corner(probes, visibility, smp, cell, c);
         if corner.w <= 0.0 {
             continue;
         }
         let tile = vec2<f32>(f32((corner.index % row) * FAR_IRR_TILE), f32((corner.index / row) * FAR_IRR_TILE));
-        let uv = (tile + within) * far_irr_texel();
-        e += corner.w * textureSampleLevel(far_irradiance_atlas, env_sampler, uv, 0.0).rgb;
+        let uv = (tile + within) * far_irr_texel(probes);
+        e += corner.w * textureSampleLevel(atlas, smp, uv, 0.0).rgb;
         total += corner.w;
     }
     return max(e / max(total, 1e-20), vec3<f32>(0.0));
 }
 
-// far_irradiance_at at a surface point of the frame, seen from the camera.
-fn far_irradiance_here(p: vec3<f32>, n: vec3<f32>) -> vec3<f32> {
-    return far_irradiance_at(p, n, normalize(view.camera_position.xyz - p));
+// far_irradiance_at at a surface point of the frame, seen from the camera of `cam`.
+fn far_irradiance_here(probes: texture_2d<f32>, visibility: texture_2d<f32>, atlas: texture_2d<f32>, smp: sampler, cam: View, p: vec3<f32>, n: vec3<f32>) -> vec3<f32> {
+    return far_irradiance_at(probes, visibility, atlas, smp, p, n, normalize(cam.camera_position.xyz - p));
 }
 
-// The far field at a surface point of the frame: world `p`, unit normal `n`, seen from the camera.
-fn far_sh_here(p: vec3<f32>, n: vec3<f32>) -> FarSh {
-    return far_sh_at(p, n, normalize(view.camera_position.xyz - p));
+// The far field at a surface point of the frame: world `p`, unit normal `n`, seen from the
+// camera of `cam`.
+fn far_sh_here(probes: texture_2d<f32>, visibility: texture_2d<f32>, smp: sampler, cam: View, p: vec3<f32>, n: vec3<f32>) -> FarSh {
+    return far_sh_at(probes, visibility, smp, p, n, normalize(cam.camera_position.xyz - p));
 }
 
 // E(n)/π of the far field (Ramamoorthi & Hanrahan 2001, as env_irradiance_sh).

@@ -1,5 +1,5 @@
 // gpu_material.wgsl — `GpuMaterial`, one material of the scene as the raster passes read it
-// (mirrors crate::gpu_scene::GpuMaterial; a naga test checks the offsets).
+// (mirrors crate::gpu_scene::GpuMaterial; a naga test checks the offsets). A library: no bindings.
 
 struct GpuMaterial {
     base_color: vec4<f32>,

@@ -1,10 +1,15 @@
-// lights.wgsl — punctual lights and their shadow maps, shared by direct_lighting.wgsl and the
-// near-field techniques that occlude lights in screen space. It declares no bindings: a pass that
-// includes it declares, in its group 1 (Rust: `LightBindings` fields of its binding struct),
+// lights.wgsl — punctual lights and their shadow maps, a library shared by direct_lighting.wgsl,
+// the extra layers' shading and the near-field techniques that occlude lights in screen space. It
+// declares no bindings: its functions take one light (`GpuLight`, an element of the light table)
+// and what they read of the shadow maps as parameters. A pass that uses them declares, in its
+// group 1 (Rust: `LightResources`, crate::contract::lights),
 //   lights: array<GpuLight> (storage, read), shadow_clip_from_world: array<mat4x4<f32>>
 //   (storage, read), shadow_maps: texture_depth_2d_array, shadow_sampler: sampler_comparison,
 //   shadow_depths: texture_2d_array<f32> (the same maps, unfilterable: the loads of the disc
-//   search, which GL cannot make from a depth texture).
+//   search, which GL cannot make from a depth texture),
+// loops over `lights` itself, and passes the layer's matrix, shadow_clip_from_world[layer] with
+// layer = shadow_layer(l, p), to shadow_visibility, and the frame's shadow normal offset (in
+// shadow-map texels) to shadow_visibility and shadow_bias_length.
 // `GpuLight` mirrors crate::gpu_scene::GpuLight; the irradiance formulas mirror
 // nearfield_scene::Light (falloff, spot cone, range window).
 
@@ -75,37 +80,52 @@ fn cube_face(v: vec3<f32>) -> u32 {
     return select(5u, 4u, v.z > 0.0);
 }
 
-fn shadow_visibility(l: GpuLight, p: vec3<f32>, n: vec3<f32>) -> f32 {
+// The shadow-map layer of light l that sees world point p: its first layer, plus the cube face
+// for a point light; 0 for an unshadowed light (shadow_visibility does not read it then).
+fn shadow_layer(l: GpuLight, p: vec3<f32>) -> u32 {
+    let first = l.shadow_layer;
+    if first < 0.0 {
+        return 0u;
+    }
+    var layer = u32(first);
+    if u32(l.kind) == 1u {
+        let from_light = p - l.position;
+        layer += cube_face(from_light);
+    }
+    return layer;
+}
+
+// Shadow-map visibility of light l at world point p with normal n: `layer` = shadow_layer(l, p)
+// and `clip_from_world` its matrix (shadow_clip_from_world[layer]); `maps`/`depths` the shadow
+// maps (filtered comparisons, unfilterable loads), `smp` their comparison sampler;
+// `normal_offset` the receiver offset along n in shadow-map texels (frame.shadow_normal_offset).
+fn shadow_visibility(maps: texture_depth_2d_array, depths: texture_2d_array<f32>, smp: sampler_comparison, normal_offset: f32, l: GpuLight, layer: u32, clip_from_world: mat4x4<f32>, p: vec3<f32>, n: vec3<f32>) -> f32 {
     let first = l.shadow_layer;
     if first < 0.0 {
         return 1.0;
     }
     let kind = u32(l.kind);
-    var layer = u32(first);
     var texel_world = l.shadow_texel;
     if kind != 0u {
         let from_light = p - l.position;
         texel_world *= length(from_light);
-        if kind == 1u {
-            layer += cube_face(from_light);
-        }
     }
-    let offset_p = p + n * (frame.shadow_normal_offset * texel_world);
-    let c = shadow_clip_from_world[layer] * vec4<f32>(offset_p, 1.0);
+    let offset_p = p + n * (normal_offset * texel_world);
+    let c = clip_from_world * vec4<f32>(offset_p, 1.0);
     let ndc = c.xyz / c.w;
     let uv = vec2<f32>(ndc.x * 0.5 + 0.5, 0.5 - ndc.y * 0.5);
     if any(uv < vec2<f32>(0.0)) || any(uv > vec2<f32>(1.0)) || ndc.z > 1.0 || ndc.z < 0.0 {
         return 1.0;
     }
     if kind == 0u && l.tan_radius > 0.0 {
-        return disc_shadow(l, layer, offset_p, n, uv, ndc.z);
+        return disc_shadow(maps, depths, smp, l, layer, clip_from_world, offset_p, n, uv, ndc.z);
     }
-    let texel = 1.0 / vec2<f32>(textureDimensions(shadow_maps));
+    let texel = 1.0 / vec2<f32>(textureDimensions(maps));
     var sum = 0.0;
     for (var j = -1; j <= 1; j++) {
         for (var i = -1; i <= 1; i++) {
             let o = vec2<f32>(f32(i), f32(j)) * texel;
-            sum += textureSampleCompareLevel(shadow_maps, shadow_sampler, uv + o, layer, ndc.z);
+            sum += textureSampleCompareLevel(maps, smp, uv + o, layer, ndc.z);
         }
     }
     return sum / 9.0;
@@ -124,9 +144,9 @@ fn shadow_visibility(l: GpuLight, p: vec3<f32>, n: vec3<f32>) -> f32 {
 const DISC_SEARCH_TEXELS: f32 = 24.0;
 const DISC_SEARCH_SAMPLES: i32 = 32;
 
-fn disc_shadow(l: GpuLight, layer: u32, p: vec3<f32>, n: vec3<f32>, uv: vec2<f32>, z: f32) -> f32 {
-    let m = shadow_clip_from_world[layer];
-    let dims = vec2<f32>(textureDimensions(shadow_maps));
+fn disc_shadow(maps: texture_depth_2d_array, depths: texture_2d_array<f32>, smp: sampler_comparison, l: GpuLight, layer: u32, clip_from_world: mat4x4<f32>, p: vec3<f32>, n: vec3<f32>, uv: vec2<f32>, z: f32) -> f32 {
+    let m = clip_from_world;
+    let dims = vec2<f32>(textureDimensions(maps));
     // Metres of depth per unit of the map's depth (orthographic: a constant).
     let metres_per_depth = 1.0 / max(length(vec3<f32>(m[0].z, m[1].z, m[2].z)), 1e-12);
     let texel_world = l.shadow_texel;
@@ -158,7 +178,7 @@ fn disc_shadow(l: GpuLight, layer: u32, p: vec3<f32>, n: vec3<f32>, uv: vec2<f32
         let ak = f32(k) * 2.39996323;
         let o = vec2<f32>(cos(ak), sin(ak)) * rk * search;
         let q = clamp(uv + o, vec2<f32>(0.0), vec2<f32>(1.0) - 0.5 / dims);
-        let d = textureLoad(shadow_depths, vec2<i32>(q * dims), layer, 0).r;
+        let d = textureLoad(depths, vec2<i32>(q * dims), layer, 0).r;
         let gap = z + dot(slope, o) - d;
         // A blocker counts only where it can hide part of the disc from p: its lateral offset
         // is within gap · tan r (plus a texel).
@@ -178,7 +198,7 @@ fn disc_shadow(l: GpuLight, layer: u32, p: vec3<f32>, n: vec3<f32>, uv: vec2<f32
     for (var j = 0; j < 5; j++) {
         for (var i = 0; i < 5; i++) {
             let o = (vec2<f32>(f32(i), f32(j)) - 2.0) * 0.5 * kernel;
-            sum += textureSampleCompareLevel(shadow_maps, shadow_sampler, uv + o, layer, z + dot(slope, o));
+            sum += textureSampleCompareLevel(maps, smp, uv + o, layer, z + dot(slope, o));
         }
     }
     return sum / 25.0;
@@ -188,9 +208,9 @@ fn disc_shadow(l: GpuLight, layer: u32, p: vec3<f32>, n: vec3<f32>, uv: vec2<f32
 // occluder (SSDO paper Sec. 5, Fig. 8): the paper's b = (t/2)·tan α for a texel of world size t
 // at p and the angle α between n and the light, plus the two biases this shadow map adds — the
 // rasterizer's slope-scaled depth bias (2 texels of depth slope: 2t·tan α, shadow.rs) and the
-// receiver offset along n (frame.shadow_normal_offset texels: its component along the light, t·k·cos α).
-// tan α is capped at 10 (α ≈ 84°). 0 for an unshadowed light.
-fn shadow_bias_length(l: GpuLight, p: vec3<f32>, n: vec3<f32>) -> f32 {
+// receiver offset along n (`normal_offset` texels, frame.shadow_normal_offset: its component
+// along the light, t·k·cos α). tan α is capped at 10 (α ≈ 84°). 0 for an unshadowed light.
+fn shadow_bias_length(normal_offset: f32, l: GpuLight, p: vec3<f32>, n: vec3<f32>) -> f32 {
     if l.shadow_layer < 0.0 {
         return 0.0;
     }
@@ -203,5 +223,5 @@ fn shadow_bias_length(l: GpuLight, p: vec3<f32>, n: vec3<f32>) -> f32 {
     }
     let cos_a = clamp(dot(n, to_light), 1e-4, 1.0);
     let tan_a = min(sqrt(max(0.0, 1.0 - cos_a * cos_a)) / cos_a, 10.0);
-    return texel_world * (2.5 * tan_a + frame.shadow_normal_offset * cos_a);
+    return texel_world * (2.5 * tan_a + normal_offset * cos_a);
 }

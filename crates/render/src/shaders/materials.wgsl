@@ -3,9 +3,11 @@
 // live in two 2D arrays (sRGB and linear) whose layers are
 // resized to a common size; u32::MAX marks "no texture".
 //
-// It declares no bindings. A pass that includes it declares, in its group 1: materials:
-// array<GpuMaterial> (storage, read), srgb_textures and linear_textures: texture_2d_array<f32>,
-// material_sampler: sampler.
+// It declares no bindings: surface_material takes the fragment's material (one element of the
+// material table) and the two texture arrays and sampler it reads. A pass that uses it declares,
+// in its group 1, materials: array<GpuMaterial> (storage, read), srgb_textures and
+// linear_textures: texture_2d_array<f32>, material_sampler: sampler, and passes
+// materials[in.material] and those.
 
 struct VertexIn {
     @location(0) position: vec3<f32>,
@@ -34,7 +36,8 @@ fn transform_vertex(v: VertexIn, clip_from_world: mat4x4<f32>) -> VertexOut {
 }
 
 // What the material gives at a fragment: base colour, metallic, roughness, emission. Discards
-// fragments below the alpha cutoff.
+// fragments below the alpha cutoff. `m` is the fragment's material (materials[in.material]),
+// `srgb_maps`/`linear_maps` the sRGB and linear texture arrays, `smp` their sampler.
 struct SurfaceMaterial {
     base: vec3<f32>,
     metallic: f32,
@@ -42,11 +45,10 @@ struct SurfaceMaterial {
     emissive: vec3<f32>,
 }
 
-fn surface_material(in: VertexOut, duv_dx: vec2<f32>, duv_dy: vec2<f32>) -> SurfaceMaterial {
-    let m = materials[in.material];
+fn surface_material(m: GpuMaterial, srgb_maps: texture_2d_array<f32>, linear_maps: texture_2d_array<f32>, smp: sampler, in: VertexOut, duv_dx: vec2<f32>, duv_dy: vec2<f32>) -> SurfaceMaterial {
     var base = m.base_color;
     if m.base_color_texture != NO_TEXTURE {
-        base *= textureSampleGrad(srgb_textures, material_sampler, in.uv, m.base_color_texture, duv_dx, duv_dy);
+        base *= textureSampleGrad(srgb_maps, smp, in.uv, m.base_color_texture, duv_dx, duv_dy);
     }
     if base.a < m.alpha_cutoff {
         discard;
@@ -54,13 +56,13 @@ fn surface_material(in: VertexOut, duv_dx: vec2<f32>, duv_dy: vec2<f32>) -> Surf
     var metallic = m.metallic;
     var roughness = m.roughness;
     if m.metallic_roughness_texture != NO_TEXTURE {
-        let mr = textureSampleGrad(linear_textures, material_sampler, in.uv, m.metallic_roughness_texture, duv_dx, duv_dy);
+        let mr = textureSampleGrad(linear_maps, smp, in.uv, m.metallic_roughness_texture, duv_dx, duv_dy);
         roughness *= mr.g;
         metallic *= mr.b;
     }
     var emissive = m.emissive;
     if m.emissive_texture != NO_TEXTURE {
-        emissive *= textureSampleGrad(srgb_textures, material_sampler, in.uv, m.emissive_texture, duv_dx, duv_dy).rgb;
+        emissive *= textureSampleGrad(srgb_maps, smp, in.uv, m.emissive_texture, duv_dx, duv_dy).rgb;
     }
     return SurfaceMaterial(base.rgb, metallic, roughness, emissive);
 }

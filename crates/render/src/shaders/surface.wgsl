@@ -1,6 +1,8 @@
-// surface.wgsl — the G-buffer surface at a pixel: world position and unit normal. A pass that
-// includes it declares, in its group 1: gb_normal: texture_2d<f32> (rgba16float, xyz world
-// normal, w = 0 on background) and gb_view_depth: texture_2d<f32> (r32float, m).
+// surface.wgsl — the G-buffer surface at a pixel: world position and unit normal, a library (after
+// common.wgsl). It declares no bindings: surface_at takes the view and the two G-buffer targets it
+// reads, `normal`: texture_2d<f32> (rgba16float, xyz world normal, w = 0 on background) and
+// `depth`: texture_2d<f32> (r32float, view depth in m); a pass passes its gb_normal and
+// gb_view_depth.
 
 struct Surface {
     p: vec3<f32>,
@@ -8,11 +10,11 @@ struct Surface {
     valid: bool,
 }
 
-fn surface_at(pixel: vec2<u32>) -> Surface {
+fn surface_at(cam: View, normal: texture_2d<f32>, depth: texture_2d<f32>, pixel: vec2<u32>) -> Surface {
     var s: Surface;
-    let nw = textureLoad(gb_normal, pixel, 0);
+    let nw = textureLoad(normal, pixel, 0);
     s.valid = nw.w != 0.0;
     s.n = normalize(nw.xyz);
-    s.p = world_position(pixel, textureLoad(gb_view_depth, pixel, 0).r);
+    s.p = world_position(cam, pixel, textureLoad(depth, pixel, 0).r);
     return s;
 }

@@ -1,4 +1,5 @@
-// tonemap_ops.wgsl — display transforms shared by the tonemap and display passes:
+// tonemap_ops.wgsl — display transforms shared by the tonemap and display passes, a library of
+// pure functions (no bindings; the operator arrives as a parameter):
 //   `aces`    Narkowicz' fit of the ACES filmic curve ("ACES Filmic Tone Mapping Curve", 2015),
 //             applied per channel to c · 0.6 (his scale for scene-referred input);
 //   `neutral` Khronos PBR Neutral (2024): hue-preserving, leaves colours below 0.76 untouched;

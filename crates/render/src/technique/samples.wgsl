@@ -1,17 +1,25 @@
 // samples.wgsl — hemisphere samples and the screen-space visibility test shared by the
 // sampling techniques (ssao, ssdo, s3ho, ssbn), so that they differ only in what they do with the
-// samples. Prepended after common.wgsl and shaders/surface.wgsl (and env/lights where needed). Sources and deviations: see
+// samples, a library (after common.wgsl and shaders/surface.wgsl). Sources and deviations: see
 // technique/ssdo/mod.rs, whose header documents the test. The interleaved sample sets come from
 // samples.rs beside this file.
 //
-// It declares no bindings. A pass that includes it declares, in its group 1, under these names:
+// It declares no bindings: its functions take the view (`cam: View`), the textures and the
+// elements of the storage arrays they read. A pass that uses them declares, in its group 1:
 //   sample_sets: array<vec4<f32>> (storage, read) — the interleaved pattern: 16 sets × N samples
-//     (xyz unit direction in the tangent frame, z up; w: λ/R in (0, 1]);
+//     (xyz unit direction in the tangent frame, z up; w: λ/R in (0, 1]); sample_local takes the
+//     entry sample_sets[sample_set_index(i, pixel, cfg)];
 //   gb_normal, gb_view_depth (as shaders/surface.wgsl);
 //   layer_views: array<LayerView> (storage, read) — extra layers (passes/layers/): views 0..2 =
-//     peeled layers 2..4 of the main camera, views 3..6 = additional cameras;
+//     peeled layers 2..4 of the main camera, views 3..6 = additional cameras; camera_verdict
+//     takes camera c's, layer_views[CAMERA_VIEW_BASE + c];
 //   peel_normal, peel_depth, cam_normal, cam_depth: texture_2d_array<f32> — their normals
 //     (oriented: see layers.rs) and view depths (unfilterable).
+// The blocker test over all views (`occlusion`: the main view's verdict, then each additional
+// camera's) and its march along a direction (`march_occlusion`) loop over layer_views, a
+// storage array no function can take: they are glue in each pass that runs the test (ssdo
+// `direct` and `bounce`, s3ho `sample`), written the same in each; their rules are documented
+// here, beside the pieces they call.
 
 const CAMERA_VIEW_BASE: u32 = 3u;
 // `Occlusion.source` of a blocker seen by additional camera c: CAMERA_SOURCE + c (peeled layer
@@ -44,23 +52,31 @@ fn hash(v: u32) -> u32 {
     return (word >> 22u) ^ word;
 }
 
+// Index in the interleaved pattern (sample_sets) of sample i of pixel `pixel`.
+fn sample_set_index(i: u32, pixel: vec2<u32>, cfg: SampleConfig) -> u32 {
+    let n = cfg.samples;
+    let set_index = (pixel.x % 4u) + 4u * (pixel.y % 4u);
+    return set_index * n + i;
+}
+
 // Sample i of pixel `pixel`: xyz unit direction in the tangent frame (z = normal), w = λ/R.
-fn sample_local(i: u32, pixel: vec2<u32>, cfg: SampleConfig) -> vec4<f32> {
+// `seed` is the frame's noise seed (View::seed); `set_sample` the interleaved pattern's entry,
+// sample_sets[sample_set_index(i, pixel, cfg)], returned for pattern 1.
+fn sample_local(seed: u32, set_sample: vec4<f32>, i: u32, pixel: vec2<u32>, cfg: SampleConfig) -> vec4<f32> {
     let n = cfg.samples;
     if cfg.pattern == 1u {
-        let set_index = (pixel.x % 4u) + 4u * (pixel.y % 4u);
-        return sample_sets[set_index * n + i];
+        return set_sample;
     }
     // Chapter: stratified elevation cos = 1 − α, golden-ratio azimuth, IGN rotation.
     let alpha = (f32(i) + 0.5) / f32(n);
     let cos_e = 1.0 - alpha;
     let sin_e = sqrt(max(0.0, 1.0 - cos_e * cos_e));
     // Seed 0 gives the chapter's rotation exactly; other seeds turn it further.
-    let phi = PI * fract(interleaved_gradient_noise(pixel) + f32(hash(view.seed) >> 8u) / 16777216.0 * f32(min(view.seed, 1u)));
+    let phi = PI * fract(interleaved_gradient_noise(pixel) + f32(hash(seed) >> 8u) / 16777216.0 * f32(min(seed, 1u)));
     let theta = 2.0 * PI * alpha * (7.0 * f32(n) / 9.0) + phi;
     // Random length λ ∈ (0, 1] per pixel and sample (with the frame seed), λ = u^(1/3): the
     // sampling points are uniform in the hemisphere's volume.
-    let h = hash(pixel.x * 1973u + pixel.y * 9277u + i * 26699u + view.seed * 103u);
+    let h = hash(pixel.x * 1973u + pixel.y * 9277u + i * 26699u + seed * 103u);
     let lambda = pow((f32(h >> 8u) + 1.0) / 16777216.0, 1.0 / 3.0);
     return vec4<f32>(sin_e * cos(theta), sin_e * sin(theta), cos_e, lambda);
 }
@@ -102,23 +118,27 @@ fn blocker_fade(p: vec3<f32>, s: vec3<f32>, lambda: f32, surf: Surface, cfg: Sam
     return vec2<f32>(1.0 - smoothstep(cfg.fade * cfg.radius, cfg.radius, d), d);
 }
 
-fn peel_surface(pixel: vec2<u32>, k: u32) -> Surface {
+// The surface of peeled layer k + 2 of the main view (`cam`) at `pixel`: `normals`/`depths` the
+// peeled layers' normals and view depths (peel_normal, peel_depth).
+fn peel_surface(cam: View, normals: texture_2d_array<f32>, depths: texture_2d_array<f32>, pixel: vec2<u32>, k: u32) -> Surface {
     var s: Surface;
-    let nw = textureLoad(peel_normal, pixel, k, 0);
-    let depth = textureLoad(peel_depth, pixel, k, 0).r;
+    let nw = textureLoad(normals, pixel, k, 0);
+    let depth = textureLoad(depths, pixel, k, 0).r;
     s.valid = nw.w != 0.0 && depth > 0.0;
     s.n = normalize(nw.xyz);
-    s.p = world_position(pixel, depth);
+    s.p = world_position(cam, pixel, depth);
     return s;
 }
 
-fn camera_surface(pixel: vec2<u32>, c: u32) -> Surface {
+// The surface additional camera c (its view `camera`, layer_views[CAMERA_VIEW_BASE + c]) sees at
+// `pixel`: `normals`/`depths` the cameras' normals and view depths (cam_normal, cam_depth).
+fn camera_surface(camera: LayerView, normals: texture_2d_array<f32>, depths: texture_2d_array<f32>, pixel: vec2<u32>, c: u32) -> Surface {
     var s: Surface;
-    let nw = textureLoad(cam_normal, pixel, c, 0);
-    let depth = textureLoad(cam_depth, pixel, c, 0).r;
+    let nw = textureLoad(normals, pixel, c, 0);
+    let depth = textureLoad(depths, pixel, c, 0).r;
     s.valid = nw.w != 0.0 && depth > 0.0;
     s.n = normalize(nw.xyz);
-    s.p = layer_position(layer_views[CAMERA_VIEW_BASE + c], pixel, depth);
+    s.p = layer_position(camera, pixel, depth);
     return s;
 }
 
@@ -135,13 +155,14 @@ struct ViewVerdict {
 // an entry layer (1, 3) and the exit layer after it (2, 4): behind an exit face it lies in a gap
 // and is free (Fig. 5, sample A). Peeled normals face outwards (entry layers towards the camera,
 // exit layers away from it), so "inside" is "behind both faces' planes". A missing exit keeps
-// the single-layer verdict.
-fn main_view_verdict(p: vec3<f32>, s: vec3<f32>, lambda: f32, cfg: SampleConfig) -> ViewVerdict {
+// the single-layer verdict. `cam` is the main view; `gb_normal`/`gb_depth` its G-buffer normal and
+// view depth, `peel_normal`/`peel_depth` its peeled layers'.
+fn main_view_verdict(cam: View, gb_normal: texture_2d<f32>, gb_depth: texture_2d<f32>, peel_normal: texture_2d_array<f32>, peel_depth: texture_2d_array<f32>, p: vec3<f32>, s: vec3<f32>, lambda: f32, cfg: SampleConfig) -> ViewVerdict {
     var v: ViewVerdict;
     v.informed = false;
     v.free = true;
     v.o.amount = 0.0;
-    let c = view.clip_from_world * vec4<f32>(s, 1.0);
+    let c = cam.clip_from_world * vec4<f32>(s, 1.0);
     // Chapter condition 1: outside the screen (or behind the camera) — no information.
     if c.w <= 0.0 {
         return v;
@@ -152,8 +173,8 @@ fn main_view_verdict(p: vec3<f32>, s: vec3<f32>, lambda: f32, cfg: SampleConfig)
         return v;
     }
     v.informed = true;
-    let q = vec2<u32>(uv * view.size);
-    let surf = surface_at(q);
+    let q = vec2<u32>(uv * cam.size);
+    let surf = surface_at(cam, gb_normal, gb_depth, q);
     // Chapter condition 2: background — open.
     if !surf.valid {
         return v;
@@ -168,7 +189,7 @@ fn main_view_verdict(p: vec3<f32>, s: vec3<f32>, lambda: f32, cfg: SampleConfig)
     var source = 0u;
     var inside = true;
     for (var k = 0u; k + 1u < cfg.layers; k++) {
-        let layer = peel_surface(q, k);
+        let layer = peel_surface(cam, peel_normal, peel_depth, q, k);
         if !layer.valid {
             break;
         }
@@ -207,14 +228,14 @@ fn main_view_verdict(p: vec3<f32>, s: vec3<f32>, lambda: f32, cfg: SampleConfig)
     return v;
 }
 
-// Additional camera c (paper Sec. 4): the single-layer test in that view.
-fn camera_verdict(p: vec3<f32>, s: vec3<f32>, lambda: f32, c: u32, cfg: SampleConfig) -> ViewVerdict {
+// Additional camera c (paper Sec. 4): the single-layer test in that view, `camera`
+// (layer_views[CAMERA_VIEW_BASE + c]); `cam_normal`/`cam_depth` the cameras' normals and depths.
+fn camera_verdict(camera: LayerView, cam_normal: texture_2d_array<f32>, cam_depth: texture_2d_array<f32>, p: vec3<f32>, s: vec3<f32>, lambda: f32, c: u32, cfg: SampleConfig) -> ViewVerdict {
     var v: ViewVerdict;
     v.informed = false;
     v.free = true;
     v.o.amount = 0.0;
-    let cam = layer_views[CAMERA_VIEW_BASE + c];
-    let h = cam.clip_from_world * vec4<f32>(s, 1.0);
+    let h = camera.clip_from_world * vec4<f32>(s, 1.0);
     if h.w <= 0.0 {
         return v;
     }
@@ -224,8 +245,8 @@ fn camera_verdict(p: vec3<f32>, s: vec3<f32>, lambda: f32, c: u32, cfg: SampleCo
         return v;
     }
     v.informed = true;
-    let q = vec2<u32>(uv * cam.size);
-    let surf = camera_surface(q, c);
+    let q = vec2<u32>(uv * camera.size);
+    let surf = camera_surface(camera, cam_normal, cam_depth, q, c);
     if !surf.valid || dot(s - surf.p, surf.n) >= -1e-4 * h.w {
         return v;
     }
@@ -239,32 +260,11 @@ fn camera_verdict(p: vec3<f32>, s: vec3<f32>, lambda: f32, c: u32, cfg: SampleCo
     return v;
 }
 
-// The blocker test of every technique that samples the hemisphere. With additional cameras a
-// sample is free as soon as one view that sees it finds it in front of the surface there (free
-// space seen from any viewpoint is free), else occluded by the strongest blocker any view found;
-// off-screen in every view, it is free (chapter condition 1).
-fn occlusion(p: vec3<f32>, omega: vec3<f32>, lambda: f32, cfg: SampleConfig) -> Occlusion {
-    let s = p + omega * lambda;
-    var best = main_view_verdict(p, s, lambda, cfg);
-    if best.informed && best.free {
-        return best.o;
-    }
-    for (var c = 0u; c < cfg.cameras; c++) {
-        let v = camera_verdict(p, s, lambda, c, cfg);
-        if !v.informed {
-            continue;
-        }
-        if v.free {
-            var none: Occlusion;
-            none.amount = 0.0;
-            return none;
-        }
-        if !best.informed || v.o.amount > best.o.amount {
-            best = v;
-        }
-    }
-    return best.o;
-}
+// The blocker test of every technique that samples the hemisphere, `occlusion(p, omega, lambda,
+// cfg) -> Occlusion` (glue in each pass, see the header): s = p + λω; the main view's verdict,
+// then each additional camera's. A sample is free as soon as one view that sees it finds it in
+// front of the surface there (free space seen from any viewpoint is free), else occluded by the
+// strongest blocker any view found; off-screen in every view, it is free (chapter condition 1).
 
 // Points per direction of the march a bounce takes its sender from. The bounce's patch estimator
 // (area πR²/N at the sample's distance, SSDO Sec. 3) assumes the senders of points spread
@@ -280,33 +280,17 @@ fn bounce_steps(steps: u32, paper_steps: u32, cfg: SampleConfig) -> u32 {
     return steps;
 }
 
-// Where a world point falls on the main view, in pixels.
-fn screen_pixel(x: vec3<f32>) -> vec2<f32> {
-    let c = view.clip_from_world * vec4<f32>(x, 1.0);
+// Where a world point falls on the main view `cam`, in pixels.
+fn screen_pixel(cam: View, x: vec3<f32>) -> vec2<f32> {
+    let c = cam.clip_from_world * vec4<f32>(x, 1.0);
     let ndc = c.xy / max(c.w, 1e-12);
-    return vec2<f32>(ndc.x * 0.5 + 0.5, 0.5 - ndc.y * 0.5) * view.size;
+    return vec2<f32>(ndc.x * 0.5 + 0.5, 0.5 - ndc.y * 0.5) * cam.size;
 }
 
-// The blocker test along a direction (ray marching): `steps` points at λ·k/steps, k = 1..steps;
-// the first occluded one decides (steps = 1: the paper's single point at λ). Points before the
-// last that land within MARCH_MIN_PIXELS of p on screen are skipped: the depth buffer cannot
-// resolve them (they read p's own pixel or its neighbours, whose faces at a corner would count
-// as blockers), so a sub-pixel radius gets the single-point test.
+// The blocker test along a direction (ray marching), `march_occlusion(p, omega, lambda, steps,
+// cfg) -> Occlusion` (glue in each pass, see the header): `steps` points at λ·k/steps,
+// k = 1..steps; the first occluded one decides (steps = 1: the paper's single point at λ).
+// Points before the last that land within MARCH_MIN_PIXELS of p on screen (screen_pixel) are
+// skipped: the depth buffer cannot resolve them (they read p's own pixel or its neighbours, whose
+// faces at a corner would count as blockers), so a sub-pixel radius gets the single-point test.
 const MARCH_MIN_PIXELS: f32 = 1.5;
-
-fn march_occlusion(p: vec3<f32>, omega: vec3<f32>, lambda: f32, steps: u32, cfg: SampleConfig) -> Occlusion {
-    var o: Occlusion;
-    o.amount = 0.0;
-    let at = screen_pixel(p);
-    for (var k = 1u; k <= steps; k++) {
-        let l = lambda * f32(k) / f32(steps);
-        if cfg.layers > 1u && k < steps && distance(screen_pixel(p + omega * l), at) < MARCH_MIN_PIXELS {
-            continue;
-        }
-        o = occlusion(p, omega, l, cfg);
-        if o.amount > 0.0 {
-            break;
-        }
-    }
-    return o;
-}

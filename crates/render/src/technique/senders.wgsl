@@ -1,6 +1,7 @@
 // senders.wgsl — the screen-space bounce's sender patches (SSDO Sec. 3), shared by the passes
-// that gather indirect light from occluding pixels (ssdo `bounce`, s3ho `sample`). Included after
-// samples.wgsl. A pass that includes it also declares, in its group 1:
+// that gather indirect light from occluding pixels (ssdo `bounce`, s3ho `sample`), a library
+// (after samples.wgsl). It declares no bindings: layer_sender_radiance takes the textures it
+// reads, which such a pass declares in its group 1 and passes on:
 //   peel_radiance, cam_radiance: texture_2d_array<f32> — the direct radiance of the peeled layers
 //   and additional cameras (passes/layers/ `shade`).
 
@@ -46,7 +47,7 @@ fn clamp_remainder_transfer(receiver: Surface, sender: Surface, area: f32, dista
 
 // Direct radiance of a sender that a peeled layer (e.g. the back face of a solid) or an
 // additional camera (e.g. a surface hidden in the main view) supplies: `occ.source` > 0.
-fn layer_sender_radiance(occ: Occlusion) -> vec3<f32> {
+fn layer_sender_radiance(peel_radiance: texture_2d_array<f32>, cam_radiance: texture_2d_array<f32>, occ: Occlusion) -> vec3<f32> {
     if occ.source < CAMERA_SOURCE {
         return textureLoad(peel_radiance, occ.pixel, occ.source - 1u, 0).rgb;
     }

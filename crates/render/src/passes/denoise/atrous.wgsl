@@ -26,7 +26,7 @@ const KERNEL: array<f32, 3> = array<f32, 3>(0.25, 0.5, 0.25);
 @compute @workgroup_size(8, 8, 1)
 fn atrous(@builtin(global_invocation_id) id: vec3<u32>) {
     let pixel = id.xy;
-    if !in_bounds(pixel) {
+    if !in_bounds(view, pixel) {
         return;
     }
     let centre = textureLoad(in_signal, pixel, 0);
@@ -39,8 +39,8 @@ fn atrous(@builtin(global_invocation_id) id: vec3<u32>) {
         return;
     }
     let n = normalize(nw.xyz);
-    let n_view = to_view(n);
-    let x = view_position(pixel, depth);
+    let n_view = to_view(view, n);
+    let x = view_position(view, pixel, depth);
     let size = vec2<i32>(view.size);
     var sig: array<vec4<f32>, 9>;
     var env: array<vec3<f32>, 9>;
@@ -67,8 +67,8 @@ fn atrous(@builtin(global_invocation_id) id: vec3<u32>) {
         let h = KERNEL[o.x + 1] * KERNEL[o.y + 1];
         var_sum += h * sig[k].yz;
         var_w += h;
-        let xq = view_position(vec2<u32>(q), qd);
-        geo[k] = h * svgf_geometry_weight(x, n_view, n, depth, xq, normalize(qn.xyz));
+        let xq = view_position(view, vec2<u32>(q), qd);
+        geo[k] = h * svgf_geometry_weight(params, x, n_view, n, depth, xq, normalize(qn.xyz));
     }
     let var_p = var_sum / max(var_w, 1e-6);
     let l_p = svgf_luma(ind[4]);

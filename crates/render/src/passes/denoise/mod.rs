@@ -53,6 +53,7 @@ fn source_of(kernel: &str) -> String {
     util::compose(&[
         util::COMMON_WGSL,
         util::ENV_WGSL,
+        util::FRAME_BINDINGS_WGSL,
         include_str!("params.wgsl"),
         kernel,
     ])

@@ -1,5 +1,7 @@
 // params.wgsl — `SvgfParams` and the helpers the svgf passes share (passes/denoise/mod.rs holds
-// the model and its deviations).
+// the model and its deviations), a library (after common.wgsl). It declares no bindings: the
+// helpers take the `SvgfParams` and the `View` they read as parameters (each kernel binds its own
+// `params` in group 1 and passes it, with group 0's `view`, on).
 
 struct SvgfParams {
     // 1: temporal accumulation.
@@ -24,13 +26,14 @@ fn svgf_luma(c: vec3<f32>) -> f32 {
 
 // The geometric part of a tap's weight: the tap's surface point's distance from the centre's
 // tangent plane relative to the centre's view depth, and the normals' cosine. Positions in view
-// space (`view_position`), `n_view` the centre's normal in view space, `n` and `nq` in world space.
-fn svgf_geometry_weight(x_view: vec3<f32>, n_view: vec3<f32>, n: vec3<f32>, depth: f32, xq_view: vec3<f32>, nq: vec3<f32>) -> f32 {
-    let plane = abs(dot(n_view, xq_view - x_view)) / (params.sigma_z * depth);
-    return exp(-plane) * pow(max(dot(n, nq), 0.0), params.sigma_n);
+// space (`view_position`), `n_view` the centre's normal in view space, `n` and `nq` in world space;
+// σ_z and σ_n from `p`.
+fn svgf_geometry_weight(p: SvgfParams, x_view: vec3<f32>, n_view: vec3<f32>, n: vec3<f32>, depth: f32, xq_view: vec3<f32>, nq: vec3<f32>) -> f32 {
+    let plane = abs(dot(n_view, xq_view - x_view)) / (p.sigma_z * depth);
+    return exp(-plane) * pow(max(dot(n, nq), 0.0), p.sigma_n);
 }
 
-// A world-space direction in view space.
-fn to_view(n: vec3<f32>) -> vec3<f32> {
-    return vec3<f32>(dot(view.world_from_view[0].xyz, n), dot(view.world_from_view[1].xyz, n), dot(view.world_from_view[2].xyz, n));
+// A world-space direction in the view space of `cam`.
+fn to_view(cam: View, n: vec3<f32>) -> vec3<f32> {
+    return vec3<f32>(dot(cam.world_from_view[0].xyz, n), dot(cam.world_from_view[1].xyz, n), dot(cam.world_from_view[2].xyz, n));
 }

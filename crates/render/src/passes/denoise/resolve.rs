@@ -8,6 +8,7 @@ pub fn source() -> String {
     util::compose(&[
         util::COMMON_WGSL,
         util::ENV_WGSL,
+        util::FRAME_BINDINGS_WGSL,
         include_str!("resolve.wgsl"),
     ])
 }

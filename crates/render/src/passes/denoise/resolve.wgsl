@@ -10,7 +10,7 @@
 @compute @workgroup_size(8, 8, 1)
 fn resolve(@builtin(global_invocation_id) id: vec3<u32>) {
     let pixel = id.xy;
-    if !in_bounds(pixel) {
+    if !in_bounds(view, pixel) {
         return;
     }
     let s = textureLoad(final_signal, pixel, 0);

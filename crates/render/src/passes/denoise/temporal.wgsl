@@ -27,7 +27,7 @@
 @compute @workgroup_size(8, 8, 1)
 fn temporal(@builtin(global_invocation_id) id: vec3<u32>) {
     let pixel = id.xy;
-    if !in_bounds(pixel) {
+    if !in_bounds(view, pixel) {
         return;
     }
     let nw = textureLoad(gb_normal, pixel, 0);
@@ -40,7 +40,7 @@ fn temporal(@builtin(global_invocation_id) id: vec3<u32>) {
         return;
     }
     let n = normalize(nw.xyz);
-    let x = world_position(pixel, depth);
+    let x = world_position(view, pixel, depth);
     let ao = textureLoad(raw_ao, pixel, 0).r;
     var env = textureLoad(raw_env, pixel, 0).rgb;
     var indirect = textureLoad(raw_indirect, pixel, 0).rgb;
@@ -49,7 +49,7 @@ fn temporal(@builtin(global_invocation_id) id: vec3<u32>) {
     var count = 1.0;
     if params.temporal == 1u && view.history_valid == 1u {
         let prev = vec2<f32>(pixel) + 0.5 + textureLoad(gb_motion, pixel, 0).xy;
-        let taps = history_taps(prev_geometry, prev, x, n, depth, params.reject_depth, params.reject_normal);
+        let taps = history_taps(view, prev_geometry, prev, x, n, depth, params.reject_depth, params.reject_normal);
         if taps.total > 1e-3 {
             var m = vec4<f32>(0.0);
             var e = vec4<f32>(0.0);

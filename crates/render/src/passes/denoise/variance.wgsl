@@ -17,7 +17,7 @@
 @compute @workgroup_size(8, 8, 1)
 fn variance(@builtin(global_invocation_id) id: vec3<u32>) {
     let pixel = id.xy;
-    if !in_bounds(pixel) {
+    if !in_bounds(view, pixel) {
         return;
     }
     let nw = textureLoad(gb_normal, pixel, 0);
@@ -32,8 +32,8 @@ fn variance(@builtin(global_invocation_id) id: vec3<u32>) {
     var boost = 1.0;
     if count < 4.0 {
         let n = normalize(nw.xyz);
-        let n_view = to_view(n);
-        let x = view_position(pixel, depth);
+        let n_view = to_view(view, n);
+        let x = view_position(view, pixel, depth);
         var sum = vec4<f32>(0.0);
         var wsum = 0.0;
         let size = vec2<i32>(view.size);
@@ -48,8 +48,8 @@ fn variance(@builtin(global_invocation_id) id: vec3<u32>) {
                 if qn.w == 0.0 || qd <= 0.0 {
                     continue;
                 }
-                let xq = view_position(vec2<u32>(q), qd);
-                let w = svgf_geometry_weight(x, n_view, n, depth, xq, normalize(qn.xyz));
+                let xq = view_position(view, vec2<u32>(q), qd);
+                let w = svgf_geometry_weight(params, x, n_view, n, depth, xq, normalize(qn.xyz));
                 sum += w * textureLoad(acc_moments, q, 0);
                 wsum += w;
             }

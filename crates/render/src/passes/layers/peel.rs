@@ -9,6 +9,8 @@ use crate::util;
 pub fn peel_source() -> String {
     util::compose(&[
         util::COMMON_WGSL,
+        util::ENV_WGSL,
+        util::FRAME_BINDINGS_WGSL,
         util::GPU_MATERIAL_WGSL,
         util::MATERIALS_WGSL,
         include_str!("peel.wgsl"),

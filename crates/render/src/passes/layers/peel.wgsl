@@ -42,7 +42,7 @@ fn fs_layer(in: VertexOut) -> LayerOut {
             discard;
         }
     }
-    let m = surface_material(in, duv_dx, duv_dy);
+    let m = surface_material(materials[in.material], srgb_textures, linear_textures, material_sampler, in, duv_dx, duv_dy);
     let eye = layer_view.world_from_view[3].xyz;
     var n = normalize(in.normal);
     if dot(n, eye - in.world) < 0.0 {

@@ -26,6 +26,13 @@ struct ShadeParams {
 @group(1) @binding(10) var shadow_sampler: sampler_comparison;
 @group(1) @binding(11) var shadow_depths: texture_2d_array<f32>;
 
+// lights.wgsl's shadow_visibility of light l at world p with normal n, from this pass's shadow
+// maps: the layer that sees p, its matrix, the frame's normal offset.
+fn shadow_map_visibility(l: GpuLight, p: vec3<f32>, n: vec3<f32>) -> f32 {
+    let layer = shadow_layer(l, p);
+    return shadow_visibility(shadow_maps, shadow_depths, shadow_sampler, frame.shadow_normal_offset, l, layer, shadow_clip_from_world[layer], p, n);
+}
+
 @compute @workgroup_size(8, 8, 1)
 fn shade(@builtin(global_invocation_id) id: vec3<u32>) {
     let size = textureDimensions(layer_normal);
@@ -43,10 +50,10 @@ fn shade(@builtin(global_invocation_id) id: vec3<u32>) {
     let n = normalize(nw.xyz);
     let p = layer_position(layer_views[shade_params.first_view + k], pixel, depth);
     var irradiance = vec3<f32>(0.0);
-    if far_volume() {
-        irradiance = far_irradiance_here(p, n);
+    if far_volume(far_probes) {
+        irradiance = far_irradiance_here(far_probes, far_visibility, far_irradiance_atlas, env_sampler, view, p, n);
     } else {
-        irradiance = env_irradiance_sh(n);
+        irradiance = env_irradiance_sh(env, n);
     }
     for (var li = 0u; li < frame.light_count; li++) {
         let l = lights[li];
@@ -55,7 +62,7 @@ fn shade(@builtin(global_invocation_id) id: vec3<u32>) {
         if n_l <= 0.0 {
             continue;
         }
-        irradiance += inc.irradiance * (n_l * shadow_visibility(l, p, n) / PI);
+        irradiance += inc.irradiance * (n_l * shadow_map_visibility(l, p, n) / PI);
     }
     let albedo = textureLoad(layer_albedo, pixel, k, 0).rgb;
     let emissive = textureLoad(layer_emissive, pixel, k, 0).rgb;

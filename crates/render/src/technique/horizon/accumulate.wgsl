@@ -59,10 +59,67 @@
 @group(1) @binding(20) var out_indirect: texture_storage_2d<rgba16float, write>;
 @group(1) @binding(21) var out_feedback: texture_storage_2d<rgba16float, write>;
 
+// The AOVs of one pixel (world point x, unit normal n) from its accumulated cone, near and far
+// field (the far field through the cone: resolve.wgsl's cone_far_field).
+fn write_outputs(pixel: vec2<u32>, x: vec3<f32>, n: vec3<f32>, cone: vec4<f32>, near: vec4<f32>, far: vec4<f32>) {
+    let ao = clamp(cone.w, 0.0, 1.0);
+    let bent = select(n, normalize(cone.xyz), dot(cone.xyz, cone.xyz) > 1e-12);
+    let env_irradiance = cone_far_field(far_probes, far_visibility, env_irradiance_map, env_sampler, view, env, params, x, n, bent, ao, far);
+    textureStore(out_ao, pixel, vec4<f32>(ao, 0.0, 0.0, 0.0));
+    textureStore(out_env, pixel, vec4<f32>(env_irradiance, 1.0));
+    if !NEAR {
+        // gtao: no near-field light, and no next frame that gathers this one's radiance.
+        textureStore(out_indirect, pixel, vec4<f32>(0.0, 0.0, 0.0, 1.0));
+        return;
+    }
+    let albedo = textureLoad(gb_albedo, pixel, 0).rgb;
+    let metallic = textureLoad(gb_material, pixel, 0).r;
+    var indirect = near.rgb;
+    if params.fresnel == 1u {
+        indirect *= 1.0 - mix(vec3<f32>(0.04), albedo, metallic);
+    }
+    let light = textureLoad(light_irradiance, pixel, 0).rgb;
+    let feedback = textureLoad(gb_emissive, pixel, 0).rgb + (1.0 - metallic) * albedo * (light + env_irradiance + indirect);
+    textureStore(out_indirect, pixel, vec4<f32>(indirect, 1.0));
+    textureStore(out_feedback, pixel, vec4<f32>(min(feedback, vec3<f32>(65000.0)), 1.0));
+}
+
+// This frame's raw cone, near field (NEAR) and far field (FAR) of `pixel` → history
+// (resolve.wgsl's temporal_mean) and AOVs.
+fn resolve(pixel: vec2<u32>, raw_cone: vec4<f32>, raw_near: vec3<f32>, raw_far: vec4<f32>) {
+    let nw = textureLoad(gb_normal, pixel, 0);
+    let depth = textureLoad(gb_view_depth, pixel, 0).r;
+    if nw.w == 0.0 || depth <= 0.0 {
+        textureStore(acc_cone, pixel, vec4<f32>(0.0));
+        textureStore(acc_near, pixel, vec4<f32>(0.0));
+        textureStore(acc_geometry, pixel, vec4<f32>(0.0));
+        if FAR {
+            textureStore(acc_far, pixel, vec4<f32>(0.0));
+        }
+        textureStore(out_ao, pixel, vec4<f32>(1.0, 0.0, 0.0, 0.0));
+        textureStore(out_env, pixel, vec4<f32>(0.0));
+        textureStore(out_indirect, pixel, vec4<f32>(0.0));
+        if NEAR {
+            textureStore(out_feedback, pixel, vec4<f32>(0.0));
+        }
+        return;
+    }
+    let n = normalize(nw.xyz);
+    let x = world_position(view, pixel, depth);
+    let acc = temporal_mean(prev_geometry, prev_cone, prev_near, prev_far, view, params, x, n, depth, raw_cone, raw_near, raw_far);
+    textureStore(acc_cone, pixel, acc.cone);
+    textureStore(acc_near, pixel, acc.near);
+    textureStore(acc_geometry, pixel, vec4<f32>(n, depth));
+    if FAR {
+        textureStore(acc_far, pixel, acc.far);
+    }
+    write_outputs(pixel, x, n, acc.cone, acc.near, acc.far);
+}
+
 @compute @workgroup_size(8, 8, 1)
 fn accumulate(@builtin(global_invocation_id) id: vec3<u32>) {
     let pixel = id.xy;
-    if !in_bounds(pixel) {
+    if !in_bounds(view, pixel) {
         return;
     }
     var far = vec4<f32>(0.0);

@@ -1,6 +1,10 @@
 // march.wgsl — the horizon search of one pixel (gtao/hbil): slices, their two sides' horizons,
-// ao, bent normal, near-field light and the far field through the visible arcs. The including
-// module declares `params`, `in_depth`, `in_normal` and `in_radiance` (search.wgsl's names).
+// ao, bent normal, near-field light and the far field through the visible arcs. A library (with
+// common.wgsl, env.wgsl, far.wgsl, params.wgsl and slice.wgsl): it declares no bindings; its
+// functions take the layer textures (`depth_layers`, `normal_layers`, `radiance_layers`:
+// search.wgsl's `in_depth`, `in_normal`, `in_radiance`), the environment's radiance map, the far
+// field's probes and visibility, their sampler, the view (`cam`), the environment's uniform
+// (`e`) and the pass's `HorizonParams` (`p`) that they read.
 // Derivations and sources: technique/horizon/mod.rs.
 
 // What one side of a slice march needs.
@@ -18,31 +22,31 @@ struct March {
 }
 
 // The side's horizon angle (x) and its near-field irradiance (yzw, NEAR only).
-fn march_side(m: March, side_sign: f32, theta_init: f32, cos_init: f32) -> vec4<f32> {
-    let layer_size = vec2<i32>(i32(params.layer_width), i32(params.layer_height));
+fn march_side(depth_layers: texture_2d_array<f32>, normal_layers: texture_2d_array<f32>, radiance_layers: texture_2d_array<f32>, cam: View, p: HorizonParams, m: March, side_sign: f32, theta_init: f32, cos_init: f32) -> vec4<f32> {
+    let layer_size = vec2<i32>(i32(p.layer_width), i32(p.layer_height));
     var cos_max = cos_init;
     var theta = theta_init;
     var near = vec3<f32>(0.0);
     var radiance = vec3<f32>(0.0);
-    let r2 = params.radius * params.radius;
+    let r2 = p.radius * p.radius;
     for (var j = 0u; j < STEPS; j++) {
-        let t = m.r_layer * pow((f32(j) + m.step_jitter) / f32(STEPS), params.step_power);
+        let t = m.r_layer * pow((f32(j) + m.step_jitter) / f32(STEPS), p.step_power);
         let pos = m.texel + 0.5 + side_sign * m.dir * max(t, 1.0);
         let q = vec2<i32>(floor(pos));
         if any(q < vec2<i32>(0)) || any(q >= layer_size) {
             break;
         }
-        let qg = geometry(q, m.layer);
+        let qg = geometry(depth_layers, normal_layers, p, q, m.layer);
         let qd = qg.w;
         if qd <= 0.0 {
             continue;
         }
         // The sample's normal in view space (the plane test needs no unit normal).
-        let qn = to_view(qg.xyz);
-        let q_centre = view_dir(layer_to_full(vec2<f32>(q) + 0.5, m.layer)) * qd;
+        let qn = to_view(cam, qg.xyz);
+        let q_centre = view_dir(cam, layer_to_full(p, vec2<f32>(q) + 0.5, m.layer)) * qd;
         // The texel centre is off the slice line by up to half a texel: slide along the
         // sample's tangent plane to the point seen exactly on the line (exact on planes).
-        let on_line = view_on_slice_line(pos, m.layer, q_centre, qn);
+        let on_line = view_on_slice_line(cam, p, pos, m.layer, q_centre, qn);
         if on_line.w == 0.0 {
             continue;
         }
@@ -54,11 +58,11 @@ fn march_side(m: March, side_sign: f32, theta_init: f32, cos_init: f32) -> vec4<
         let dist = sqrt(d2);
         let vs = v - dot(v, m.slice_normal) * m.slice_normal;
         let cos_s = dot(vs, m.omega_o) * inverseSqrt(max(dot(vs, vs), 1e-18));
-        let fade = clamp((params.radius - dist) / m.fade_width, 0.0, 1.0);
+        let fade = clamp((p.radius - dist) / m.fade_width, 0.0, 1.0);
         let cos_h = mix(cos_init, cos_s, fade);
         if NEAR {
-            let accept = smoothstep(params.reject_a, params.reject_b, -dot(normalize(qn), v / dist));
-            radiance = mix(radiance, textureLoad(in_radiance, q, m.layer, 0).rgb, accept);
+            let accept = smoothstep(p.reject_a, p.reject_b, -dot(normalize(qn), v / dist));
+            radiance = mix(radiance, textureLoad(radiance_layers, q, m.layer, 0).rgb, accept);
         }
         if cos_h > cos_max {
             if NEAR {
@@ -84,21 +88,23 @@ struct Horizon {
 }
 
 // The search at layer texel `texel` of `layer` (full-resolution `pixel`, in the image), whose
-// geometry `centre` (xyz normal, w view depth > 0) was read by the caller.
-fn search_pixel(texel: vec2<u32>, layer: u32, pixel: vec2<u32>, centre: vec4<f32>) -> Horizon {
+// geometry `centre` (xyz normal, w view depth > 0) was read by the caller. `env_map`: the
+// environment's radiance with box-filtered mips (env_radiance_at); `probes`, `visibility`: the
+// far field's (far_sh_here); `smp`: the sampler of both.
+fn search_pixel(depth_layers: texture_2d_array<f32>, normal_layers: texture_2d_array<f32>, radiance_layers: texture_2d_array<f32>, env_map: texture_2d<f32>, probes: texture_2d<f32>, visibility: texture_2d<f32>, smp: sampler, cam: View, e: EnvUniforms, p: HorizonParams, texel: vec2<u32>, layer: u32, pixel: vec2<u32>, centre: vec4<f32>) -> Horizon {
     let depth = centre.w;
     // Environment mip of about 32×16 texels (11°) for the arc integration.
-    let far_lod = max(frame.env_radiance_mips - 5.0, 0.0);
-    let n = normalize(to_view(centre.xyz));
-    let x = view_dir(vec2<f32>(pixel) + 0.5) * depth;
+    let far_lod = max(e.radiance_mips - 5.0, 0.0);
+    let n = normalize(to_view(cam, centre.xyz));
+    let x = view_dir(cam, vec2<f32>(pixel) + 0.5) * depth;
     let lf = view_local_frame(x);
     // The light of the visible arcs: the environment at a blurred mip, or the probe volume's
     // radiance at this point.
-    let volume = FAR && params.far == FAR_SLICES && far_volume();
+    let volume = FAR && p.far == FAR_SLICES && far_volume(probes);
     var far_sh: FarSh;
     if volume {
-        let xw = (view.world_from_view * vec4<f32>(x, 1.0)).xyz;
-        far_sh = far_sh_here(xw, normalize(centre.xyz));
+        let xw = (cam.world_from_view * vec4<f32>(x, 1.0)).xyz;
+        far_sh = far_sh_here(probes, visibility, smp, cam, xw, normalize(centre.xyz));
     }
 
     var m: March;
@@ -106,11 +112,11 @@ fn search_pixel(texel: vec2<u32>, layer: u32, pixel: vec2<u32>, centre: vec4<f32
     m.layer = layer;
     m.x = x;
     m.omega_o = lf.o;
-    m.r_layer = march_reach(depth);
-    m.step_jitter = fract(noise(pixel) + golden(view.frame_index + 7u));
-    m.fade_width = max(params.falloff * params.radius, 1e-6);
+    m.r_layer = march_reach(cam, p, depth);
+    m.step_jitter = fract(noise(pixel) + golden(cam.frame_index + 7u));
+    m.fade_width = max(p.falloff * p.radius, 1e-6);
     let cell = cell_index(pixel);
-    let frame_jitter = golden(view.frame_index);
+    let frame_jitter = golden(cam.frame_index);
 
     var ao = 0.0;
     var unoccluded = 0.0;
@@ -130,28 +136,28 @@ fn search_pixel(texel: vec2<u32>, layer: u32, pixel: vec2<u32>, centre: vec4<f32
         let init1 = min(gamma + 0.5 * PI, PI);
         let init0 = max(gamma - 0.5 * PI, -PI);
         unoccluded += dot(np, slice_gxy(init1) + slice_gxy(init0));
-        let front = march_side(m, 1.0, init1, cos(init1));
-        let back = march_side(m, -1.0, init0, cos(init0));
+        let front = march_side(depth_layers, normal_layers, radiance_layers, cam, p, m, 1.0, init1, cos(init1));
+        let back = march_side(depth_layers, normal_layers, radiance_layers, cam, p, m, -1.0, init0, cos(init0));
         near += front.yzw + back.yzw;
         let t1 = front.x;
         let t0 = back.x;
-        if FAR && params.far == FAR_SLICES {
+        if FAR && p.far == FAR_SLICES {
             // The visible arcs [θ0, 0] and [0, θ1], each in far_steps pieces of equal angle:
             // L_env at the piece's middle × ∫ (n′·ω) |sin θ| dθ over the piece.
-            let d_world = to_world(d);
-            let o_world = to_world(lf.o);
+            let d_world = to_world(cam, d);
+            let o_world = to_world(cam, lf.o);
             for (var side = 0u; side < 2u; side++) {
                 let end = select(t1, t0, side == 1u);
-                for (var s = 0u; s < params.far_steps; s++) {
-                    let a = end * f32(s) / f32(params.far_steps);
-                    let b = end * f32(s + 1u) / f32(params.far_steps);
+                for (var s = 0u; s < p.far_steps; s++) {
+                    let a = end * f32(s) / f32(p.far_steps);
+                    let b = end * f32(s + 1u) / f32(p.far_steps);
                     let mid = 0.5 * (a + b);
                     let w = abs(slice_g(b, np) - slice_g(a, np));
                     let omega = sin(mid) * d_world + cos(mid) * o_world;
                     if volume {
                         far += far_radiance(far_sh, omega) * w;
                     } else {
-                        far += env_radiance_at(omega, far_lod) * w;
+                        far += env_radiance_at(env_map, smp, e, omega, far_lod) * w;
                     }
                 }
             }
@@ -166,7 +172,7 @@ fn search_pixel(texel: vec2<u32>, layer: u32, pixel: vec2<u32>, centre: vec4<f32
     ao = clamp(ao / norm, 0.0, 1.0);
     let b = select(n, normalize(bent), dot(bent, bent) > 1e-12);
     var r: Horizon;
-    r.cone = vec4<f32>(to_world(b), ao);
+    r.cone = vec4<f32>(to_world(cam, b), ao);
     r.near = near / norm;
     r.far = vec4<f32>(far / norm, 1.0);
     return r;

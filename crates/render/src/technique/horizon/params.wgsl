@@ -1,5 +1,6 @@
 // params.wgsl — `HorizonParams` and the per-pixel noise shared by the horizon passes
-// (technique/horizon/mod.rs holds the derivations).
+// (technique/horizon/mod.rs holds the derivations). A library: it declares no bindings (each
+// pass binds its `HorizonParams` in group 1 and passes it to the functions that read it).
 
 struct HorizonParams {
     radius: f32,

@@ -1,7 +1,9 @@
-// resolve.wgsl — the temporal running mean and the AOVs of one pixel, from this frame's raw
-// results (the `accumulate` kernel). The including module
-// declares the bindings (accumulate.wgsl's names). Derivations: technique/horizon/mod.rs and
-// accumulate.wgsl.
+// resolve.wgsl — the temporal running mean of one pixel and the far field through its bent cone,
+// from this frame's raw results (for the `accumulate` kernel, which reads the G-buffer, writes
+// the history and the AOVs: accumulate.wgsl). A library (after common.wgsl, env.wgsl, far.wgsl
+// and params.wgsl): it declares no bindings; its functions take the textures, the sampler, the
+// view (`cam`), the environment's uniform (`e`) and the pass's `HorizonParams` (`p`) they read.
+// Derivations: technique/horizon/mod.rs and accumulate.wgsl.
 
 fn energy_compensation(a: f32) -> f32 {
     return a * (1.0 + pow(max(1.0 - a, 0.0), 0.75) * 0.5);
@@ -9,25 +11,27 @@ fn energy_compensation(a: f32) -> f32 {
 
 // The far field's irradiance through the bent cone: the environment (sky) or the probe volume at
 // world point x (its radiance SH in place of the environment's; the volume has no band 3).
-fn cone_far_field(x: vec3<f32>, n: vec3<f32>, bent: vec3<f32>, ao: f32, far: vec4<f32>) -> vec3<f32> {
-    let volume = far_volume() && params.far != FAR_SLICES;
+// `probes`, `visibility`: the far field's (far_sh_here); `irradiance_map`: the environment's
+// pre-convolved diffuse map (env_irradiance_exact); `smp`: the sampler of both.
+fn cone_far_field(probes: texture_2d<f32>, visibility: texture_2d<f32>, irradiance_map: texture_2d<f32>, smp: sampler, cam: View, e: EnvUniforms, p: HorizonParams, x: vec3<f32>, n: vec3<f32>, bent: vec3<f32>, ao: f32, far: vec4<f32>) -> vec3<f32> {
+    let volume = far_volume(probes) && p.far != FAR_SLICES;
     var f: FarSh;
     if volume {
-        f = far_sh_here(x, n);
+        f = far_sh_here(probes, visibility, smp, cam, x, n);
     }
-    switch params.far {
+    switch p.far {
         case FAR_SH: {
-            let cos_alpha = select(1.0 - ao, sqrt(1.0 - ao), params.aperture == 1u);
+            let cos_alpha = select(1.0 - ao, sqrt(1.0 - ao), p.aperture == 1u);
             if volume {
                 return far_irradiance_cone(f, bent, cos_alpha);
             }
-            return env_irradiance_cone(bent, cos_alpha);
+            return env_irradiance_cone(e, bent, cos_alpha);
         }
         case FAR_ENVMAP: {
             if volume {
                 return far_irradiance(f, bent) * energy_compensation(ao);
             }
-            return env_irradiance_exact(bent) * energy_compensation(ao);
+            return env_irradiance_exact(irradiance_map, smp, e, bent) * energy_compensation(ao);
         }
         case FAR_SLICES: {
             if FAR {
@@ -39,63 +43,30 @@ fn cone_far_field(x: vec3<f32>, n: vec3<f32>, bent: vec3<f32>, ao: f32, far: vec
             if volume {
                 return ao * far_irradiance(f, n);
             }
-            return ao * env_irradiance_sh(n);
+            return ao * env_irradiance_sh(e, n);
         }
     }
 }
 
-// The AOVs of one pixel (world point x, unit normal n) from its accumulated cone, near and far
-// field.
-fn write_outputs(pixel: vec2<u32>, x: vec3<f32>, n: vec3<f32>, cone: vec4<f32>, near: vec4<f32>, far: vec4<f32>) {
-    let ao = clamp(cone.w, 0.0, 1.0);
-    let bent = select(n, normalize(cone.xyz), dot(cone.xyz, cone.xyz) > 1e-12);
-    let env = cone_far_field(x, n, bent, ao, far);
-    textureStore(out_ao, pixel, vec4<f32>(ao, 0.0, 0.0, 0.0));
-    textureStore(out_env, pixel, vec4<f32>(env, 1.0));
-    if !NEAR {
-        // gtao: no near-field light, and no next frame that gathers this one's radiance.
-        textureStore(out_indirect, pixel, vec4<f32>(0.0, 0.0, 0.0, 1.0));
-        return;
-    }
-    let albedo = textureLoad(gb_albedo, pixel, 0).rgb;
-    let metallic = textureLoad(gb_material, pixel, 0).r;
-    var indirect = near.rgb;
-    if params.fresnel == 1u {
-        indirect *= 1.0 - mix(vec3<f32>(0.04), albedo, metallic);
-    }
-    let light = textureLoad(light_irradiance, pixel, 0).rgb;
-    let feedback = textureLoad(gb_emissive, pixel, 0).rgb + (1.0 - metallic) * albedo * (light + env + indirect);
-    textureStore(out_indirect, pixel, vec4<f32>(indirect, 1.0));
-    textureStore(out_feedback, pixel, vec4<f32>(min(feedback, vec3<f32>(65000.0)), 1.0));
+// One pixel's running means: bent cone (xyz bent normal, w ao), near field (rgb, w frames in the
+// mean) and far field.
+struct Accumulated {
+    cone: vec4<f32>,
+    near: vec4<f32>,
+    far: vec4<f32>,
 }
 
-// This frame's raw cone, near field (NEAR) and far field (FAR) of `pixel` → history and AOVs.
-fn resolve(pixel: vec2<u32>, raw_cone: vec4<f32>, raw_near: vec3<f32>, raw_far: vec4<f32>) {
-    let nw = textureLoad(gb_normal, pixel, 0);
-    let depth = textureLoad(gb_view_depth, pixel, 0).r;
-    if nw.w == 0.0 || depth <= 0.0 {
-        textureStore(acc_cone, pixel, vec4<f32>(0.0));
-        textureStore(acc_near, pixel, vec4<f32>(0.0));
-        textureStore(acc_geometry, pixel, vec4<f32>(0.0));
-        if FAR {
-            textureStore(acc_far, pixel, vec4<f32>(0.0));
-        }
-        textureStore(out_ao, pixel, vec4<f32>(1.0, 0.0, 0.0, 0.0));
-        textureStore(out_env, pixel, vec4<f32>(0.0));
-        textureStore(out_indirect, pixel, vec4<f32>(0.0));
-        if NEAR {
-            textureStore(out_feedback, pixel, vec4<f32>(0.0));
-        }
-        return;
-    }
-    let n = normalize(nw.xyz);
-    let x = world_position(pixel, depth);
+// This frame's raw cone, near field (NEAR) and far field (FAR) of the surface point x (unit
+// normal n, view depth `depth`) blended into last frame's means, fetched where x was from the
+// taps of `prev_geometry` that pass the disocclusion test; this frame's values alone without
+// history (first frame, camera cut, temporal off) or without a passing tap.
+fn temporal_mean(prev_geometry: texture_2d<f32>, prev_cone: texture_2d<f32>, prev_near: texture_2d<f32>, prev_far: texture_2d<f32>, cam: View, p: HorizonParams, x: vec3<f32>, n: vec3<f32>, depth: f32, raw_cone: vec4<f32>, raw_near: vec3<f32>, raw_far: vec4<f32>) -> Accumulated {
     var cone = raw_cone;
     var far = raw_far;
     // Without near-field light (gtao) the near texture only keeps the frame count (w).
     var near = vec4<f32>(raw_near, 1.0);
-    if params.temporal == 1u && view.history_valid == 1u {
-        let taps = history_taps(prev_geometry, to_screen(view.prev_clip_from_world, x), x, n, depth, params.reject_depth, params.reject_normal);
+    if p.temporal == 1u && cam.history_valid == 1u {
+        let taps = history_taps(cam, prev_geometry, to_screen(cam, cam.prev_clip_from_world, x), x, n, depth, p.reject_depth, p.reject_normal);
         var sum_cone = vec4<f32>(0.0);
         var sum_near = vec4<f32>(0.0);
         var sum_far = vec4<f32>(0.0);
@@ -114,18 +85,16 @@ fn resolve(pixel: vec2<u32>, raw_cone: vec4<f32>, raw_near: vec3<f32>, raw_far: 
         if weight > 1e-3 {
             let hist_cone = sum_cone / weight;
             let hist_near = sum_near / weight;
-            let count = min(hist_near.w + 1.0, params.max_history);
+            let count = min(hist_near.w + 1.0, p.max_history);
             let a = 1.0 / count;
             cone = mix(hist_cone, cone, a);
             far = mix(sum_far / weight, far, a);
             near = vec4<f32>(mix(hist_near.rgb, near.rgb, a), count);
         }
     }
-    textureStore(acc_cone, pixel, cone);
-    textureStore(acc_near, pixel, near);
-    textureStore(acc_geometry, pixel, vec4<f32>(n, depth));
-    if FAR {
-        textureStore(acc_far, pixel, far);
-    }
-    write_outputs(pixel, x, n, cone, near, far);
+    var r: Accumulated;
+    r.cone = cone;
+    r.near = near;
+    r.far = far;
+    return r;
 }

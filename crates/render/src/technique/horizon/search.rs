@@ -8,6 +8,7 @@ pub fn source() -> String {
     util::compose(&[
         util::COMMON_WGSL,
         util::ENV_WGSL,
+        util::FRAME_BINDINGS_WGSL,
         util::FAR_WGSL,
         include_str!("params.wgsl"),
         include_str!("search.wgsl"),

@@ -28,15 +28,15 @@ fn horizon(@builtin(global_invocation_id) id: vec3<u32>) {
     if texel.x >= params.layer_width || texel.y >= params.layer_height {
         return;
     }
-    let pixel = layer_pixel(texel, layer);
-    if !in_bounds(pixel) {
+    let pixel = layer_pixel(params, texel, layer);
+    if !in_bounds(view, pixel) {
         return;
     }
-    let centre = geometry(vec2<i32>(texel), layer);
+    let centre = geometry(in_depth, in_normal, params, vec2<i32>(texel), layer);
     var r: Horizon;
     r.cone = vec4<f32>(0.0, 0.0, 0.0, 1.0);
     if centre.w > 0.0 {
-        r = search_pixel(texel, layer, pixel, centre);
+        r = search_pixel(in_depth, in_normal, in_radiance, env_radiance, far_probes, far_visibility, env_sampler, view, env, params, texel, layer, pixel, centre);
     }
     textureStore(out_cone, pixel, r.cone);
     if NEAR {

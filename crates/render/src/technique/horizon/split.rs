@@ -9,6 +9,7 @@ pub fn source() -> String {
     util::compose(&[
         util::COMMON_WGSL,
         util::ENV_WGSL,
+        util::FRAME_BINDINGS_WGSL,
         include_str!("params.wgsl"),
         include_str!("split.wgsl"),
     ])

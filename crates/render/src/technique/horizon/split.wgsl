@@ -23,7 +23,7 @@ fn split(@builtin(global_invocation_id) id: vec3<u32>) {
         var depth = 0.0;
         var normal = vec4<f32>(0.0);
         var radiance = vec4<f32>(0.0);
-        if in_bounds(pixel) {
+        if in_bounds(view, pixel) {
             normal = textureLoad(full_normal, pixel, 0);
             depth = select(0.0, textureLoad(full_depth, pixel, 0).r, normal.w != 0.0);
             if params.indirect == 1u {

@@ -13,7 +13,12 @@ use crate::util;
 pub const SHADER: &str = include_str!("none.wgsl");
 
 pub fn source() -> String {
-    util::compose(&[util::COMMON_WGSL, SHADER])
+    util::compose(&[
+        util::COMMON_WGSL,
+        util::ENV_WGSL,
+        util::FRAME_BINDINGS_WGSL,
+        SHADER,
+    ])
 }
 
 crate::bind_group! {

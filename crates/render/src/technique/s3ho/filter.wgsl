@@ -11,10 +11,10 @@
 @compute @workgroup_size(8, 8, 1)
 fn filter_pass(@builtin(global_invocation_id) id: vec3<u32>) {
     let pixel = id.xy;
-    if !in_bounds(pixel) {
+    if !in_bounds(view, pixel) {
         return;
     }
-    let centre = surface_at(pixel);
+    let centre = surface_at(view, gb_normal, gb_view_depth, pixel);
     if !centre.valid {
         textureStore(out_coeffs0, pixel, vec4<u32>(0u));
         textureStore(out_coeffs1, pixel, vec4<u32>(0u));
@@ -30,7 +30,7 @@ fn filter_pass(@builtin(global_invocation_id) id: vec3<u32>) {
             if any(q < vec2<i32>(0)) || any(q >= size) {
                 continue;
             }
-            let s = surface_at(vec2<u32>(q));
+            let s = surface_at(view, gb_normal, gb_view_depth, vec2<u32>(q));
             if !s.valid {
                 continue;
             }
@@ -49,5 +49,3 @@ fn filter_pass(@builtin(global_invocation_id) id: vec3<u32>) {
     textureStore(out_coeffs0, pixel, packed[0]);
     textureStore(out_coeffs1, pixel, packed[1]);
 }
-
-// Hanning window of band l over 4 bands (Sloan 2008).

@@ -10,6 +10,7 @@ pub fn source() -> String {
     util::compose(&[
         util::COMMON_WGSL,
         util::ENV_WGSL,
+        util::FRAME_BINDINGS_WGSL,
         util::FAR_WGSL,
         util::LIGHTS_WGSL,
         util::SURFACE_WGSL,

@@ -30,17 +30,65 @@ fn cfg() -> SampleConfig {
     return SampleConfig(SAMPLES, params.pattern, params.radius, params.fade, params.layers, params.cameras);
 }
 
+// samples.wgsl's blocker test over this pass's views (the main view with its peeled layers, then
+// each additional camera) and its march along a direction: glue, since they index layer_views
+// (samples.wgsl documents both; ssdo `direct` and `bounce` and s3ho `sample` hold the same).
+fn occlusion(p: vec3<f32>, omega: vec3<f32>, lambda: f32, cfg: SampleConfig) -> Occlusion {
+    let s = p + omega * lambda;
+    var best = main_view_verdict(view, gb_normal, gb_view_depth, peel_normal, peel_depth, p, s, lambda, cfg);
+    if best.informed && best.free {
+        return best.o;
+    }
+    for (var c = 0u; c < cfg.cameras; c++) {
+        let v = camera_verdict(layer_views[CAMERA_VIEW_BASE + c], cam_normal, cam_depth, p, s, lambda, c, cfg);
+        if !v.informed {
+            continue;
+        }
+        if v.free {
+            var none: Occlusion;
+            none.amount = 0.0;
+            return none;
+        }
+        if !best.informed || v.o.amount > best.o.amount {
+            best = v;
+        }
+    }
+    return best.o;
+}
+
+fn march_occlusion(p: vec3<f32>, omega: vec3<f32>, lambda: f32, steps: u32, cfg: SampleConfig) -> Occlusion {
+    var o: Occlusion;
+    o.amount = 0.0;
+    let at = screen_pixel(view, p);
+    for (var k = 1u; k <= steps; k++) {
+        let l = lambda * f32(k) / f32(steps);
+        if cfg.layers > 1u && k < steps && distance(screen_pixel(view, p + omega * l), at) < MARCH_MIN_PIXELS {
+            continue;
+        }
+        o = occlusion(p, omega, l, cfg);
+        if o.amount > 0.0 {
+            break;
+        }
+    }
+    return o;
+}
+
+// Sample i of `pixel` (samples.wgsl's sample_local) with this pass's interleaved sets.
+fn sample_at(i: u32, pixel: vec2<u32>, cfg: SampleConfig) -> vec4<f32> {
+    return sample_local(view.seed, sample_sets[sample_set_index(i, pixel, cfg)], i, pixel, cfg);
+}
+
 // Irradiance (E, not /π) at a surface of normal n from the lights, unshadowed, plus the
 // environment through c[cos n] (or, with a probe volume, the volume's irradiance at p) — the
 // occluder's incident light for the indirect extension.
 fn incident_at(n: vec3<f32>, p: vec3<f32>) -> vec3<f32> {
     var e = vec3<f32>(0.0);
-    if far_volume() {
-        e = PI * far_irradiance_here(p, n);
+    if far_volume(far_probes) {
+        e = PI * far_irradiance_here(far_probes, far_visibility, far_irradiance_atlas, env_sampler, view, p, n);
     } else {
         let cn = sh_cosine(n);
         for (var i = 0u; i < 9u; i++) {
-            e += env_sh[i].rgb * cn[i];
+            e += env.sh[i].rgb * cn[i];
         }
     }
     for (var li = 0u; li < frame.light_count; li++) {
@@ -53,10 +101,10 @@ fn incident_at(n: vec3<f32>, p: vec3<f32>) -> vec3<f32> {
 @compute @workgroup_size(8, 8, 1)
 fn sample_pass(@builtin(global_invocation_id) id: vec3<u32>) {
     let pixel = id.xy;
-    if !in_bounds(pixel) {
+    if !in_bounds(view, pixel) {
         return;
     }
-    let here = surface_at(pixel);
+    let here = surface_at(view, gb_normal, gb_view_depth, pixel);
     if !here.valid {
         textureStore(out_coeffs0, pixel, vec4<u32>(0u));
         textureStore(out_coeffs1, pixel, vec4<u32>(0u));
@@ -77,7 +125,7 @@ fn sample_pass(@builtin(global_invocation_id) id: vec3<u32>) {
     var indirect = vec3<f32>(0.0);
     let area = PI * params.radius * params.radius / f32(n);
     for (var j = 0u; j < n; j++) {
-        let s = sample_local(j, pixel, c);
+        let s = sample_at(j, pixel, c);
         let omega = normalize(tb.t * s.x + tb.b * s.y + here.n * s.z);
         let length_j = s.w * params.radius;
         // Ray marching: the first occluded point decides.
@@ -119,7 +167,7 @@ fn sample_pass(@builtin(global_invocation_id) id: vec3<u32>) {
                         let rho = textureLoad(gb_albedo, bo.pixel, 0).rgb;
                         radiance = rho / PI * incident_at(sender.n, sender.p);
                     } else {
-                        radiance = layer_sender_radiance(bo);
+                        radiance = layer_sender_radiance(peel_radiance, cam_radiance, bo);
                     }
                     indirect += radiance * (transfer * params.strength * (1.0 - vb));
                 }

@@ -1,5 +1,6 @@
 // sh.wgsl — `S3hoParams` and the SH helpers shared by the s3ho passes: clamped-cosine lobes,
-// half-float packing of the 16 coefficients (technique/s3ho/mod.rs holds the derivations).
+// half-float packing of the 16 coefficients (technique/s3ho/mod.rs holds the derivations). A
+// library (after env.wgsl): it declares no bindings; the passes bind `params: S3hoParams`.
 
 struct S3hoParams {
     radius: f32,

@@ -18,6 +18,13 @@
 @group(1) @binding(13) var out_ao: texture_storage_2d<r32float, write>;
 @group(1) @binding(14) var shadow_depths: texture_2d_array<f32>;
 
+// lights.wgsl's shadow_visibility of light l at world p with normal n, from this pass's shadow
+// maps: the layer that sees p, its matrix, the frame's normal offset.
+fn shadow_map_visibility(l: GpuLight, p: vec3<f32>, n: vec3<f32>) -> f32 {
+    let layer = shadow_layer(l, p);
+    return shadow_visibility(shadow_maps, shadow_depths, shadow_sampler, frame.shadow_normal_offset, l, layer, shadow_clip_from_world[layer], p, n);
+}
+
 fn hanning(l: u32) -> f32 {
     return 0.5 * (1.0 + cos(PI * f32(l) / 4.0));
 }
@@ -35,38 +42,38 @@ fn cone_band(l: u32, c: f32) -> f32 {
 @compute @workgroup_size(8, 8, 1)
 fn shade_pass(@builtin(global_invocation_id) id: vec3<u32>) {
     let pixel = id.xy;
-    if !in_bounds(pixel) {
+    if !in_bounds(view, pixel) {
         return;
     }
-    let here = surface_at(pixel);
+    let here = surface_at(view, gb_normal, gb_view_depth, pixel);
     if !here.valid {
         textureStore(out_env_irradiance, pixel, vec4<f32>(0.0));
         textureStore(out_light_irradiance, pixel, vec4<f32>(0.0));
         textureStore(out_ao, pixel, vec4<f32>(0.0));
         return;
     }
-    var env = vec3<f32>(0.0);
+    var env_e = vec3<f32>(0.0);
     var light = vec3<f32>(0.0);
     var ao = 1.0;
     // The far field's radiance: the environment's SH (16 coefficients), or the probe volume's at
     // this point (9; it has no band 3).
-    let volume = far_volume();
+    let volume = far_volume(far_probes);
     var far: FarSh;
     if volume {
-        far = far_sh_here(here.p, here.n);
+        far = far_sh_here(far_probes, far_visibility, env_sampler, view, here.p, here.n);
     }
     if params.technique == 0u {
         let c = unpack16(textureLoad(in_coeffs0, pixel, 0), textureLoad(in_coeffs1, pixel, 0));
         if volume {
             for (var i = 0u; i < 9u; i++) {
-                env += far.c[i].rgb * c[i];
+                env_e += far.c[i].rgb * c[i];
             }
         } else {
             for (var i = 0u; i < 16u; i++) {
-                env += env_sh[i].rgb * c[i];
+                env_e += env.sh[i].rgb * c[i];
             }
         }
-        env /= PI;
+        env_e /= PI;
         ao = clamp(c[0] / (PI * 0.2820948), 0.0, 1.0);
         let cn = sh_cosine(here.n);
         for (var li = 0u; li < frame.light_count; li++) {
@@ -81,7 +88,7 @@ fn shade_pass(@builtin(global_invocation_id) id: vec3<u32>) {
             for (var i = 0u; i < 16u; i++) {
                 blocked += hanning(band(i)) * y[i] * (cn[i] - c[i]);
             }
-            light += inc.irradiance * max(0.0, n_l - blocked) * shadow_visibility(l, here.p, here.n);
+            light += inc.irradiance * max(0.0, n_l - blocked) * shadow_map_visibility(l, here.p, here.n);
         }
     } else {
         let bc = textureLoad(in_bent, pixel, 0);
@@ -89,13 +96,13 @@ fn shade_pass(@builtin(global_invocation_id) id: vec3<u32>) {
         let cos_a = clamp(bc.w, 0.0, 1.0);
         let y = sh_basis(b);
         for (var i = 0u; i < 9u; i++) {
-            var l = env_sh[i].rgb;
+            var l = env.sh[i].rgb;
             if volume {
                 l = far.c[i].rgb;
             }
-            env += l * (cone_band(band(i), cos_a) * y[i]);
+            env_e += l * (cone_band(band(i), cos_a) * y[i]);
         }
-        env = max(env / PI, vec3<f32>(0.0));
+        env_e = max(env_e / PI, vec3<f32>(0.0));
         for (var li = 0u; li < frame.light_count; li++) {
             let l = lights[li];
             let inc = incident(l, here.p);
@@ -104,11 +111,11 @@ fn shade_pass(@builtin(global_invocation_id) id: vec3<u32>) {
                 continue;
             }
             let inside = smoothstep(cos_a - 0.1, cos_a + 0.1, dot(b, inc.to_light));
-            light += inc.irradiance * n_l * inside * shadow_visibility(l, here.p, here.n);
+            light += inc.irradiance * n_l * inside * shadow_map_visibility(l, here.p, here.n);
         }
         ao = textureLoad(in_ao_raw, pixel, 0).r;
     }
-    textureStore(out_env_irradiance, pixel, vec4<f32>(env, 1.0));
+    textureStore(out_env_irradiance, pixel, vec4<f32>(env_e, 1.0));
     textureStore(out_light_irradiance, pixel, vec4<f32>(light / PI, 1.0));
     textureStore(out_ao, pixel, vec4<f32>(ao));
 }

@@ -26,13 +26,80 @@
 @group(1) @binding(19) var out_indirect: texture_storage_2d<rgba16float, write>;
 @group(1) @binding(20) var shadow_depths: texture_2d_array<f32>;
 
+// samples.wgsl's blocker test over this pass's views (the main view with its peeled layers, then
+// each additional camera) and its march along a direction: glue, since they index layer_views
+// (samples.wgsl documents both; ssdo `direct` and `bounce` and s3ho `sample` hold the same).
+fn occlusion(p: vec3<f32>, omega: vec3<f32>, lambda: f32, cfg: SampleConfig) -> Occlusion {
+    let s = p + omega * lambda;
+    var best = main_view_verdict(view, gb_normal, gb_view_depth, peel_normal, peel_depth, p, s, lambda, cfg);
+    if best.informed && best.free {
+        return best.o;
+    }
+    for (var c = 0u; c < cfg.cameras; c++) {
+        let v = camera_verdict(layer_views[CAMERA_VIEW_BASE + c], cam_normal, cam_depth, p, s, lambda, c, cfg);
+        if !v.informed {
+            continue;
+        }
+        if v.free {
+            var none: Occlusion;
+            none.amount = 0.0;
+            return none;
+        }
+        if !best.informed || v.o.amount > best.o.amount {
+            best = v;
+        }
+    }
+    return best.o;
+}
+
+fn march_occlusion(p: vec3<f32>, omega: vec3<f32>, lambda: f32, steps: u32, cfg: SampleConfig) -> Occlusion {
+    var o: Occlusion;
+    o.amount = 0.0;
+    let at = screen_pixel(view, p);
+    for (var k = 1u; k <= steps; k++) {
+        let l = lambda * f32(k) / f32(steps);
+        if cfg.layers > 1u && k < steps && distance(screen_pixel(view, p + omega * l), at) < MARCH_MIN_PIXELS {
+            continue;
+        }
+        o = occlusion(p, omega, l, cfg);
+        if o.amount > 0.0 {
+            break;
+        }
+    }
+    return o;
+}
+
+// Sample i of `pixel` (samples.wgsl's sample_local) with this pass's interleaved sets.
+fn sample_at(i: u32, pixel: vec2<u32>, cfg: SampleConfig) -> vec4<f32> {
+    return sample_local(view.seed, sample_sets[sample_set_index(i, pixel, cfg)], i, pixel, cfg);
+}
+
+// segment.wgsl's test of the segment towards light l (the direction `to_light`) from `here`:
+// glue, since it runs this pass's occlusion (bounce.wgsl/direct.wgsl hold the same).
+fn segment_blocked(here: Surface, l: GpuLight, to_light: vec3<f32>) -> f32 {
+    let seg_length = segment_length(params, frame.shadow_normal_offset, here, l);
+    var blocked = 0.0;
+    for (var k = 0u; k < params.light_samples; k++) {
+        let t = (f32(k) + 0.5) / f32(params.light_samples) * seg_length;
+        blocked = max(blocked, occlusion(here.p, to_light, t, sample_config(params)).amount);
+    }
+    return blocked;
+}
+
+// lights.wgsl's shadow_visibility of light l at world p with normal n, from this pass's shadow
+// maps: the layer that sees p, its matrix, the frame's normal offset.
+fn shadow_map_visibility(l: GpuLight, p: vec3<f32>, n: vec3<f32>) -> f32 {
+    let layer = shadow_layer(l, p);
+    return shadow_visibility(shadow_maps, shadow_depths, shadow_sampler, frame.shadow_normal_offset, l, layer, shadow_clip_from_world[layer], p, n);
+}
+
 @compute @workgroup_size(8, 8, 1)
 fn bounce(@builtin(global_invocation_id) id: vec3<u32>) {
     let pixel = id.xy;
-    if !in_bounds(pixel) {
+    if !in_bounds(view, pixel) {
         return;
     }
-    let here = surface_at(pixel);
+    let here = surface_at(view, gb_normal, gb_view_depth, pixel);
     if !here.valid {
         textureStore(out_indirect, pixel, vec4<f32>(0.0));
         return;
@@ -60,9 +127,9 @@ fn screen_bounce(here: Surface, pixel: vec2<u32>) -> vec3<f32> {
     let area = PI * params.radius * params.radius / f32(n);
     var l_ind = vec3<f32>(0.0);
     for (var i = 0u; i < n; i++) {
-        let s = sample_local(i, pixel, sample_config());
+        let s = sample_at(i, pixel, sample_config(params));
         let omega = normalize(tb.t * s.x + tb.b * s.y + here.n * s.z);
-        let occ = march_occlusion(here.p, omega, s.w * params.radius, bounce_steps(STEPS, 1u, sample_config()), sample_config());
+        let occ = march_occlusion(here.p, omega, s.w * params.radius, bounce_steps(STEPS, 1u, sample_config(params)), sample_config(params));
         if occ.amount <= 0.0 {
             continue;
         }
@@ -82,7 +149,7 @@ fn screen_bounce(here: Surface, pixel: vec2<u32>) -> vec3<f32> {
             let from_lights = albedo * textureLoad(light_irradiance, occ.pixel, 0).rgb;
             l_pixel = from_env * transfer + from_lights * remainder;
         } else {
-            l_pixel = layer_sender_radiance(occ) * remainder;
+            l_pixel = layer_sender_radiance(peel_radiance, cam_radiance, occ) * remainder;
         }
         l_ind += l_pixel * (params.strength * occ.amount);
     }
@@ -98,7 +165,7 @@ fn screen_bounce(here: Surface, pixel: vec2<u32>) -> vec3<f32> {
 // is counted twice.
 fn radiosity_bounce(here: Surface) -> vec3<f32> {
     let c2 = params.vpl_clamp * params.vpl_clamp;
-    let reach2 = select(3.4e38, params.radius * params.radius, far_volume());
+    let reach2 = select(3.4e38, params.radius * params.radius, far_volume(far_probes));
     var e = vec3<f32>(0.0);
     for (var k = 0u; k < params.vpl_count; k++) {
         let l = lights[k];
@@ -113,7 +180,7 @@ fn radiosity_bounce(here: Surface) -> vec3<f32> {
         if cos_x <= 0.0 || cos_v <= 0.0 {
             continue;
         }
-        var v = shadow_visibility(l, here.p, here.n);
+        var v = shadow_map_visibility(l, here.p, here.n);
         if v > 0.0 && params.light_samples > 0u {
             v *= 1.0 - segment_blocked(here, l, dir);
         }

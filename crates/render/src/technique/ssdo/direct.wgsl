@@ -28,13 +28,80 @@ fn luminance(c: vec3<f32>) -> f32 {
     return dot(c, vec3<f32>(0.2126, 0.7152, 0.0722));
 }
 
+// samples.wgsl's blocker test over this pass's views (the main view with its peeled layers, then
+// each additional camera) and its march along a direction: glue, since they index layer_views
+// (samples.wgsl documents both; ssdo `direct` and `bounce` and s3ho `sample` hold the same).
+fn occlusion(p: vec3<f32>, omega: vec3<f32>, lambda: f32, cfg: SampleConfig) -> Occlusion {
+    let s = p + omega * lambda;
+    var best = main_view_verdict(view, gb_normal, gb_view_depth, peel_normal, peel_depth, p, s, lambda, cfg);
+    if best.informed && best.free {
+        return best.o;
+    }
+    for (var c = 0u; c < cfg.cameras; c++) {
+        let v = camera_verdict(layer_views[CAMERA_VIEW_BASE + c], cam_normal, cam_depth, p, s, lambda, c, cfg);
+        if !v.informed {
+            continue;
+        }
+        if v.free {
+            var none: Occlusion;
+            none.amount = 0.0;
+            return none;
+        }
+        if !best.informed || v.o.amount > best.o.amount {
+            best = v;
+        }
+    }
+    return best.o;
+}
+
+fn march_occlusion(p: vec3<f32>, omega: vec3<f32>, lambda: f32, steps: u32, cfg: SampleConfig) -> Occlusion {
+    var o: Occlusion;
+    o.amount = 0.0;
+    let at = screen_pixel(view, p);
+    for (var k = 1u; k <= steps; k++) {
+        let l = lambda * f32(k) / f32(steps);
+        if cfg.layers > 1u && k < steps && distance(screen_pixel(view, p + omega * l), at) < MARCH_MIN_PIXELS {
+            continue;
+        }
+        o = occlusion(p, omega, l, cfg);
+        if o.amount > 0.0 {
+            break;
+        }
+    }
+    return o;
+}
+
+// Sample i of `pixel` (samples.wgsl's sample_local) with this pass's interleaved sets.
+fn sample_at(i: u32, pixel: vec2<u32>, cfg: SampleConfig) -> vec4<f32> {
+    return sample_local(view.seed, sample_sets[sample_set_index(i, pixel, cfg)], i, pixel, cfg);
+}
+
+// segment.wgsl's test of the segment towards light l (the direction `to_light`) from `here`:
+// glue, since it runs this pass's occlusion (bounce.wgsl/direct.wgsl hold the same).
+fn segment_blocked(here: Surface, l: GpuLight, to_light: vec3<f32>) -> f32 {
+    let seg_length = segment_length(params, frame.shadow_normal_offset, here, l);
+    var blocked = 0.0;
+    for (var k = 0u; k < params.light_samples; k++) {
+        let t = (f32(k) + 0.5) / f32(params.light_samples) * seg_length;
+        blocked = max(blocked, occlusion(here.p, to_light, t, sample_config(params)).amount);
+    }
+    return blocked;
+}
+
+// lights.wgsl's shadow_visibility of light l at world p with normal n, from this pass's shadow
+// maps: the layer that sees p, its matrix, the frame's normal offset.
+fn shadow_map_visibility(l: GpuLight, p: vec3<f32>, n: vec3<f32>) -> f32 {
+    let layer = shadow_layer(l, p);
+    return shadow_visibility(shadow_maps, shadow_depths, shadow_sampler, frame.shadow_normal_offset, l, layer, shadow_clip_from_world[layer], p, n);
+}
+
 @compute @workgroup_size(8, 8, 1)
 fn direct(@builtin(global_invocation_id) id: vec3<u32>) {
     let pixel = id.xy;
-    if !in_bounds(pixel) {
+    if !in_bounds(view, pixel) {
         return;
     }
-    let here = surface_at(pixel);
+    let here = surface_at(view, gb_normal, gb_view_depth, pixel);
     if !here.valid {
         textureStore(out_a, pixel, vec4<f32>(0.0));
         textureStore(out_b, pixel, vec4<f32>(0.0));
@@ -54,17 +121,17 @@ fn direct(@builtin(global_invocation_id) id: vec3<u32>) {
     var l_open = vec3<f32>(0.0);
     // The light each unoccluded direction brings: the environment at a blurred mip, its SH
     // radiance (radiance mode, `sample_light=sh`), or the probe volume's radiance at this point.
-    let volume = far_volume();
+    let volume = far_volume(far_probes);
     let sh_light = params.mode == 1u && params.sample_light == 0u;
     var far: FarSh;
     if volume && params.technique == 1u {
-        far = far_sh_here(here.p, here.n);
+        far = far_sh_here(far_probes, far_visibility, env_sampler, view, here.p, here.n);
     }
     for (var i = 0u; i < n; i++) {
-        let s = sample_local(i, pixel, sample_config());
+        let s = sample_at(i, pixel, sample_config(params));
         let omega = normalize(tb.t * s.x + tb.b * s.y + here.n * s.z);
         let lambda = s.w * params.radius;
-        let v = 1.0 - march_occlusion(here.p, omega, lambda, STEPS, sample_config()).amount;
+        let v = 1.0 - march_occlusion(here.p, omega, lambda, STEPS, sample_config(params)).amount;
         let cos_theta = max(s.z, 0.0);
         ao_num += v * cos_theta;
         ao_den += cos_theta;
@@ -75,10 +142,10 @@ fn direct(@builtin(global_invocation_id) id: vec3<u32>) {
             } else if sh_light {
                 let b = sh_basis(omega);
                 for (var k = 0u; k < 16u; k++) {
-                    l_in += env_sh[k].rgb * b[k];
+                    l_in += env.sh[k].rgb * b[k];
                 }
             } else {
-                l_in = env_radiance_at(omega, params.lod);
+                l_in = env_radiance_at(env_radiance, env_sampler, env, omega, params.lod);
             }
             let w = max(luminance(l_in), 0.0) * cos_theta;
             total_light += w;
@@ -112,7 +179,7 @@ fn direct(@builtin(global_invocation_id) id: vec3<u32>) {
         if volume {
             exact = far_irradiance(far, here.n);
         } else {
-            exact = env_irradiance_exact(here.n);
+            exact = env_irradiance_exact(env_irradiance_map, env_sampler, env, here.n);
         }
         let floor = 1e-4 * max(max(exact.r, exact.g), max(exact.b, 1e-20));
         l_dir = select(l_dir, l_dir * exact / l_open, l_open > vec3<f32>(floor));
@@ -131,7 +198,7 @@ fn direct(@builtin(global_invocation_id) id: vec3<u32>) {
             if n_l <= 0.0 {
                 continue;
             }
-            let shadowed = shadow_visibility(l, here.p, here.n);
+            let shadowed = shadow_map_visibility(l, here.p, here.n);
             var blocked = 0.0;
             if shadowed > 0.0 {
                 blocked = segment_blocked(here, l, inc.to_light);
@@ -153,7 +220,7 @@ fn vpl_environment(here: Surface) -> vec3<f32> {
         if n_l <= 0.0 {
             continue;
         }
-        var v = shadow_visibility(l, here.p, here.n);
+        var v = shadow_map_visibility(l, here.p, here.n);
         if v > 0.0 && params.light_samples > 0u {
             v *= 1.0 - segment_blocked(here, l, to_light);
         }

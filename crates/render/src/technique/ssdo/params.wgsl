@@ -1,5 +1,6 @@
 // params.wgsl — `SsdoParams`, the constants of every ssdo pass (technique/ssdo/mod.rs
-// `SsdoParams`; the formulas and sources are in mod.rs).
+// `SsdoParams`; the formulas and sources are in mod.rs), a library: each pass binds the struct as
+// `params` in its group 1 and passes it to the functions that take it (segment.wgsl).
 
 struct SsdoParams {
     // Hemisphere radius R (m).

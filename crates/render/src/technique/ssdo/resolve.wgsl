@@ -13,7 +13,7 @@
 @compute @workgroup_size(8, 8, 1)
 fn resolve(@builtin(global_invocation_id) id: vec3<u32>) {
     let pixel = id.xy;
-    if !in_bounds(pixel) {
+    if !in_bounds(view, pixel) {
         return;
     }
     let nw = textureLoad(gb_normal, pixel, 0);
@@ -24,16 +24,16 @@ fn resolve(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     let a = textureLoad(in_a, pixel, 0);
     let n = normalize(nw.xyz);
-    var env = vec3<f32>(0.0);
-    if far_volume() {
-        let p = world_position(pixel, textureLoad(gb_view_depth, pixel, 0).r);
-        env = a.w * far_irradiance_here(p, n);
+    var env_e = vec3<f32>(0.0);
+    if far_volume(far_probes) {
+        let p = world_position(view, pixel, textureLoad(gb_view_depth, pixel, 0).r);
+        env_e = a.w * far_irradiance_here(far_probes, far_visibility, far_irradiance_atlas, env_sampler, view, p, n);
     } else {
-        env = a.w * env_irradiance_sh(n);
+        env_e = a.w * env_irradiance_sh(env, n);
     }
     if params.technique == 1u && (params.mode == 1u || params.vpl_mode == 1u) {
-        env = a.rgb;
+        env_e = a.rgb;
     }
-    textureStore(out_env_irradiance, pixel, vec4<f32>(env, 1.0));
+    textureStore(out_env_irradiance, pixel, vec4<f32>(env_e, 1.0));
     textureStore(out_ao, pixel, vec4<f32>(textureLoad(in_b, pixel, 0).r));
 }

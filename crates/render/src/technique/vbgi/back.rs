@@ -7,6 +7,7 @@ pub fn source() -> String {
     util::compose(&[
         util::COMMON_WGSL,
         util::ENV_WGSL,
+        util::FRAME_BINDINGS_WGSL,
         include_str!("../horizon/params.wgsl"),
         include_str!("back.wgsl"),
     ])

@@ -14,7 +14,7 @@ fn back(@builtin(global_invocation_id) id: vec3<u32>) {
     for (var layer = 0u; layer < 16u; layer++) {
         let pixel = texel * 4u + vec2<u32>(layer % 4u, layer / 4u);
         var depth = 0.0;
-        if in_bounds(pixel) {
+        if in_bounds(view, pixel) {
             depth = textureLoad(full_back, pixel, 0, 0).r;
         }
         textureStore(split_back, texel, layer, vec4<f32>(depth, 0.0, 0.0, 0.0));

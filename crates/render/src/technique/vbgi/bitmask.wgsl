@@ -120,11 +120,11 @@ fn bitmask(@builtin(global_invocation_id) id: vec3<u32>) {
     if texel.x >= params.layer_width || texel.y >= params.layer_height {
         return;
     }
-    let pixel = layer_pixel(texel, layer);
-    if !in_bounds(pixel) {
+    let pixel = layer_pixel(params, texel, layer);
+    if !in_bounds(view, pixel) {
         return;
     }
-    let centre = geometry(vec2<i32>(texel), layer);
+    let centre = geometry(in_depth, in_normal, params, vec2<i32>(texel), layer);
     let depth = centre.w;
     if depth <= 0.0 {
         textureStore(out_cone, pixel, vec4<f32>(0.0, 0.0, 0.0, 1.0));
@@ -132,24 +132,24 @@ fn bitmask(@builtin(global_invocation_id) id: vec3<u32>) {
         textureStore(out_far, pixel, vec4<f32>(0.0));
         return;
     }
-    let far_lod = max(frame.env_radiance_mips - 5.0, 0.0);
+    let far_lod = max(env.radiance_mips - 5.0, 0.0);
     let n = normalize(centre.xyz);
-    let x = world_position(pixel, depth);
+    let x = world_position(view, pixel, depth);
     // The light of the free sectors: the environment at a blurred mip, or the probe volume's
     // radiance at this point.
-    let volume = params.far == FAR_SLICES && far_volume();
+    let volume = params.far == FAR_SLICES && far_volume(far_probes);
     var far_sh: FarSh;
     if volume {
-        far_sh = far_sh_here(x, n);
+        far_sh = far_sh_here(far_probes, far_visibility, env_sampler, view, x, n);
     }
     let eye = view.camera_position.xyz;
     let forward = -normalize(view.world_from_view[2].xyz);
-    let lf = local_frame(x);
+    let lf = local_frame(view, x);
     let omega_o = lf.o;
     let omega_x = lf.x;
     let omega_y = lf.y;
 
-    let r_layer = march_reach(depth);
+    let r_layer = march_reach(view, params, depth);
     let cell = cell_index(pixel);
     let frame_jitter = golden(view.frame_index);
     let step_jitter = fract(noise(pixel) + golden(view.frame_index + 7u));
@@ -157,7 +157,7 @@ fn bitmask(@builtin(global_invocation_id) id: vec3<u32>) {
     // same offset, so neighbouring samples' ranges tile without gaps, and over frames a sector's
     // expected coverage is the exact fraction of it that the range covers.
     let round_jitter = fract(noise(pixel + vec2<u32>(17u, 29u)) + golden(view.frame_index + 3u));
-    let x_screen = to_screen(view.clip_from_world, x);
+    let x_screen = to_screen(view, view.clip_from_world, x);
     let layer_size = vec2<i32>(i32(params.layer_width), i32(params.layer_height));
     let all_sectors = bit_range(0u, SECTORS);
     let groups = min(SECTORS, 16u);
@@ -193,7 +193,7 @@ fn bitmask(@builtin(global_invocation_id) id: vec3<u32>) {
             cum[b] = sv - s_base;
             cs = vec2<f32>(cs.x * rot.x - cs.y * rot.y, cs.y * rot.x + cs.x * rot.y);
         }
-        let dir = slice_screen_dir(x, x_screen, d, depth);
+        let dir = slice_screen_dir(view, x, x_screen, d, depth);
         var occupied = 0u;
         for (var side = 0u; side < 2u; side++) {
             let side_sign = select(1.0, -1.0, side == 1u);
@@ -213,15 +213,15 @@ fn bitmask(@builtin(global_invocation_id) id: vec3<u32>) {
                 if any(q < vec2<i32>(0)) || any(q >= layer_size) {
                     break;
                 }
-                let qg = geometry(q, layer);
+                let qg = geometry(in_depth, in_normal, params, q, layer);
                 let qd = qg.w;
                 if qd <= 0.0 {
                     prev_valid = false;
                     continue;
                 }
                 let qn = normalize(qg.xyz);
-                let q_centre = world_position(layer_pixel(vec2<u32>(q), layer), qd);
-                let on_line = on_slice_line(pos, layer, q_centre, qn);
+                let q_centre = world_position(view, layer_pixel(params, vec2<u32>(q), layer), qd);
+                let on_line = on_slice_line(view, params, pos, layer, q_centre, qn);
                 if on_line.w == 0.0 {
                     continue;
                 }
@@ -337,7 +337,7 @@ fn bitmask(@builtin(global_invocation_id) id: vec3<u32>) {
                 if volume {
                     far += far_radiance(far_sh, omega) * w;
                 } else {
-                    far += env_radiance_at(omega, far_lod) * w;
+                    far += env_radiance_at(env_radiance, env_sampler, env, omega, far_lod) * w;
                 }
             }
         }
