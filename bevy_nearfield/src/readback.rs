@@ -139,12 +139,10 @@ pub(crate) fn copy(device: &wgpu::Device, encoder: &mut wgpu::CommandEncoder, nf
     }
     let b = slot.as_ref().unwrap();
     copy_to(encoder, &nf.images.ao.texture, &b.ao, 4);
-    copy_to(
-        encoder,
-        &nf.images.indirect_irradiance.texture,
-        &b.indirect,
-        8,
-    );
+    // gtao writes no indirect light: its buffer stays zero.
+    if let Some(indirect) = nf.images.indirect_irradiance.as_ref() {
+        copy_to(encoder, &indirect.texture, &b.indirect, 8);
+    }
 }
 
 /// Records the copy of the radiance kept for the next frame (after the capture).

@@ -24,7 +24,9 @@ use nearfield_render::frame::{CameraMatrices, FrameInputs, ViewUniforms};
 use nearfield_render::gpu_env::GpuEnvironment;
 use nearfield_render::passes::FrameGroup;
 use nearfield_render::profiler::GpuProfiler;
-use nearfield_render::technique::{self, FrameInfo, Technique, TechniqueContext, TechniqueParams};
+use nearfield_render::technique::{
+    self, FrameInfo, Output, Technique, TechniqueContext, TechniqueParams,
+};
 use nearfield_render::wgpu;
 use std::sync::Mutex;
 use wgpu::util::DeviceExt;
@@ -304,13 +306,15 @@ pub struct Images {
     direct: [Image; 2],
     motion: Image,
     pub(crate) ao: Image,
-    env_irradiance: Image,
-    pub(crate) indirect_irradiance: Image,
-    light_irradiance: Image,
+    /// The outputs the technique declares besides ao (`TechniqueDesc::writes`): gtao writes
+    /// none of these three, hbil and vbgi env- and indirect-irradiance.
+    env_irradiance: Option<Image>,
+    pub(crate) indirect_irradiance: Option<Image>,
+    light_irradiance: Option<Image>,
 }
 
 impl Images {
-    fn new(device: &wgpu::Device, size: UVec2) -> Self {
+    fn new(device: &wgpu::Device, size: UVec2, writes: &[Output]) -> Self {
         use wgpu::TextureFormat as F;
         use wgpu::TextureUsages as U;
         let target = U::RENDER_ATTACHMENT | U::TEXTURE_BINDING | U::COPY_SRC;
@@ -331,9 +335,15 @@ impl Images {
             ],
             motion: image("nearfield motion", F::Rg16Float, target),
             ao: image("nearfield ao", F::R32Float, storage),
-            env_irradiance: image("nearfield env irradiance", F::Rgba16Float, storage),
-            indirect_irradiance: image("nearfield indirect irradiance", F::Rgba16Float, storage),
-            light_irradiance: image("nearfield light irradiance", F::Rgba16Float, storage),
+            env_irradiance: writes
+                .contains(&Output::EnvIrradiance)
+                .then(|| image("nearfield env irradiance", F::Rgba16Float, storage)),
+            indirect_irradiance: writes
+                .contains(&Output::IndirectIrradiance)
+                .then(|| image("nearfield indirect irradiance", F::Rgba16Float, storage)),
+            light_irradiance: writes
+                .contains(&Output::LightIrradiance)
+                .then(|| image("nearfield light irradiance", F::Rgba16Float, storage)),
         }
     }
 }
@@ -416,7 +426,8 @@ impl NearFieldView {
         near_field: &ExtractedNearField,
         view: &ExtractedView,
     ) -> Result<Self, String> {
-        let images = Images::new(device, size);
+        let desc = technique::find(near_field.technique.name()).map_err(|e| e.to_string())?;
+        let images = Images::new(device, size, desc.writes);
         let (near, far) = near_far(view);
         let (camera, matrices) = camera_of(view, near, far);
         let size_t = (size.x, size.y);
@@ -455,11 +466,11 @@ impl NearFieldView {
         };
         let outputs = NearFieldOutputs {
             ao: &images.ao.view,
-            env_irradiance: &images.env_irradiance.view,
-            indirect_irradiance: &images.indirect_irradiance.view,
-            light_irradiance: &images.light_irradiance.view,
+            bent_normal: None,
+            env_irradiance: images.env_irradiance.as_ref().map(|i| &i.view),
+            indirect_irradiance: images.indirect_irradiance.as_ref().map(|i| &i.view),
+            light_irradiance: images.light_irradiance.as_ref().map(|i| &i.view),
         };
-        let desc = technique::find(near_field.technique.name()).map_err(|e| e.to_string())?;
         let technique = technique::create(
             desc,
             &TechniqueContext {
@@ -814,6 +825,9 @@ fn capture_and_add(
     let Some(gbuffer) = prepass.deferred.as_ref() else {
         return;
     };
+    let Some(indirect) = nf.images.indirect_irradiance.as_ref() else {
+        return;
+    };
     let Some((_, add)) = pipelines
         .add
         .iter()
@@ -831,7 +845,7 @@ fn capture_and_add(
             },
             wgpu::BindGroupEntry {
                 binding: 1,
-                resource: texture_of(&nf.images.indirect_irradiance.view),
+                resource: texture_of(&indirect.view),
             },
         ],
     });

@@ -68,9 +68,7 @@ pub fn run(args: RenderArgs) -> Result<()> {
         &params,
         settings,
     )?;
-    let far_aov = (aov != Some(Aov::Final)).then_some(args.aov.as_str());
-    let volume = args.far.resolve(&args.scene, &loaded, far_aov)?;
-    renderer.set_far_field(volume.as_ref())?;
+    // Before the far field: a bake takes seconds, a bad name answers at once.
     if aov.is_none() && !renderer.extra_names().contains(&args.aov.as_str()) {
         let mut known = Aov::names();
         known.extend(renderer.extra_names());
@@ -82,6 +80,9 @@ pub fn run(args: RenderArgs) -> Result<()> {
         ))
         .into());
     }
+    let far_aov = (aov != Some(Aov::Final)).then_some(args.aov.as_str());
+    let volume = args.far.resolve(&args.scene, &loaded, far_aov)?;
+    renderer.set_far_field(volume.as_ref())?;
     loaded.report_sun();
     let progress = nearfield_scene::progress::Progress::new(
         &format!("render {}", args.method),

@@ -2,7 +2,7 @@
 //!
 //! It rasterises a small scene (nearfield's built-in `boxes`, as plain triangles) with its own
 //! shader into its own textures — not nearfield's `FrameTargets`, not nearfield's G-buffer pass —
-//! shades a direct radiance of its own, and runs `ssdo` and `hbil` on those images through the
+//! shades a direct radiance of its own, and runs `ssdo`, `hbil` and `gtao` on those images through the
 //! documented inputs (`nearfield_render::contract::io::NearFieldInputs`). It reads `ao` back and
 //! prints its mean over the surface pixels. What it needs from nearfield besides the technique:
 //! the narrow `View` uniform (camera matrices, size, frame index: `ViewUniforms`), the
@@ -21,12 +21,14 @@ use nearfield_render::frame::{CameraMatrices, FrameInputs, ViewUniforms};
 use nearfield_render::gpu_env::GpuEnvironment;
 use nearfield_render::passes::FrameGroup;
 use nearfield_render::profiler::GpuProfiler;
-use nearfield_render::technique::{self, FrameInfo, TechniqueContext, TechniqueParams};
+use nearfield_render::technique::{self, FrameInfo, Output, TechniqueContext, TechniqueParams};
 use nearfield_render::{GpuContext, wgpu};
 use wgpu::util::DeviceExt;
 
 /// The image size of the example.
 pub const SIZE: (u32, u32) = (160, 90);
+/// The techniques it runs.
+pub const METHODS: [&str; 3] = ["ssdo", "hbil", "gtao"];
 
 /// The engine's own G-buffer shader: world normal (flipped on back faces), view depth, albedo,
 /// and a direct radiance of its own (albedo × a sky that is brighter above).
@@ -130,6 +132,27 @@ pub fn mean_ao(ctx: &GpuContext, method: &str) -> Result<f32, String> {
 /// The `ao` image (r32float, row 0 at the top) of `method` on the engine's G-buffer, and the
 /// engine's view depth (0 on background).
 pub fn ao_image(ctx: &GpuContext, method: &str) -> Result<(Vec<f32>, Vec<f32>), String> {
+    let images = engine_images(ctx, method, None)?;
+    Ok((images.ao, images.view_depth))
+}
+
+/// What one frame of a technique leaves in the engine's images.
+pub struct EngineImages {
+    /// `ao` (row 0 at the top).
+    pub ao: Vec<f32>,
+    /// The engine's view depth (0 on background).
+    pub view_depth: Vec<f32>,
+    /// The bent normal (xyzw), where the technique declares it.
+    pub bent_normal: Option<Vec<[f32; 4]>>,
+}
+
+/// One frame of `method` on the engine's G-buffer with the outputs it declares, less
+/// `leave_out` (to see a missing output refused).
+pub fn engine_images(
+    ctx: &GpuContext,
+    method: &str,
+    leave_out: Option<Output>,
+) -> Result<EngineImages, String> {
     let (device, queue) = (&ctx.device, &ctx.queue);
     let scene = nearfield_scene::builtin::scene("boxes").map_err(|e| e.to_string())?;
     let env = scene.default_env.load().map_err(|e| e.to_string())?;
@@ -215,10 +238,18 @@ pub fn ao_image(ctx: &GpuContext, method: &str) -> Result<(Vec<f32>, Vec<f32>), 
     let (_v, motion) = image(device, "engine motion", F::Rg16Float, U::TEXTURE_BINDING);
     let (_z, depth) = image(device, "engine depth", F::Depth32Float, target);
     let storage = U::STORAGE_BINDING | U::TEXTURE_BINDING | U::COPY_SRC;
+    // The outputs the technique declares it writes, and no others (gtao: ao and the bent
+    // normal; ssdo: ao, env-, indirect- and light-irradiance).
+    let desc = technique::find(method).map_err(|e| e.to_string())?;
     let (ao_texture, ao) = image(device, "engine ao", F::R32Float, storage);
-    let (_ei, env_irradiance) = image(device, "engine env", F::Rgba16Float, storage);
-    let (_ii, indirect_irradiance) = image(device, "engine indirect", F::Rgba16Float, storage);
-    let (_li, light_irradiance) = image(device, "engine light", F::Rgba16Float, storage);
+    let declared = |o: Output, label| {
+        (desc.writes.contains(&o) && leave_out != Some(o))
+            .then(|| image(device, label, F::Rgba16Float, storage))
+    };
+    let bent = declared(Output::BentNormal, "engine bent normal");
+    let env_irradiance = declared(Output::EnvIrradiance, "engine env");
+    let indirect_irradiance = declared(Output::IndirectIrradiance, "engine indirect");
+    let light_irradiance = declared(Output::LightIrradiance, "engine light");
 
     // The engine's raster pass.
     let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
@@ -323,11 +354,11 @@ pub fn ao_image(ctx: &GpuContext, method: &str) -> Result<(Vec<f32>, Vec<f32>), 
     };
     let outputs = NearFieldOutputs {
         ao: &ao,
-        env_irradiance: &env_irradiance,
-        indirect_irradiance: &indirect_irradiance,
-        light_irradiance: &light_irradiance,
+        bent_normal: bent.as_ref().map(|(_, v)| v),
+        env_irradiance: env_irradiance.as_ref().map(|(_, v)| v),
+        indirect_irradiance: indirect_irradiance.as_ref().map(|(_, v)| v),
+        light_irradiance: light_irradiance.as_ref().map(|(_, v)| v),
     };
-    let desc = technique::find(method).map_err(|e| e.to_string())?;
     let (_, params) = technique::resolve_params(method, &TechniqueParams::default())
         .map_err(|e| e.to_string())?;
     let t = technique::create(
@@ -400,13 +431,23 @@ pub fn ao_image(ctx: &GpuContext, method: &str) -> Result<(Vec<f32>, Vec<f32>), 
         },
     );
     let bytes = nearfield_render::util::read_texture(device, queue, encoder, &ao_texture, 4);
-    let encoder = device.create_command_encoder(&Default::default());
-    let depth_bytes =
-        nearfield_render::util::read_texture(device, queue, encoder, &depth_texture, 4);
-    Ok((
-        bytemuck::pod_collect_to_vec(&bytes),
-        bytemuck::pod_collect_to_vec(&depth_bytes),
-    ))
+    let read = |texture: &wgpu::Texture, texel_bytes| {
+        let encoder = device.create_command_encoder(&Default::default());
+        nearfield_render::util::read_texture(device, queue, encoder, texture, texel_bytes)
+    };
+    let depth_bytes = read(&depth_texture, 4);
+    let bent_normal = bent.as_ref().map(|(texture, _)| {
+        let halves: Vec<u16> = bytemuck::pod_collect_to_vec(&read(texture, 8));
+        halves
+            .chunks_exact(4)
+            .map(|c| [c[0], c[1], c[2], c[3]].map(|h| half::f16::from_bits(h).to_f32()))
+            .collect()
+    });
+    Ok(EngineImages {
+        ao: bytemuck::pod_collect_to_vec(&bytes),
+        view_depth: bytemuck::pod_collect_to_vec(&depth_bytes),
+        bent_normal,
+    })
 }
 
 #[allow(dead_code)]
@@ -418,7 +459,7 @@ fn main() {
             std::process::exit(2);
         }
     };
-    for method in ["ssdo", "hbil"] {
+    for method in METHODS {
         match mean_ao(&ctx, method) {
             Ok(a) => println!("{method}: mean ao {a:.4} over the surface pixels"),
             Err(e) => {

@@ -542,6 +542,9 @@ impl Renderer {
                 history,
             },
         );
+        if let Some(pass) = &self.passes.occluded_far {
+            pass.encode(&mut encoder, p, size, 0);
+        }
         self.passes.composite.encode(&mut encoder, p, size, 0);
         self.passes.tonemap.encode(&mut encoder, p, size, 0);
         p.resolve(&mut encoder);

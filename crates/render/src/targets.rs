@@ -143,9 +143,12 @@ impl FrameTargets {
     pub fn near_field_outputs(&self) -> NearFieldOutputs<'_> {
         NearFieldOutputs {
             ao: &self.ao.view,
-            env_irradiance: &self.env_irradiance.view,
-            indirect_irradiance: &self.indirect_irradiance.view,
-            light_irradiance: &self.light_irradiance.view,
+            // Nothing of nearfield's frame reads a bent normal (gtao's, hbil's and vbgi's
+            // `bent-cone` history is their debug image of it).
+            bent_normal: None,
+            env_irradiance: Some(&self.env_irradiance.view),
+            indirect_irradiance: Some(&self.indirect_irradiance.view),
+            light_irradiance: Some(&self.light_irradiance.view),
         }
     }
 

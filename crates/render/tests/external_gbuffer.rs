@@ -1,5 +1,5 @@
 //! Techniques on documented inputs: `examples/external_gbuffer.rs` rasterises `boxes` into its own
-//! images and runs ssdo and hbil on them; nearfield's `Renderer` renders the same scene and
+//! images and runs ssdo, hbil and gtao on them (each with only the outputs it declares); nearfield's `Renderer` renders the same scene and
 //! camera through its own G-buffer. Both must give the same mean `ao` over the surface pixels.
 
 mod common;
@@ -23,7 +23,7 @@ fn a_technique_on_an_engines_own_gbuffer_matches_the_renderer() {
     let Some(ctx) = common::context() else { return };
     let scene = nearfield_scene::builtin::scene("boxes").unwrap();
     let env = scene.default_env.load().unwrap();
-    for method in ["ssdo", "hbil"] {
+    for method in external::METHODS {
         let external = external::mean_ao(&ctx, method).unwrap();
         let mut r = Renderer::new(
             &ctx,
@@ -60,6 +60,43 @@ fn a_technique_on_an_engines_own_gbuffer_matches_the_renderer() {
         assert!(
             (external - own).abs() <= BOUND,
             "{method}: {external} vs {own}"
+        );
+    }
+}
+
+/// gtao writes ao and the bent normal and nothing else: with only those two images handed in it
+/// runs, and its bent normal is a unit vector (rgba16float: within 2e-3) with w = 1 on every
+/// surface pixel and 0 on background. A technique whose declared output is left out is refused
+/// with a line naming it.
+#[test]
+fn a_technique_writes_what_it_declares() {
+    use nearfield_render::technique::Output;
+    let Some(ctx) = common::context() else { return };
+    let gtao = external::engine_images(&ctx, "gtao", None).unwrap();
+    let bent = gtao.bent_normal.expect("gtao declares the bent normal");
+    let mut surface = 0;
+    for (b, d) in bent.iter().zip(&gtao.view_depth) {
+        if *d > 0.0 {
+            surface += 1;
+            let len = (b[0] * b[0] + b[1] * b[1] + b[2] * b[2]).sqrt();
+            assert!((len - 1.0).abs() < 2e-3 && b[3] == 1.0, "bent normal {b:?}");
+        } else {
+            assert_eq!(*b, [0.0; 4], "background");
+        }
+    }
+    assert!(surface > 1000, "{surface} surface pixels");
+    for (method, output) in [
+        ("hbil", Output::EnvIrradiance),
+        ("hbil", Output::IndirectIrradiance),
+        ("ssdo", Output::LightIrradiance),
+    ] {
+        let result = external::engine_images(&ctx, method, Some(output));
+        let err = result
+            .err()
+            .unwrap_or_else(|| panic!("{method} without {output:?} ran"));
+        assert!(
+            err.contains(&format!("writes {}", output.name())) && !err.contains('\n'),
+            "{method}: {err}"
         );
     }
 }

@@ -42,22 +42,81 @@ pub struct NearFieldInputs<'a> {
     pub depth: Option<&'a wgpu::TextureView>,
 }
 
-/// The images a technique writes (storage textures of `size`).
+/// One image a technique writes ([`crate::contract::technique::TechniqueDesc::writes`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Output {
+    Ao,
+    BentNormal,
+    EnvIrradiance,
+    IndirectIrradiance,
+    LightIrradiance,
+}
+
+impl Output {
+    /// The output's name (the AOV's, where it is one).
+    pub fn name(self) -> &'static str {
+        match self {
+            Output::Ao => "ao",
+            Output::BentNormal => "bent-normal",
+            Output::EnvIrradiance => "env-irradiance",
+            Output::IndirectIrradiance => "indirect-irradiance",
+            Output::LightIrradiance => "light-irradiance",
+        }
+    }
+}
+
+/// The images a technique writes (storage textures of `size`). A technique writes the ones its
+/// descriptor declares (`TechniqueDesc::writes`) and no other: a host hands in those (the bent
+/// normal where it wants it) and may leave the rest `None`. nearfield's own frame hands in all
+/// but the bent normal, and fills env-irradiance and indirect-irradiance itself after a
+/// technique that writes only ao (gtao): env-irradiance = ao × E_far(n), indirect = 0.
 #[derive(Clone, Copy)]
 pub struct NearFieldOutputs<'a> {
-    /// `ao`: r32float, (1/π) ∫ V_R cos θ dω.
+    /// `ao`: r32float, (1/π) ∫ V_R cos θ dω. Every technique writes it.
     pub ao: &'a wgpu::TextureView,
+    /// The bent normal: rgba16float, xyz the unit world direction of the cosine-weighted mean
+    /// unoccluded direction within R, w = 1; (0, 0, 0, 0) on background. Written by gtao, hbil
+    /// and vbgi where it is given.
+    pub bent_normal: Option<&'a wgpu::TextureView>,
     /// `env-irradiance`: rgba16float, (1/π) ∫ L_env V_R cos θ dω. It holds the direct pass's
     /// unoccluded far field E_far(n)/π on entry (the sky's SH irradiance or the probe volume's):
-    /// `none` passes it on, every other technique overwrites it. An engine that runs `none`
-    /// writes its own unoccluded irradiance there first.
-    pub env_irradiance: &'a wgpu::TextureView,
+    /// `none` passes it on, every technique that declares it overwrites it. An engine that runs
+    /// `none` writes its own unoccluded irradiance there first.
+    pub env_irradiance: Option<&'a wgpu::TextureView>,
     /// `indirect-irradiance`: rgba16float, (1/π) ∫ (1 − V_R) L_o(x′) cos θ dω.
-    pub indirect_irradiance: &'a wgpu::TextureView,
+    pub indirect_irradiance: Option<&'a wgpu::TextureView>,
     /// `light-irradiance`: rgba16float, (1/π) Σ E_l with shadows. It holds the direct pass's
     /// value on entry (the bounce reads it for senders); techniques that occlude lights in screen
     /// space (ssdo, s3ho) write their own.
-    pub light_irradiance: &'a wgpu::TextureView,
+    pub light_irradiance: Option<&'a wgpu::TextureView>,
+}
+
+impl<'a> NearFieldOutputs<'a> {
+    /// The image of `output`, if the host handed it in.
+    pub fn get(&self, output: Output) -> Option<&'a wgpu::TextureView> {
+        match output {
+            Output::Ao => Some(self.ao),
+            Output::BentNormal => self.bent_normal,
+            Output::EnvIrradiance => self.env_irradiance,
+            Output::IndirectIrradiance => self.indirect_irradiance,
+            Output::LightIrradiance => self.light_irradiance,
+        }
+    }
+
+    /// The image of `output`, or an error naming the technique that writes it.
+    pub fn require(
+        &self,
+        technique: &str,
+        output: Output,
+    ) -> Result<&'a wgpu::TextureView, crate::RenderError> {
+        self.get(output).ok_or_else(|| crate::RenderError::Setting {
+            technique: technique.into(),
+            msg: format!(
+                "writes {}, which the host did not hand in (NearFieldOutputs)",
+                output.name()
+            ),
+        })
+    }
 }
 
 /// nearfield's own scene, for what only it can give: the lights and their shadow maps (the

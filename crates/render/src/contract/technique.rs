@@ -6,6 +6,7 @@
 use crate::RenderError;
 use crate::bindings::PassLayout;
 use crate::contract::frame::FrameGroup;
+pub use crate::contract::io::Output;
 use crate::contract::io::{NearFieldInputs, NearFieldOutputs, SceneInputs};
 use crate::contract::lights::{LightResources, NoLights};
 use crate::gpu_env::GpuEnvironment;
@@ -140,6 +141,9 @@ pub struct TechniqueDesc {
     /// Every pass's binding declaration (what the reflection test checks against naga); passes
     /// shared within a family appear under one name.
     pub pass_layouts: fn() -> Vec<PassLayout>,
+    /// The outputs it writes (`NearFieldOutputs`), and no other. Each must be handed in, except
+    /// the bent normal, which is written where it is given.
+    pub writes: &'static [Output],
 }
 
 /// Parses a technique's denoiser choice and svgf configuration from its settings.

@@ -7,12 +7,14 @@ use crate::gpu_env::GpuEnvironment;
 use crate::gpu_scene::GpuScene;
 use crate::passes::{self, FrameGroup, ScreenPass, shadow::ShadowPass};
 use crate::targets::FrameTargets;
-use crate::technique::{self, Technique, TechniqueContext, TechniqueParams};
+use crate::technique::{self, Output, Technique, TechniqueContext, TechniqueParams};
 
 /// The passes that bind the frame targets, the environment or the technique: rebuilt together.
 pub(super) struct Passes {
     pub direct: ScreenPass,
     pub technique: Box<dyn Technique>,
+    /// env- and indirect-irradiance after a technique that writes only ao (gtao).
+    pub occluded_far: Option<ScreenPass>,
     pub composite: ScreenPass,
     pub tonemap: ScreenPass,
     pub aov: ScreenPass,
@@ -51,9 +53,12 @@ impl Passes {
             },
             &params,
         )?;
+        let occluded_far = (!desc.writes.contains(&Output::EnvIrradiance))
+            .then(|| passes::occluded_far::new(device, frame_group, targets));
         Ok(Passes {
             direct,
             technique,
+            occluded_far,
             composite: passes::composite::new(device, frame_group, targets),
             tonemap: passes::tonemap::new(device, frame_group, targets),
             aov: passes::aov::new(device, frame_group, targets),

@@ -15,7 +15,7 @@ pub mod vbgi;
 
 use crate::RenderError;
 pub use crate::contract::technique::{
-    CheckFn, CreateFn, DenoiseFn, FrameInfo, Technique, TechniqueContext, TechniqueDesc,
+    CheckFn, CreateFn, DenoiseFn, FrameInfo, Output, Technique, TechniqueContext, TechniqueDesc,
     layered_texture, reject_unknown_keys, screen_texture,
 };
 use crate::passes::denoise;
@@ -150,6 +150,11 @@ pub fn create(
     ctx: &TechniqueContext,
     params: &TechniqueParams,
 ) -> Result<Box<dyn Technique>, RenderError> {
+    for output in desc.writes {
+        if *output != Output::BentNormal {
+            ctx.outputs.require(desc.name, *output)?;
+        }
+    }
     match desc.denoise {
         Some(config) => denoise::create_denoised(ctx, params, desc.name, config, |ctx| {
             (desc.create)(ctx, params)

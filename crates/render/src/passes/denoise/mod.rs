@@ -37,7 +37,7 @@ pub mod variance;
 use crate::RenderError;
 use crate::bindings::PassLayout;
 use crate::contract::formats::{AO_FORMAT, HDR_FORMAT};
-use crate::contract::io::NearFieldOutputs;
+use crate::contract::io::{NearFieldOutputs, Output};
 use crate::contract::technique::{
     FrameInfo, Technique, TechniqueContext, TechniqueParams, screen_texture,
 };
@@ -147,10 +147,14 @@ pub fn create_denoised(
         full("svgf raw indirect", HDR_FORMAT),
     ];
     let raw_views = [view(&raw[0]), view(&raw[1]), view(&raw[2])];
+    // The denoiser writes these three (whatever the inner technique declares).
+    let out_env = ctx.outputs.require(name, Output::EnvIrradiance)?;
+    let out_indirect = ctx.outputs.require(name, Output::IndirectIrradiance)?;
     let inner_outputs = NearFieldOutputs {
         ao: &raw_views[0],
-        env_irradiance: &raw_views[1],
-        indirect_irradiance: &raw_views[2],
+        bent_normal: ctx.outputs.bent_normal,
+        env_irradiance: Some(&raw_views[1]),
+        indirect_irradiance: Some(&raw_views[2]),
         light_irradiance: ctx.outputs.light_irradiance,
     };
     let inner_ctx = TechniqueContext {
@@ -265,8 +269,8 @@ pub fn create_denoised(
         final_env: &view(&last[1]),
         final_indirect: &view(&last[2]),
         out_ao: ctx.outputs.ao,
-        out_env: ctx.outputs.env_irradiance,
-        out_indirect: ctx.outputs.indirect_irradiance,
+        out_env,
+        out_indirect,
     }
     .bind_group(device, &resolve_layout);
     let step = |label: &'static str, source: String, entry: &str, layout| {

@@ -65,6 +65,8 @@ crate::bind_group! {
         out_indirect: view = kind::write(HDR_FORMAT),
         /// The diffuse radiance the next frame gathers (rgba16float).
         out_feedback: view = kind::write(HDR_FORMAT),
+        /// The bent normal (rgba16float, xyz unit world, w = 1), where the host handed one in.
+        out_bent: view = kind::write(HDR_FORMAT),
     }
 }
 

@@ -58,20 +58,26 @@
 @group(1) @binding(19) var out_env: texture_storage_2d<rgba16float, write>;
 @group(1) @binding(20) var out_indirect: texture_storage_2d<rgba16float, write>;
 @group(1) @binding(21) var out_feedback: texture_storage_2d<rgba16float, write>;
+// The bent normal (xyz unit world, w = 1), written where params.bent_normal is 1.
+@group(1) @binding(22) var out_bent: texture_storage_2d<rgba16float, write>;
 
 // The AOVs of one pixel (world point x, unit normal n) from its accumulated cone, near and far
 // field (the far field through the cone: resolve.wgsl's cone_far_field).
 fn write_outputs(pixel: vec2<u32>, x: vec3<f32>, n: vec3<f32>, cone: vec4<f32>, near: vec4<f32>, far: vec4<f32>) {
     let ao = clamp(cone.w, 0.0, 1.0);
     let bent = select(n, normalize(cone.xyz), dot(cone.xyz, cone.xyz) > 1e-12);
-    let env_irradiance = cone_far_field(far_probes, far_visibility, env_irradiance_map, env_sampler, view, env, params, x, n, bent, ao, far);
     textureStore(out_ao, pixel, vec4<f32>(ao, 0.0, 0.0, 0.0));
-    textureStore(out_env, pixel, vec4<f32>(env_irradiance, 1.0));
+    if params.bent_normal == 1u {
+        textureStore(out_bent, pixel, vec4<f32>(bent, 1.0));
+    }
     if !NEAR {
-        // gtao: no near-field light, and no next frame that gathers this one's radiance.
-        textureStore(out_indirect, pixel, vec4<f32>(0.0, 0.0, 0.0, 1.0));
+        // gtao writes ao and the bent normal only: no near-field light, no next frame that
+        // gathers this one's radiance; nearfield's frame derives env-irradiance from the ao
+        // (passes/occluded_far.wgsl).
         return;
     }
+    let env_irradiance = cone_far_field(far_probes, far_visibility, env_irradiance_map, env_sampler, view, env, params, x, n, bent, ao, far);
+    textureStore(out_env, pixel, vec4<f32>(env_irradiance, 1.0));
     let albedo = textureLoad(gb_albedo, pixel, 0).rgb;
     let metallic = textureLoad(gb_material, pixel, 0).r;
     var indirect = near.rgb;
@@ -97,9 +103,12 @@ fn resolve(pixel: vec2<u32>, raw_cone: vec4<f32>, raw_near: vec3<f32>, raw_far: 
             textureStore(acc_far, pixel, vec4<f32>(0.0));
         }
         textureStore(out_ao, pixel, vec4<f32>(1.0, 0.0, 0.0, 0.0));
-        textureStore(out_env, pixel, vec4<f32>(0.0));
-        textureStore(out_indirect, pixel, vec4<f32>(0.0));
+        if params.bent_normal == 1u {
+            textureStore(out_bent, pixel, vec4<f32>(0.0));
+        }
         if NEAR {
+            textureStore(out_env, pixel, vec4<f32>(0.0));
+            textureStore(out_indirect, pixel, vec4<f32>(0.0));
             textureStore(out_feedback, pixel, vec4<f32>(0.0));
         }
         return;

@@ -9,7 +9,8 @@ use super::{GEOMETRY_FORMAT, Settings, Source, accumulate, split};
 use crate::RenderError;
 use crate::contract::formats::HDR_FORMAT;
 use crate::contract::technique::{
-    FrameInfo, Technique, TechniqueContext, TechniqueParams, layered_texture, screen_texture,
+    FrameInfo, Output, Technique, TechniqueContext, TechniqueParams, layered_texture,
+    screen_texture,
 };
 use crate::passes::bilateral_blur::{BilateralBlur, BlurChain, BlurSettings};
 use crate::passes::denoise::Denoise;
@@ -32,6 +33,8 @@ struct Horizon {
     flavor: Flavor,
     /// The march gathers near-field light (hbil, vbgi).
     near: bool,
+    /// The host handed in a bent-normal output.
+    bent_normal: bool,
     size: (u32, u32),
     source: Source,
     split_step: ComputeStep,
@@ -73,7 +76,28 @@ pub fn build(
     let frame = ctx.frame_group;
     let (i, o) = (ctx.inputs, ctx.outputs);
     let size = i.size;
-    let p = settings.params(near, size);
+    // What the flavour writes (TechniqueDesc::writes): gtao ao and the bent normal; hbil and
+    // vbgi also env- and indirect-irradiance. Outputs it does not write, and light-irradiance
+    // (read for the next frame's radiance) where the host has none, bind a 1×1 stand-in.
+    let stand_in = |label: &str, format| {
+        let t = screen_texture(device, (1, 1), label, format);
+        let v = t.create_view(&Default::default());
+        (t, v)
+    };
+    let (spare_hdr, spare_hdr_view) = stand_in("horizon stand-in output", HDR_FORMAT);
+    let (spare_in, spare_in_view) = stand_in("horizon stand-in light", HDR_FORMAT);
+    let (out_env, out_indirect) = if near {
+        (
+            o.require(name, Output::EnvIrradiance)?,
+            o.require(name, Output::IndirectIrradiance)?,
+        )
+    } else {
+        (&spare_hdr_view, &spare_hdr_view)
+    };
+    let out_bent = o.bent_normal.unwrap_or(&spare_hdr_view);
+    let light_in = o.light_irradiance.unwrap_or(&spare_in_view);
+    let mut p = settings.params(near, size);
+    p.bent_normal = o.bent_normal.is_some() as u32;
     let params = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
         label: Some("horizon params"),
         contents: bytemuck::bytes_of(&p),
@@ -260,11 +284,12 @@ pub fn build(
             gb_albedo: i.albedo,
             gb_material: i.material,
             gb_emissive: i.emission,
-            light_irradiance: o.light_irradiance,
+            light_irradiance: light_in,
             out_ao: o.ao,
-            out_env: o.env_irradiance,
-            out_indirect: o.indirect_irradiance,
+            out_env,
+            out_indirect,
             out_feedback: &feedback_views[side],
+            out_bent,
         }
         .bind_group(device, &accumulate_layout)
     });
@@ -296,6 +321,7 @@ pub fn build(
         name,
         flavor,
         near,
+        bent_normal: o.bent_normal.is_some(),
         size,
         source: settings.march.source,
         split_step: step("split", split::source(), "split", &split_layout, &[]),
@@ -317,7 +343,7 @@ pub fn build(
             (b, chains)
         }),
         _textures: {
-            textures.extend([raw_cone, raw_near, raw_far]);
+            textures.extend([raw_cone, raw_near, raw_far, spare_hdr, spare_in]);
             textures.extend(hist_far);
             textures.extend(hist_cone);
             textures.extend(hist_near);
@@ -442,7 +468,8 @@ impl Technique for Horizon {
         {
             return Ok(false);
         }
-        let p = settings.params(self.near, self.size);
+        let mut p = settings.params(self.near, self.size);
+        p.bent_normal = self.bent_normal as u32;
         queue.write_buffer(&self.params, 0, bytemuck::bytes_of(&p));
         if let Some((blur, _)) = &self.blur {
             blur.write(queue, blur_settings(&settings));

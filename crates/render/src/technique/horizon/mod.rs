@@ -79,7 +79,7 @@ pub mod search;
 pub mod settings;
 pub mod split;
 
-use crate::contract::technique::{TechniqueDesc, TechniqueParams};
+use crate::contract::technique::{Output, TechniqueDesc, TechniqueParams};
 use crate::passes::denoise::{Denoise, SvgfConfig};
 use crate::settings::Declared;
 
@@ -122,6 +122,7 @@ pub const GTAO: TechniqueDesc = TechniqueDesc {
     presets: &GTAO_PRESETS,
     denoise: Some(config),
     pass_layouts,
+    writes: &[Output::Ao, Output::BentNormal],
 };
 
 pub const HBIL: TechniqueDesc = TechniqueDesc {
@@ -134,6 +135,12 @@ pub const HBIL: TechniqueDesc = TechniqueDesc {
     presets: &HBIL_PRESETS,
     denoise: Some(config),
     pass_layouts,
+    writes: &[
+        Output::Ao,
+        Output::BentNormal,
+        Output::EnvIrradiance,
+        Output::IndirectIrradiance,
+    ],
 };
 
 /// The settings parsed without a device (`TechniqueDesc::check`).

@@ -20,7 +20,7 @@ impl Settings {
         let scale = if self.march.interleaved { 4 } else { 1 };
         HorizonParams {
             radius: self.march.radius,
-            _pad0: 0,
+            bent_normal: 0,
             _pad1: 0,
             falloff: self.falloff,
             max_pixels: self.march.max_pixels,
@@ -54,7 +54,8 @@ crate::gpu_struct! {
     pub struct HorizonParams {
         pub radius: f32,
         /// (Slices and steps: the overrides `SLICES` and `STEPS`.)
-        pub _pad0: u32,
+        /// 1: write the bent normal (the host handed one in).
+        pub bent_normal: u32,
         pub _pad1: u32,
         pub falloff: f32,
         pub max_pixels: f32,

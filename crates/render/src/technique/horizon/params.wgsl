@@ -5,7 +5,8 @@
 struct HorizonParams {
     radius: f32,
     // (Slices per pixel and samples per side: the overrides SLICES and STEPS.)
-    _pad0: u32,
+    // 1: the host handed in a bent-normal output (accumulate writes it).
+    bent_normal: u32,
     _pad1: u32,
     falloff: f32,
     max_pixels: f32,

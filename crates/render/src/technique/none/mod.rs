@@ -4,7 +4,9 @@
 
 use crate::RenderError;
 use crate::bindings::{PassLayout, kind};
-use crate::contract::technique::{Technique, TechniqueContext, TechniqueDesc, TechniqueParams};
+use crate::contract::technique::{
+    Output, Technique, TechniqueContext, TechniqueDesc, TechniqueParams,
+};
 use crate::passes::{ComputeStep, ScreenPass};
 use crate::profiler::GpuProfiler;
 use crate::targets::{AO_FORMAT, HDR_FORMAT};
@@ -56,6 +58,11 @@ pub const DESC: TechniqueDesc = TechniqueDesc {
     presets: &[],
     denoise: None,
     pass_layouts: || vec![pass_layout()],
+    writes: &[
+        Output::Ao,
+        Output::EnvIrradiance,
+        Output::IndirectIrradiance,
+    ],
 };
 
 struct NoneTechnique {
@@ -83,8 +90,8 @@ fn create(
     let own = NoneBindings {
         gb_normal: i.normal,
         out_ao: o.ao,
-        out_env_irradiance: o.env_irradiance,
-        out_indirect_irradiance: o.indirect_irradiance,
+        out_env_irradiance: o.require("none", Output::EnvIrradiance)?,
+        out_indirect_irradiance: o.require("none", Output::IndirectIrradiance)?,
     }
     .bind_group(device, &layout);
     Ok(Box::new(NoneTechnique {

@@ -50,7 +50,9 @@ pub mod settings;
 pub mod shade;
 
 use crate::RenderError;
-use crate::contract::technique::{Technique, TechniqueContext, TechniqueDesc, TechniqueParams};
+use crate::contract::technique::{
+    Output, Technique, TechniqueContext, TechniqueDesc, TechniqueParams,
+};
 use crate::passes::ComputeStep;
 use crate::passes::bilateral_blur::{BilateralBlur, BlurChain, BlurSettings};
 use crate::passes::denoise::{Denoise, SvgfConfig};
@@ -87,6 +89,12 @@ pub const S3HO: TechniqueDesc = TechniqueDesc {
     presets: &S3HO_PRESETS,
     denoise: Some(denoise_config),
     pass_layouts,
+    writes: &[
+        Output::Ao,
+        Output::EnvIrradiance,
+        Output::IndirectIrradiance,
+        Output::LightIrradiance,
+    ],
 };
 
 pub const SSBN: TechniqueDesc = TechniqueDesc {
@@ -99,6 +107,12 @@ pub const SSBN: TechniqueDesc = TechniqueDesc {
     presets: &SSBN_PRESETS,
     denoise: Some(denoise_config),
     pass_layouts,
+    writes: &[
+        Output::Ao,
+        Output::EnvIrradiance,
+        Output::IndirectIrradiance,
+        Output::LightIrradiance,
+    ],
 };
 
 struct S3ho {
@@ -240,8 +254,8 @@ fn create(
         in_coeffs1: c1,
         in_bent: &v[5],
         in_ao_raw: &v[7],
-        out_env_irradiance: o.env_irradiance,
-        out_light_irradiance: o.light_irradiance,
+        out_env_irradiance: o.require(name, Output::EnvIrradiance)?,
+        out_light_irradiance: o.require(name, Output::LightIrradiance)?,
         out_ao: o.ao,
     }
     .bind_group(device, &shade_layout);
@@ -297,7 +311,13 @@ fn create(
         ),
         blur_bent: blur.chain(device, i, &v[4], &v[9], &v[5]),
         blur_ao: blur.chain(device, i, &v[6], &v[9], &v[7]),
-        blur_indirect: blur.chain(device, i, &v[8], &v[9], o.indirect_irradiance),
+        blur_indirect: blur.chain(
+            device,
+            i,
+            &v[8],
+            &v[9],
+            o.require(name, Output::IndirectIrradiance)?,
+        ),
         blur,
         layers: stack,
         _textures: textures,

@@ -43,7 +43,9 @@ pub mod settings;
 pub mod vpls;
 
 use crate::RenderError;
-use crate::contract::technique::{Technique, TechniqueContext, TechniqueDesc, TechniqueParams};
+use crate::contract::technique::{
+    Output, Technique, TechniqueContext, TechniqueDesc, TechniqueParams,
+};
 use crate::passes::ComputeStep;
 use crate::passes::bilateral_blur::{BilateralBlur, BlurChain, BlurSettings};
 use crate::passes::denoise::{Denoise, SvgfConfig};
@@ -81,6 +83,12 @@ pub const SSAO: TechniqueDesc = TechniqueDesc {
     presets: &SSAO_PRESETS,
     denoise: Some(denoise_config),
     pass_layouts,
+    writes: &[
+        Output::Ao,
+        Output::EnvIrradiance,
+        Output::IndirectIrradiance,
+        Output::LightIrradiance,
+    ],
 };
 
 pub const SSDO: TechniqueDesc = TechniqueDesc {
@@ -93,6 +101,12 @@ pub const SSDO: TechniqueDesc = TechniqueDesc {
     presets: &SSDO_PRESETS,
     denoise: Some(denoise_config),
     pass_layouts,
+    writes: &[
+        Output::Ao,
+        Output::EnvIrradiance,
+        Output::IndirectIrradiance,
+        Output::LightIrradiance,
+    ],
 };
 
 pub const SSDO_VPL: TechniqueDesc = TechniqueDesc {
@@ -105,6 +119,12 @@ pub const SSDO_VPL: TechniqueDesc = TechniqueDesc {
     presets: &SSDO_VPL_PRESETS,
     denoise: Some(denoise_config),
     pass_layouts,
+    writes: &[
+        Output::Ao,
+        Output::EnvIrradiance,
+        Output::IndirectIrradiance,
+        Output::LightIrradiance,
+    ],
 };
 
 pub const INSTANT_RADIOSITY: TechniqueDesc = TechniqueDesc {
@@ -117,6 +137,12 @@ pub const INSTANT_RADIOSITY: TechniqueDesc = TechniqueDesc {
     presets: &INSTANT_RADIOSITY_PRESETS,
     denoise: Some(denoise_config),
     pass_layouts,
+    writes: &[
+        Output::Ao,
+        Output::EnvIrradiance,
+        Output::IndirectIrradiance,
+        Output::LightIrradiance,
+    ],
 };
 
 /// Which technique of this file.
@@ -244,7 +270,7 @@ fn create(
         shadow_depths: direct_lights.shadow_depths,
         out_a: raw_a,
         out_b: raw_b,
-        out_light_irradiance: o.light_irradiance,
+        out_light_irradiance: o.require(name, Output::LightIrradiance)?,
     }
     .bind_group(device, &direct_layout);
     let direct_module =
@@ -257,7 +283,7 @@ fn create(
         gb_view_depth: i.view_depth,
         in_a: blurred_a,
         in_b: blurred_b,
-        out_env_irradiance: o.env_irradiance,
+        out_env_irradiance: o.require(name, Output::EnvIrradiance)?,
         out_ao: o.ao,
     }
     .bind_group(device, &resolve_layout);
@@ -284,8 +310,8 @@ fn create(
         shadow_depths: bounce_lights.shadow_depths,
         gb_albedo: i.albedo,
         gb_emissive: i.emission,
-        env_irradiance: o.env_irradiance,
-        light_irradiance: o.light_irradiance,
+        env_irradiance: o.require(name, Output::EnvIrradiance)?,
+        light_irradiance: o.require(name, Output::LightIrradiance)?,
         out_indirect: raw_indirect,
     }
     .bind_group(device, &bounce_layout);
@@ -321,7 +347,13 @@ fn create(
         ),
         blur_a: blur.chain(device, i, raw_a, scratch, blurred_a),
         blur_b: blur.chain(device, i, raw_b, scratch, blurred_b),
-        blur_indirect: blur.chain(device, i, raw_indirect, scratch, o.indirect_irradiance),
+        blur_indirect: blur.chain(
+            device,
+            i,
+            raw_indirect,
+            scratch,
+            o.require(name, Output::IndirectIrradiance)?,
+        ),
         blur,
         layers: stack,
         vpls,

@@ -59,7 +59,7 @@ pub mod bitmask;
 pub mod march;
 pub mod settings;
 
-use crate::contract::technique::{TechniqueDesc, TechniqueParams};
+use crate::contract::technique::{Output, TechniqueDesc, TechniqueParams};
 use crate::passes::denoise::{Denoise, SvgfConfig};
 use crate::settings::Declared;
 use crate::technique::horizon;
@@ -80,6 +80,12 @@ pub const VBGI: TechniqueDesc = TechniqueDesc {
     presets: &VBGI_PRESETS,
     denoise: Some(config),
     pass_layouts,
+    writes: &[
+        Output::Ao,
+        Output::BentNormal,
+        Output::EnvIrradiance,
+        Output::IndirectIrradiance,
+    ],
 };
 
 /// `VbgiParams` in bitmask.wgsl.
