@@ -11,3 +11,5 @@ export XDG_RUNTIME_DIR=${XDG_RUNTIME_DIR:-$(d=${TMPDIR:-/tmp}/nearfield-xdg-$(id
 "$CARGO" build --release -p nearfield-cli --bin nearfield --example figures --example book_reference
 "$CARGO" run --release -q -p nearfield-cli --example figures
 "$CARGO" run --release -q -p nearfield-cli --example book_reference
+# The Bevy plugin's pictures (nightly toolchain; builds Bevy once).
+./scripts/bevy-figures.sh

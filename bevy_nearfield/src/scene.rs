@@ -65,7 +65,8 @@ pub fn spawn_scene(
         .iter()
         .map(|m| {
             let c = m.base_color;
-            let texture = m.base_color_texture.and_then(|i| textures.get(i).cloned());
+            let texture_of = |i: Option<usize>| i.and_then(|i| textures.get(i).cloned());
+            let texture = texture_of(m.base_color_texture);
             let (unlit, base_color) = match shading {
                 Shading::Lit => (false, Color::linear_rgba(c.x, c.y, c.z, c.w)),
                 Shading::Unlit(f) => (true, Color::linear_rgba(f * c.x, f * c.y, f * c.z, c.w)),
@@ -73,8 +74,13 @@ pub fn spawn_scene(
             materials.add(StandardMaterial {
                 base_color,
                 base_color_texture: texture,
+                // glTF's metallic-roughness texture (G roughness, B metallic), which Bevy reads
+                // the same way; without it Sponza's materials (metallicFactor 1 by default) are
+                // all metal, and diffuse light such as an irradiance volume's is lost.
+                metallic_roughness_texture: texture_of(m.metallic_roughness_texture),
                 metallic: m.metallic,
                 perceptual_roughness: m.roughness,
+                emissive_texture: texture_of(m.emissive_texture),
                 emissive: LinearRgba::rgb(m.emissive.x, m.emissive.y, m.emissive.z),
                 double_sided: m.double_sided,
                 cull_mode: (!m.double_sided).then_some(bevy::render::render_resource::Face::Back),

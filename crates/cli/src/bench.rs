@@ -33,6 +33,12 @@ pub struct BenchArgs {
     /// Also write the results as JSON.
     #[arg(long)]
     pub json: Option<PathBuf>,
+    /// Profile one method's frame by ablation: time it whole and with each pass left out in
+    /// turn (gbuffer, shadows, direct, technique, composite, tonemap), the configurations taking
+    /// turns frame by frame; a pass's cost is the wall time its absence saves (what a CPU
+    /// adapter's unreliable timestamps cannot tell).
+    #[arg(long)]
+    pub ablate: bool,
 }
 
 /// Median and 90th percentile (nearest rank) of a sample, in ms.
@@ -108,6 +114,13 @@ struct Report {
 pub fn run(args: BenchArgs) -> Result<()> {
     let methods = crate::options::methods_and_frames(args.methods.as_deref(), args.frames)?;
     crate::options::check_orbit(args.orbit)?;
+    if args.ablate && methods.len() != 1 {
+        return Err(crate::BadInput(format!(
+            "--ablate times one method's frame; give one with --methods (got {})",
+            methods.len()
+        ))
+        .into());
+    }
     if let Some(p) = &args.json {
         crate::output::check_parent_dir(p)?;
     }
@@ -129,6 +142,17 @@ pub fn run(args: BenchArgs) -> Result<()> {
         order: Vec<String>,
         totals: Vec<f64>,
         walls: Vec<f64>,
+    }
+    if args.ablate {
+        return ablate(
+            &args,
+            &ctx,
+            &loaded,
+            volume.as_ref(),
+            &methods[0],
+            &params,
+            settings,
+        );
     }
     let mut timed = Vec::with_capacity(methods.len());
     let progress = nearfield_scene::progress::Progress::new(
@@ -245,6 +269,98 @@ pub fn run(args: BenchArgs) -> Result<()> {
     print_table(&report);
     if let Some(p) = &args.json {
         let text = serde_json::to_string_pretty(&report)?;
+        crate::output::save_atomically(p, |tmp| std::fs::write(tmp, &text).map_err(Into::into))?;
+        eprintln!("nearfield: wrote {}", p.display());
+    }
+    Ok(())
+}
+
+/// One configuration of `--ablate`: the pass left out (none: the whole frame) and its frame time.
+#[derive(Serialize)]
+struct AblationRow {
+    left_out: Option<String>,
+    wall: Stat,
+    /// Median wall time the absence of the pass saves against the whole frame (ms).
+    saved_ms: f64,
+}
+
+/// `bench --ablate`: the whole frame and the frame without each pass, in turns.
+fn ablate(
+    args: &BenchArgs,
+    ctx: &GpuContext,
+    loaded: &crate::options::Loaded,
+    volume: Option<&nearfield_scene::probes::ProbeVolume>,
+    method: &str,
+    params: &nearfield_render::TechniqueParams,
+    settings: nearfield_render::RenderSettings,
+) -> Result<()> {
+    use nearfield_render::FramePass;
+    let mut r = Renderer::new(
+        ctx,
+        &loaded.scene,
+        &loaded.env,
+        loaded.camera,
+        method,
+        params,
+        settings,
+    )?;
+    r.set_far_field(volume)?;
+    let configs: Vec<Option<FramePass>> = std::iter::once(None)
+        .chain(FramePass::ALL.into_iter().map(Some))
+        .collect();
+    let progress = nearfield_scene::progress::Progress::new(
+        "bench --ablate",
+        u64::from(args.warmup + args.frames) * configs.len() as u64,
+        "frames",
+        true,
+    );
+    let mut walls = vec![Vec::new(); configs.len()];
+    for i in 0..args.warmup + args.frames {
+        for (k, c) in configs.iter().enumerate() {
+            r.leave_out(*c);
+            let t0 = Instant::now();
+            crate::options::orbit_frame(&mut r, i, args.orbit);
+            r.wait();
+            if i >= args.warmup {
+                walls[k].push(t0.elapsed().as_secs_f64() * 1e3);
+            }
+            progress.inc(1);
+        }
+        r.check_device()?;
+    }
+    progress.finish();
+    let stats: Vec<Stat> = walls.iter_mut().map(|w| stat(w)).collect();
+    let whole = stats[0].median_ms;
+    let rows: Vec<AblationRow> = configs
+        .iter()
+        .zip(&stats)
+        .map(|(c, s)| AblationRow {
+            left_out: c.map(|p| p.name().to_string()),
+            wall: *s,
+            saved_ms: whole - s.median_ms,
+        })
+        .collect();
+    let info = ctx.adapter_info();
+    println!(
+        "adapter: {} ({:?})  scene: {}  size: {}  method: {method}  frames: {} per configuration after {} warm-up, in turns",
+        info.name, info.backend, args.scene.scene, args.scene.size, args.frames, args.warmup
+    );
+    println!(
+        "{:<18} {:>11} {:>11} {:>11} {:>8}",
+        "left out", "median ms", "p90 ms", "saved ms", "share"
+    );
+    for row in &rows {
+        println!(
+            "{:<18} {:>11.2} {:>11.2} {:>11.2} {:>7.1}%",
+            row.left_out.as_deref().unwrap_or("(whole frame)"),
+            row.wall.median_ms,
+            row.wall.p90_ms,
+            row.saved_ms,
+            100.0 * row.saved_ms / whole
+        );
+    }
+    if let Some(p) = &args.json {
+        let text = serde_json::to_string_pretty(&rows)?;
         crate::output::save_atomically(p, |tmp| std::fs::write(tmp, &text).map_err(Into::into))?;
         eprintln!("nearfield: wrote {}", p.display());
     }

@@ -155,6 +155,7 @@ fn every_bad_input_exits_2_with_one_line() {
         (vec!["render".into(), "--adapter".into(), "no-such-gpu-xyz".into()], "no GPU adapter"),
         (vec!["bench".into(), "--methods".into(), "none,magic".into()], "unknown technique"),
         (vec!["bench".into(), "--json".into(), d.join("no/such/dir/b.json").to_str().unwrap().into()], "does not exist"),
+        (vec!["bench".into(), "--ablate".into(), "--methods".into(), "none,gtao".into()], "--ablate times one method"),
         (vec!["render".into(), "--no-such-flag".into()], "--no-such-flag"),
         (vec!["reference".into(), "--radius".into(), "-1".into()], "--radius"),
         (vec!["reference".into(), "--radius".into(), "nan".into()], "--radius"),

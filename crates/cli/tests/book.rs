@@ -264,11 +264,14 @@ fn every_page_link_and_image_of_the_book_resolves() {
     );
     assert!(checked >= 15, "only {checked} pages");
 
-    // Every picture comes from scripts/figures.sh, or is a front of scripts/pareto-book.sh.
+    // Every picture comes from scripts/figures.sh (figures.rs, or bevy-figures.sh for the Bevy
+    // plugin's), or is a front of scripts/pareto-book.sh.
     let figures = read(&root().join("crates/cli/examples/figures.rs"));
+    let bevy_figures = read(&root().join("scripts/bevy-figures.sh"));
     let fronts = read(&root().join("scripts/pareto-book.sh"));
     let made = |name: &str| {
         figures.contains(name)
+            || (name.starts_with("bevy-") && bevy_figures.contains(name))
             || name.starts_with("failure")
             || (name.starts_with("crops-") && figures.contains("crops-{name}"))
     };
@@ -282,7 +285,7 @@ fn every_page_link_and_image_of_the_book_resolves() {
             && fronts.contains("$out/$scene-$aov");
         assert!(
             made(name) || front || (failure && figures.contains("img/failures/{technique}.png")),
-            "{rel} is not made by crates/cli/examples/figures.rs"
+            "{rel} is not made by crates/cli/examples/figures.rs or scripts/bevy-figures.sh"
         );
     }
     eprintln!("{checked} pages, {} pictures checked", images.len());

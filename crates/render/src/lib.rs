@@ -29,7 +29,7 @@ pub use aov::{Aov, AovImage};
 pub use context::GpuContext;
 pub use error::RenderError;
 pub use frame::Tonemap;
-pub use renderer::{RenderSettings, Renderer};
+pub use renderer::{FramePass, RenderSettings, Renderer};
 pub use technique::TechniqueParams;
 /// The wgpu this crate is built on (for adapter information and the like).
 pub use wgpu;

@@ -22,6 +22,8 @@ use crate::technique::{self, TechniqueParams};
 use nearfield_scene::{Camera, Environment, Scene};
 use passes_of_frame::{ErrorScopes, Passes};
 
+mod ablation;
+pub use ablation::FramePass;
 mod passes_of_frame;
 mod readback;
 
@@ -89,6 +91,8 @@ pub struct Renderer {
     lost: crate::context::LostFlag,
     /// The adapter's kind (what [`targets::check_memory`] budgets against).
     device_type: wgpu::DeviceType,
+    /// The pass a timing run leaves out ([`Self::leave_out`]).
+    left_out: Option<FramePass>,
 }
 
 impl Renderer {
@@ -177,6 +181,7 @@ impl Renderer {
             previous_camera: None,
             cut: false,
             frames_since_cut: 0,
+            left_out: None,
             frame_index: 0,
             settings,
             rebuilds: 0,
@@ -501,6 +506,12 @@ impl Renderer {
         self.previous.is_some() && !self.cut
     }
 
+    /// Leaves `pass` out of every frame from now on (`None`: every pass runs). For timing by
+    /// ablation only (`nearfield bench --ablate`): the images are wrong while a pass is left out.
+    pub fn leave_out(&mut self, pass: Option<FramePass>) {
+        self.left_out = pass;
+    }
+
     /// Renders one frame and submits it. Per-pass timings of it are then available from
     /// [`Self::timings`].
     pub fn render_frame(&mut self) {
@@ -526,27 +537,40 @@ impl Renderer {
                 label: Some("frame"),
             });
         let size = self.settings.size;
+        let run = |pass| self.left_out != Some(pass);
         let p = &mut self.profiler;
         p.begin_frame();
-        self.gbuffer
-            .encode(&mut encoder, p, &self.targets, &self.scene);
-        self.shadows.encode(&mut encoder, p);
-        self.passes
-            .direct
-            .encode(&mut encoder, p, size, self.frame_index);
-        self.passes.technique.encode(
-            &mut encoder,
-            p,
-            technique::FrameInfo {
-                index: self.frame_index,
-                history,
-            },
-        );
-        if let Some(pass) = &self.passes.occluded_far {
-            pass.encode(&mut encoder, p, size, 0);
+        if run(FramePass::Gbuffer) {
+            self.gbuffer
+                .encode(&mut encoder, p, &self.targets, &self.scene);
         }
-        self.passes.composite.encode(&mut encoder, p, size, 0);
-        self.passes.tonemap.encode(&mut encoder, p, size, 0);
+        if run(FramePass::Shadows) {
+            self.shadows.encode(&mut encoder, p);
+        }
+        if run(FramePass::Direct) {
+            self.passes
+                .direct
+                .encode(&mut encoder, p, size, self.frame_index);
+        }
+        if run(FramePass::Technique) {
+            self.passes.technique.encode(
+                &mut encoder,
+                p,
+                technique::FrameInfo {
+                    index: self.frame_index,
+                    history,
+                },
+            );
+            if let Some(pass) = &self.passes.occluded_far {
+                pass.encode(&mut encoder, p, size, 0);
+            }
+        }
+        if run(FramePass::Composite) {
+            self.passes.composite.encode(&mut encoder, p, size, 0);
+        }
+        if run(FramePass::Tonemap) {
+            self.passes.tonemap.encode(&mut encoder, p, size, 0);
+        }
         p.resolve(&mut encoder);
         self.queue.submit([encoder.finish()]);
         self.previous = Some(current);

@@ -1,0 +1,25 @@
+#!/usr/bin/env bash
+# The book's and the README's pictures of the Bevy plugin (docs/src/bevy.md): Crytek Sponza in
+# the plugin's example, without nearfield and with vbgi High, 1280×720 after 60 frames, saved by
+# the example's --screenshot under Xvfb, then scaled (ImageMagick): bevy-sponza-off.png and
+# bevy-sponza-vbgi.png at 960×540, and bevy-sponza-pair.png, both at 640×360 side by side.
+# Needs the nightly toolchain (Bevy declares rust 1.97.1), xvfb-run and convert (scripts/setup.sh
+# installs both); about 7 minutes on lavapipe once Bevy is built.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+CARGO=${CARGO:-$(command -v cargo || echo "$HOME/.cargo/bin/cargo")}
+export XDG_RUNTIME_DIR=${XDG_RUNTIME_DIR:-$(d=${TMPDIR:-/tmp}/nearfield-xdg-$(id -u); mkdir -p -m 700 "$d"; echo "$d")}
+img=docs/src/img
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+(cd bevy_nearfield && "$CARGO" +nightly build --release --ignore-rust-version --example sponza)
+for technique in off vbgi; do
+    xvfb-run -a -s '-screen 0 1920x1080x24' bevy_nearfield/target/release/examples/sponza \
+        --technique "$technique" --frames 60 --screenshot "$tmp/$technique.png"
+done
+convert "$tmp/off.png" -resize 960x540 "$img/bevy-sponza-off.png"
+convert "$tmp/vbgi.png" -resize 960x540 "$img/bevy-sponza-vbgi.png"
+convert "$tmp/off.png" -resize 640x360 "$tmp/off-small.png"
+convert "$tmp/vbgi.png" -resize 640x360 "$tmp/vbgi-small.png"
+convert "$tmp/off-small.png" "$tmp/vbgi-small.png" +append "$img/bevy-sponza-pair.png"
+echo "  $img/bevy-sponza-off.png, bevy-sponza-vbgi.png, bevy-sponza-pair.png"
