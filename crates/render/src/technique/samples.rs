@@ -2,11 +2,15 @@
 //! sample patterns and the screen-space visibility test (samples.wgsl, senders.wgsl), and the
 //! interleaved sample sets that pattern reads.
 
-/// Shared WGSL: hemisphere sample patterns and the screen-space visibility test (names the
-/// bindings its passes declare; see its header).
+/// WGSL library: hemisphere sample patterns and the screen-space visibility test (its images
+/// and views as parameters).
 pub const SAMPLES_WGSL: &str = include_str!("samples.wgsl");
-/// Shared WGSL: the bounce's sender patches (after [`SAMPLES_WGSL`]).
+/// WGSL library: the bounce's sender patches (after [`SAMPLES_WGSL`]).
 pub const SENDERS_WGSL: &str = include_str!("senders.wgsl");
+/// Glue (declares nothing, reads the bindings of the passes that include it under the same
+/// names): the blocker test over the main view, its layers and the additional cameras, which
+/// indexes the pass's `layer_views` storage array (ssdo direct and bounce, s3ho sample).
+pub const LAYERS_GLUE_WGSL: &str = include_str!("layers_glue.wgsl");
 
 /// The paper's M×N sample texture with M = 4×4 sets: set m, sample i has a stratified elevation
 /// cos θ = 1 − (i + ½)/N (uniform solid angle, so every sample stands for Δω = 2π/N), an azimuth

@@ -17,6 +17,7 @@ pub fn source() -> String {
         samples::SAMPLES_WGSL,
         samples::SENDERS_WGSL,
         include_str!("sh.wgsl"),
+        samples::LAYERS_GLUE_WGSL,
         include_str!("sample.wgsl"),
     ])
 }

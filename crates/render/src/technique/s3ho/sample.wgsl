@@ -30,54 +30,6 @@ fn cfg() -> SampleConfig {
     return SampleConfig(SAMPLES, params.pattern, params.radius, params.fade, params.layers, params.cameras);
 }
 
-// samples.wgsl's blocker test over this pass's views (the main view with its peeled layers, then
-// each additional camera) and its march along a direction: glue, since they index layer_views
-// (samples.wgsl documents both; ssdo `direct` and `bounce` and s3ho `sample` hold the same).
-fn occlusion(p: vec3<f32>, omega: vec3<f32>, lambda: f32, cfg: SampleConfig) -> Occlusion {
-    let s = p + omega * lambda;
-    var best = main_view_verdict(view, gb_normal, gb_view_depth, peel_normal, peel_depth, p, s, lambda, cfg);
-    if best.informed && best.free {
-        return best.o;
-    }
-    for (var c = 0u; c < cfg.cameras; c++) {
-        let v = camera_verdict(layer_views[CAMERA_VIEW_BASE + c], cam_normal, cam_depth, p, s, lambda, c, cfg);
-        if !v.informed {
-            continue;
-        }
-        if v.free {
-            var none: Occlusion;
-            none.amount = 0.0;
-            return none;
-        }
-        if !best.informed || v.o.amount > best.o.amount {
-            best = v;
-        }
-    }
-    return best.o;
-}
-
-fn march_occlusion(p: vec3<f32>, omega: vec3<f32>, lambda: f32, steps: u32, cfg: SampleConfig) -> Occlusion {
-    var o: Occlusion;
-    o.amount = 0.0;
-    let at = screen_pixel(view, p);
-    for (var k = 1u; k <= steps; k++) {
-        let l = lambda * f32(k) / f32(steps);
-        if cfg.layers > 1u && k < steps && distance(screen_pixel(view, p + omega * l), at) < MARCH_MIN_PIXELS {
-            continue;
-        }
-        o = occlusion(p, omega, l, cfg);
-        if o.amount > 0.0 {
-            break;
-        }
-    }
-    return o;
-}
-
-// Sample i of `pixel` (samples.wgsl's sample_local) with this pass's interleaved sets.
-fn sample_at(i: u32, pixel: vec2<u32>, cfg: SampleConfig) -> vec4<f32> {
-    return sample_local(view.seed, sample_sets[sample_set_index(i, pixel, cfg)], i, pixel, cfg);
-}
-
 // Irradiance (E, not /π) at a surface of normal n from the lights, unshadowed, plus the
 // environment through c[cos n] (or, with a probe volume, the volume's irradiance at p) — the
 // occluder's incident light for the indirect extension.

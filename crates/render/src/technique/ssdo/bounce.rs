@@ -18,6 +18,8 @@ pub fn source() -> String {
         samples::SENDERS_WGSL,
         include_str!("params.wgsl"),
         include_str!("segment.wgsl"),
+        samples::LAYERS_GLUE_WGSL,
+        include_str!("segment_glue.wgsl"),
         include_str!("bounce.wgsl"),
     ])
 }

@@ -26,66 +26,6 @@
 @group(1) @binding(19) var out_indirect: texture_storage_2d<rgba16float, write>;
 @group(1) @binding(20) var shadow_depths: texture_2d_array<f32>;
 
-// samples.wgsl's blocker test over this pass's views (the main view with its peeled layers, then
-// each additional camera) and its march along a direction: glue, since they index layer_views
-// (samples.wgsl documents both; ssdo `direct` and `bounce` and s3ho `sample` hold the same).
-fn occlusion(p: vec3<f32>, omega: vec3<f32>, lambda: f32, cfg: SampleConfig) -> Occlusion {
-    let s = p + omega * lambda;
-    var best = main_view_verdict(view, gb_normal, gb_view_depth, peel_normal, peel_depth, p, s, lambda, cfg);
-    if best.informed && best.free {
-        return best.o;
-    }
-    for (var c = 0u; c < cfg.cameras; c++) {
-        let v = camera_verdict(layer_views[CAMERA_VIEW_BASE + c], cam_normal, cam_depth, p, s, lambda, c, cfg);
-        if !v.informed {
-            continue;
-        }
-        if v.free {
-            var none: Occlusion;
-            none.amount = 0.0;
-            return none;
-        }
-        if !best.informed || v.o.amount > best.o.amount {
-            best = v;
-        }
-    }
-    return best.o;
-}
-
-fn march_occlusion(p: vec3<f32>, omega: vec3<f32>, lambda: f32, steps: u32, cfg: SampleConfig) -> Occlusion {
-    var o: Occlusion;
-    o.amount = 0.0;
-    let at = screen_pixel(view, p);
-    for (var k = 1u; k <= steps; k++) {
-        let l = lambda * f32(k) / f32(steps);
-        if cfg.layers > 1u && k < steps && distance(screen_pixel(view, p + omega * l), at) < MARCH_MIN_PIXELS {
-            continue;
-        }
-        o = occlusion(p, omega, l, cfg);
-        if o.amount > 0.0 {
-            break;
-        }
-    }
-    return o;
-}
-
-// Sample i of `pixel` (samples.wgsl's sample_local) with this pass's interleaved sets.
-fn sample_at(i: u32, pixel: vec2<u32>, cfg: SampleConfig) -> vec4<f32> {
-    return sample_local(view.seed, sample_sets[sample_set_index(i, pixel, cfg)], i, pixel, cfg);
-}
-
-// segment.wgsl's test of the segment towards light l (the direction `to_light`) from `here`:
-// glue, since it runs this pass's occlusion (bounce.wgsl/direct.wgsl hold the same).
-fn segment_blocked(here: Surface, l: GpuLight, to_light: vec3<f32>) -> f32 {
-    let seg_length = segment_length(params, frame.shadow_normal_offset, here, l);
-    var blocked = 0.0;
-    for (var k = 0u; k < params.light_samples; k++) {
-        let t = (f32(k) + 0.5) / f32(params.light_samples) * seg_length;
-        blocked = max(blocked, occlusion(here.p, to_light, t, sample_config(params)).amount);
-    }
-    return blocked;
-}
-
 // lights.wgsl's shadow_visibility of light l at world p with normal n, from this pass's shadow
 // maps: the layer that sees p, its matrix, the frame's normal offset.
 fn shadow_map_visibility(l: GpuLight, p: vec3<f32>, n: vec3<f32>) -> f32 {

@@ -17,6 +17,8 @@ pub fn source() -> String {
         samples::SAMPLES_WGSL,
         include_str!("params.wgsl"),
         include_str!("segment.wgsl"),
+        samples::LAYERS_GLUE_WGSL,
+        include_str!("segment_glue.wgsl"),
         include_str!("direct.wgsl"),
     ])
 }
