@@ -25,15 +25,16 @@ impl FrameGroup {
         env: &GpuEnvironment,
         far: &GpuFarField,
     ) -> Self {
-        let own_frame = frame.is_none().then(|| {
-            device.create_buffer(&wgpu::BufferDescriptor {
+        let mut own_frame = None;
+        let frame = match frame {
+            Some(f) => f,
+            None => &*own_frame.insert(device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some("frame (unused)"),
                 size: std::mem::size_of::<crate::frame::FrameUniforms>() as u64,
                 usage: wgpu::BufferUsages::STORAGE,
                 mapped_at_creation: false,
-            })
-        });
-        let frame = frame.or(own_frame.as_ref()).expect("a frame buffer");
+            })),
+        };
         let layout = FrameBindings::layout(device);
         let bind_group = FrameBindings {
             view,
