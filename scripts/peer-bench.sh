@@ -6,6 +6,9 @@
 #   scripts/peer-bench.sh                 # 1280x720, builtin:cornell, R = 0.5 m, 2 rounds
 #   SIZE=640x360 ROUNDS=3 scripts/peer-bench.sh
 #
+# Each round also times nearfield's `none` frame lit as Bevy's "off" frame is (no light, no shadow
+# map: `--sun off --far sky`), the like-for-like base frame.
+#
 # Needs: the Bevy harness's toolchain (peers/bevy_ssao/README.md: `cargo +nightly`, Bevy 0.20.1
 # declares rust-version 1.97.1), an X display (Xvfb is started when DISPLAY is unset), Vulkan.
 # Writes $OUT/peer-bench.json and prints the table. Times on a CPU adapter (lavapipe) are CPU
@@ -65,6 +68,9 @@ for round in $(seq 1 "$ROUNDS"); do
   echo "== round $round: nearfield" >&2
   "$NF" bench "$SCENE" --size "$SIZE" --radius "$RADIUS" --warmup "$WARMUP" \
     --frames "$FRAMES" --methods "$methods" --json "$OUT/ours-$round.json" >/dev/null
+  # The base frame as Bevy's "off" draws it: no sun (no light, no shadow map), the sky's SH only.
+  "$NF" bench "$SCENE" --size "$SIZE" --warmup "$WARMUP" --frames "$FRAMES" --methods none \
+    --sun off --far sky --json "$OUT/ambient-$round.json" >/dev/null
 done
 images=()
 for p in low medium high ultra; do images+=(--image "bevy-$p=$OUT/bevy-1/ao-$p.exr"); done
@@ -94,6 +100,8 @@ for r in range(1, rounds + 1):
         mine[m]["overhead"].append(frame[m] - frame["none"])
         mine[m]["frame"].append(frame[m])
     mine.setdefault("none", {"frame": []})["frame"].append(frame["none"])
+    a = json.load(open(f"{out}/ambient-{r}.json"))
+    mine.setdefault("ambient", {"frame": []})["frame"].append(a["methods"]["none"]["wall"]["median_ms"])
 rows = []
 print(f"{'side':<6} {'configuration':<62} {'spp':>4} {'frame ms':>9} {'overhead ms':>12} {'ao rel err':>10}")
 print(f"{'bevy':<6} {'off':<62} {'-':>4} {mean(bevy['off']['frame']):>9.1f} {0:>12.1f} {'-':>10}")
@@ -104,6 +112,7 @@ for p in ["low", "medium", "high", "ultra"]:
                  "overheads_ms": b["overhead"], "frame_ms": mean(b["frame"]), "error": e})
     print(f"{'bevy':<6} {p:<62} {b['samples']:>4} {mean(b['frame']):>9.1f} {mean(b['overhead']):>12.1f} {e:>10.4f}")
 print(f"{'ours':<6} {'none':<62} {'-':>4} {mean(mine['none']['frame']):>9.1f} {0:>12.1f} {'-':>10}")
+print(f"{'ours':<6} {'none --sun off --far sky (lit as Bevy off: no light, no shadow)':<62} {'-':>4} {mean(mine['ambient']['frame']):>9.1f} {'-':>12} {'-':>10}")
 for m, budget in zip(ours, budgets):
     spec = dict(kv.split("=") for kv in m.split(":", 1)[1].split("+")) if ":" in m else {}
     slices, steps = int(spec.get("slices", 2)), int(spec.get("steps", 16))
@@ -122,10 +131,16 @@ summary = {
     "budget_ratio": matched["overhead_ms"] / high["overhead_ms"],
     "cheapest_as_accurate": cheapest,
     "cheapest_ratio": cheapest["overhead_ms"] / high["overhead_ms"] if cheapest else None,
+    "base_frame_ms": {"bevy_off": mean(bevy["off"]["frame"]), "ours_none": mean(mine["none"]["frame"]),
+                      "ours_none_ambient": mean(mine["ambient"]["frame"])},
     "rows": rows, "note": "Bevy's AO is not cosine-weighted (visibility bitmask with constant thickness); the reference is the cosine-weighted AO within R.",
 }
 json.dump(summary, open(f"{out}/peer-bench.json", "w"), indent=1)
-print(f"\nours at Bevy High's budget (18 spp): {matched['overhead_ms']:.1f} ms vs Bevy High {high['overhead_ms']:.1f} ms "
+base = summary["base_frame_ms"]
+print(f"\nbase frame: ours none {base['ours_none']:.1f} ms = {base['ours_none'] / base['bevy_off']:.2f}x Bevy off "
+      f"{base['bevy_off']:.1f} ms; lit as Bevy off (no sun, sky SH) {base['ours_none_ambient']:.1f} ms = "
+      f"{base['ours_none_ambient'] / base['bevy_off']:.2f}x")
+print(f"ours at Bevy High's budget (18 spp): {matched['overhead_ms']:.1f} ms vs Bevy High {high['overhead_ms']:.1f} ms "
       f"= {summary['budget_ratio']:.2f}x; error {matched['error']:.4f} vs {high['error']:.4f}")
 if cheapest:
     print(f"cheapest of ours at least as accurate as Bevy High ({high['error']:.4f}): {cheapest['config']} "

@@ -41,7 +41,6 @@ pub fn pass_layouts() -> Vec<bindings::PassLayout> {
     let mut v = vec![
         passes::tonemap::pass_layout(),
         passes::composite::pass_layout(),
-        passes::occluded_far::pass_layout(),
         passes::aov::pass_layout(),
         passes::direct_lighting::pass_layout(),
         passes::bilateral_blur::pass_layout(),

@@ -561,9 +561,6 @@ impl Renderer {
                     history,
                 },
             );
-            if let Some(pass) = &self.passes.occluded_far {
-                pass.encode(&mut encoder, p, size, 0);
-            }
         }
         if run(FramePass::Composite) {
             self.passes.composite.encode(&mut encoder, p, size, 0);

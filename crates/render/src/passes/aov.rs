@@ -59,7 +59,13 @@ pub fn pass_layout() -> PassLayout {
     }
 }
 
-pub fn new(device: &wgpu::Device, frame: &FrameGroup, targets: &FrameTargets) -> ScreenPass {
+/// `ao_scales_far` as [`super::composite::new`]'s.
+pub fn new(
+    device: &wgpu::Device,
+    frame: &FrameGroup,
+    targets: &FrameTargets,
+    ao_scales_far: bool,
+) -> ScreenPass {
     let layout = AovBindings::layout(device);
     let module = crate::pipeline_cache::shader_module(device, "aov", &source());
     let own = PingPong::from_fn(|side| {
@@ -81,7 +87,15 @@ pub fn new(device: &wgpu::Device, frame: &FrameGroup, targets: &FrameTargets) ->
         .bind_group(device, &layout)
     });
     ScreenPass {
-        step: ComputeStep::new(device, "aov", &module, "main", frame, &layout, &[]),
+        step: ComputeStep::new(
+            device,
+            "aov",
+            &module,
+            "main",
+            frame,
+            &layout,
+            &[("AO_SCALES_FAR", f64::from(u8::from(ao_scales_far)))],
+        ),
         own,
     }
 }

@@ -38,6 +38,8 @@ crate::bind_group! {
         indirect_irradiance: view = kind::TEXTURE,
         /// The linear HDR frame (rgba16float).
         out_radiance: view = kind::write(HDR_FORMAT),
+        /// The technique's `ao` (r32float), read when it writes only ao (`AO_SCALES_FAR`).
+        ao: view = kind::TEXTURE_UNFILTERABLE,
     }
 }
 
@@ -51,7 +53,14 @@ pub fn pass_layout() -> PassLayout {
     }
 }
 
-pub fn new(device: &wgpu::Device, frame: &FrameGroup, targets: &FrameTargets) -> ScreenPass {
+/// `ao_scales_far`: the technique writes only ao (gtao); its env-irradiance is then ao times the
+/// far field the direct pass left, and its indirect-irradiance 0 (composite.wgsl).
+pub fn new(
+    device: &wgpu::Device,
+    frame: &FrameGroup,
+    targets: &FrameTargets,
+    ao_scales_far: bool,
+) -> ScreenPass {
     let layout = CompositeBindings::layout(device);
     let module = crate::pipeline_cache::shader_module(device, "composite", &source());
     let own = CompositeBindings {
@@ -64,10 +73,19 @@ pub fn new(device: &wgpu::Device, frame: &FrameGroup, targets: &FrameTargets) ->
         env_irradiance: &targets.env_irradiance.view,
         indirect_irradiance: &targets.indirect_irradiance.view,
         out_radiance: &targets.radiance.view,
+        ao: &targets.ao.view,
     }
     .bind_group(device, &layout);
     ScreenPass::single(
-        ComputeStep::new(device, "composite", &module, "main", frame, &layout, &[]),
+        ComputeStep::new(
+            device,
+            "composite",
+            &module,
+            "main",
+            frame,
+            &layout,
+            &[("AO_SCALES_FAR", f64::from(u8::from(ao_scales_far)))],
+        ),
         own,
     )
 }

@@ -11,7 +11,6 @@ pub mod direct_lighting;
 pub mod display;
 pub mod gbuffer;
 pub mod layers;
-pub mod occluded_far;
 pub mod reproject;
 pub mod rsm;
 pub mod shadow;

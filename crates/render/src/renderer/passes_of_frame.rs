@@ -13,8 +13,6 @@ use crate::technique::{self, Output, Technique, TechniqueContext, TechniqueParam
 pub(super) struct Passes {
     pub direct: ScreenPass,
     pub technique: Box<dyn Technique>,
-    /// env- and indirect-irradiance after a technique that writes only ao (gtao).
-    pub occluded_far: Option<ScreenPass>,
     pub composite: ScreenPass,
     pub tonemap: ScreenPass,
     pub aov: ScreenPass,
@@ -53,15 +51,15 @@ impl Passes {
             },
             &params,
         )?;
-        let occluded_far = (!desc.writes.contains(&Output::EnvIrradiance))
-            .then(|| passes::occluded_far::new(device, frame_group, targets));
+        // A technique that writes only ao (gtao): composite and aov form its env- and
+        // indirect-irradiance.
+        let ao_scales_far = !desc.writes.contains(&Output::EnvIrradiance);
         Ok(Passes {
             direct,
             technique,
-            occluded_far,
-            composite: passes::composite::new(device, frame_group, targets),
+            composite: passes::composite::new(device, frame_group, targets, ao_scales_far),
             tonemap: passes::tonemap::new(device, frame_group, targets),
-            aov: passes::aov::new(device, frame_group, targets),
+            aov: passes::aov::new(device, frame_group, targets, ao_scales_far),
         })
     }
 }

@@ -188,6 +188,7 @@ fn far_irradiance_at(probes: texture_2d<f32>, visibility: texture_2d<f32>, atlas
     let cell = far_cell(probes, p, n, v);
     let row = cell.grid.counts.w;
     let within = (far_oct_encode(n) * 0.5 + 0.5) * FAR_IRR_RES + 1.0;
+    let texel = far_irr_texel(probes);
     var e = vec3<f32>(0.0);
     var total = 0.0;
     for (var c = 0u; c < 8u; c++) {
@@ -196,7 +197,7 @@ fn far_irradiance_at(probes: texture_2d<f32>, visibility: texture_2d<f32>, atlas
             continue;
         }
         let tile = vec2<f32>(f32((corner.index % row) * FAR_IRR_TILE), f32((corner.index / row) * FAR_IRR_TILE));
-        let uv = (tile + within) * far_irr_texel(probes);
+        let uv = (tile + within) * texel;
         e += corner.w * textureSampleLevel(atlas, smp, uv, 0.0).rgb;
         total += corner.w;
     }

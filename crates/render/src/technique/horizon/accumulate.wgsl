@@ -72,8 +72,8 @@ fn write_outputs(pixel: vec2<u32>, x: vec3<f32>, n: vec3<f32>, cone: vec4<f32>, 
     }
     if !NEAR {
         // gtao writes ao and the bent normal only: no near-field light, no next frame that
-        // gathers this one's radiance; nearfield's frame derives env-irradiance from the ao
-        // (passes/occluded_far.wgsl).
+        // gathers this one's radiance; nearfield's frame forms env-irradiance from the ao and
+        // the far field the direct pass left (passes/composite.wgsl, AO_SCALES_FAR).
         return;
     }
     let env_irradiance = cone_far_field(far_probes, far_visibility, env_irradiance_map, env_sampler, view, env, params, x, n, bent, ao, far);
