@@ -20,6 +20,9 @@ pub const GPU_MATERIAL_WGSL: &str = include_str!("shaders/gpu_material.wgsl");
 pub const MATERIALS_WGSL: &str = include_str!("shaders/materials.wgsl");
 /// WGSL library: the G-buffer surface at a pixel (the images as parameters).
 pub const SURFACE_WGSL: &str = include_str!("shaders/surface.wgsl");
+/// WGSL library: the technique's env- and indirect-irradiance as the composite and AOV passes
+/// read them (formed from ao after an ao-only technique).
+pub const IRRADIANCE_TERMS_WGSL: &str = include_str!("passes/irradiance_terms.wgsl");
 /// WGSL library: tonemap operators and the sRGB transfer function.
 pub const TONEMAP_OPS_WGSL: &str = include_str!("shaders/tonemap_ops.wgsl");
 

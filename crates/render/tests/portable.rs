@@ -197,6 +197,7 @@ const LIBRARIES: &[(&str, &[&str])] = &[
         &["shaders/common.wgsl", "shaders/env.wgsl"],
     ),
     ("passes/denoise/params.wgsl", &["shaders/common.wgsl"]),
+    ("passes/irradiance_terms.wgsl", &[]),
 ];
 
 /// nearfield's own glue for group 0: the one shared file that declares bindings.

@@ -13,6 +13,7 @@ pub fn source() -> String {
         util::COMMON_WGSL,
         util::ENV_WGSL,
         util::FRAME_BINDINGS_WGSL,
+        util::IRRADIANCE_TERMS_WGSL,
         SHADER,
     ])
 }

@@ -23,24 +23,9 @@
 @group(1) @binding(11) var gb_emissive: texture_2d<f32>;
 @group(1) @binding(12) var out_aov: texture_storage_2d<rgba32float, write>;
 
-// Whether the technique wrote only ao (gtao): its env-irradiance is then ao · E_far(n)/π, from
-// what the direct pass left in env_irradiance, and its indirect-irradiance 0 (composite.wgsl).
+// Whether the technique wrote only ao (gtao): its env- and indirect-irradiance are then formed
+// here (irradiance_terms.wgsl).
 override AO_SCALES_FAR: bool = false;
-
-fn technique_env(pixel: vec2<u32>) -> vec3<f32> {
-    let e = textureLoad(env_irradiance, pixel, 0).rgb;
-    if AO_SCALES_FAR {
-        return textureLoad(ao, pixel, 0).r * e;
-    }
-    return e;
-}
-
-fn technique_indirect(pixel: vec2<u32>) -> vec3<f32> {
-    if AO_SCALES_FAR {
-        return vec3<f32>(0.0);
-    }
-    return textureLoad(indirect_irradiance, pixel, 0).rgb;
-}
 
 @compute @workgroup_size(8, 8, 1)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {
@@ -67,18 +52,18 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
             v = vec3<f32>(textureLoad(ao, pixel, 0).r);
         }
         case 6u, 14u: {
-            v = technique_env(pixel);
+            v = technique_env(env_irradiance, ao, AO_SCALES_FAR, pixel);
         }
         case 7u: {
             v = textureLoad(light_irradiance, pixel, 0).rgb;
         }
         case 8u: {
-            v = technique_indirect(pixel);
+            v = technique_indirect(indirect_irradiance, AO_SCALES_FAR, pixel);
         }
         case 9u: {
-            v = textureLoad(gb_albedo, pixel, 0).rgb * (technique_env(pixel)
+            v = textureLoad(gb_albedo, pixel, 0).rgb * (technique_env(env_irradiance, ao, AO_SCALES_FAR, pixel)
                 + textureLoad(light_irradiance, pixel, 0).rgb
-                + technique_indirect(pixel));
+                + technique_indirect(indirect_irradiance, AO_SCALES_FAR, pixel));
         }
         case 10u: {
             v = vec3<f32>(textureLoad(gb_motion, pixel, 0).rg, 0.0);
@@ -91,9 +76,9 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         }
         case 13u: {
             v = textureLoad(gb_emissive, pixel, 0).rgb
-                + textureLoad(gb_albedo, pixel, 0).rgb * (technique_env(pixel)
+                + textureLoad(gb_albedo, pixel, 0).rgb * (technique_env(env_irradiance, ao, AO_SCALES_FAR, pixel)
                 + textureLoad(light_irradiance, pixel, 0).rgb
-                + technique_indirect(pixel));
+                + technique_indirect(indirect_irradiance, AO_SCALES_FAR, pixel));
         }
         default: {
         }

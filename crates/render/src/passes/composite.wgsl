@@ -5,9 +5,8 @@
 // on surfaces (the irradiance terms are already divided by π, so ρ × term is Lambertian
 // radiance), and the environment seen through the pixel (mip 0) on background. Specular light is
 // not occluded by the near-field technique (as in the SSDO textbook chapter: "specular untouched").
-// After a technique that writes only ao (gtao; AO_SCALES_FAR), the irradiance terms are its own
-// rule (Jimenez et al. 2016: ao scales the unoccluded light): env_irradiance = ao · E_far(n)/π
-// from what the direct pass left in env_irradiance, indirect_irradiance = 0.
+// After a technique that writes only ao (gtao; AO_SCALES_FAR), env_irradiance and
+// indirect_irradiance are formed here (irradiance_terms.wgsl).
 
 @group(1) @binding(0) var gb_normal: texture_2d<f32>;
 @group(1) @binding(1) var gb_albedo: texture_2d<f32>;
@@ -20,24 +19,8 @@
 @group(1) @binding(8) var out_radiance: texture_storage_2d<rgba16float, write>;
 @group(1) @binding(9) var ao: texture_2d<f32>;
 
-// Whether the technique wrote only ao (its env- and indirect-irradiance are then formed here).
+// Whether the technique wrote only ao (irradiance_terms.wgsl).
 override AO_SCALES_FAR: bool = false;
-
-// The technique's env_irradiance and indirect_irradiance at `pixel`.
-fn technique_env(pixel: vec2<u32>) -> vec3<f32> {
-    let e = textureLoad(env_irradiance, pixel, 0).rgb;
-    if AO_SCALES_FAR {
-        return textureLoad(ao, pixel, 0).r * e;
-    }
-    return e;
-}
-
-fn technique_indirect(pixel: vec2<u32>) -> vec3<f32> {
-    if AO_SCALES_FAR {
-        return vec3<f32>(0.0);
-    }
-    return textureLoad(indirect_irradiance, pixel, 0).rgb;
-}
 
 @compute @workgroup_size(8, 8, 1)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {
@@ -54,9 +37,9 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     let albedo = textureLoad(gb_albedo, pixel, 0).rgb;
     let metallic = textureLoad(gb_material, pixel, 0).r;
-    let irradiance = technique_env(pixel)
+    let irradiance = technique_env(env_irradiance, ao, AO_SCALES_FAR, pixel)
         + textureLoad(light_irradiance, pixel, 0).rgb
-        + technique_indirect(pixel);
+        + technique_indirect(indirect_irradiance, AO_SCALES_FAR, pixel);
     let radiance = textureLoad(gb_emissive, pixel, 0).rgb
         + (1.0 - metallic) * albedo * irradiance
         + textureLoad(specular, pixel, 0).rgb;
