@@ -61,6 +61,10 @@
 // The bent normal (xyz unit world, w = 1), written where params.bent_normal is 1.
 @group(1) @binding(22) var out_bent: texture_storage_2d<rgba16float, write>;
 
+// Whether this frame's accumulation is kept for the next (acc_*): false only for a technique
+// without near-field light (gtao) whose running mean is off, which no later pass reads.
+override HISTORY: bool = true;
+
 // The AOVs of one pixel (world point x, unit normal n) from its accumulated cone, near and far
 // field (the far field through the cone: resolve.wgsl's cone_far_field).
 fn write_outputs(pixel: vec2<u32>, x: vec3<f32>, n: vec3<f32>, cone: vec4<f32>, near: vec4<f32>, far: vec4<f32>) {
@@ -96,10 +100,12 @@ fn resolve(pixel: vec2<u32>, raw_cone: vec4<f32>, raw_near: vec3<f32>, raw_far: 
     let nw = textureLoad(gb_normal, pixel, 0);
     let depth = textureLoad(gb_view_depth, pixel, 0).r;
     if nw.w == 0.0 || depth <= 0.0 {
-        textureStore(acc_cone, pixel, vec4<f32>(0.0));
-        textureStore(acc_near, pixel, vec4<f32>(0.0));
-        textureStore(acc_geometry, pixel, vec4<f32>(0.0));
-        if FAR {
+        if HISTORY {
+            textureStore(acc_cone, pixel, vec4<f32>(0.0));
+            textureStore(acc_near, pixel, vec4<f32>(0.0));
+            textureStore(acc_geometry, pixel, vec4<f32>(0.0));
+        }
+        if HISTORY && FAR {
             textureStore(acc_far, pixel, vec4<f32>(0.0));
         }
         textureStore(out_ao, pixel, vec4<f32>(1.0, 0.0, 0.0, 0.0));
@@ -116,10 +122,12 @@ fn resolve(pixel: vec2<u32>, raw_cone: vec4<f32>, raw_near: vec3<f32>, raw_far: 
     let n = normalize(nw.xyz);
     let x = world_position(view, pixel, depth);
     let acc = temporal_mean(prev_geometry, prev_cone, prev_near, prev_far, view, params, x, n, depth, raw_cone, raw_near, raw_far);
-    textureStore(acc_cone, pixel, acc.cone);
-    textureStore(acc_near, pixel, acc.near);
-    textureStore(acc_geometry, pixel, vec4<f32>(n, depth));
-    if FAR {
+    if HISTORY {
+        textureStore(acc_cone, pixel, acc.cone);
+        textureStore(acc_near, pixel, acc.near);
+        textureStore(acc_geometry, pixel, vec4<f32>(n, depth));
+    }
+    if HISTORY && FAR {
         textureStore(acc_far, pixel, acc.far);
     }
     write_outputs(pixel, x, n, acc.cone, acc.near, acc.far);

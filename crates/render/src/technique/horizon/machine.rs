@@ -3,7 +3,7 @@
 //! with the outputs (accumulate). See the module above for the derivation.
 
 use super::march::{Flavor, March, MarchContext, MarchIo, work};
-use super::params::FAR_SLICES;
+use super::params::{FAR_SLICES, HorizonParams};
 use super::settings::Far;
 use super::{GEOMETRY_FORMAT, Settings, Source, accumulate, split};
 use crate::RenderError;
@@ -331,7 +331,11 @@ pub fn build(
             accumulate::source(),
             "accumulate",
             &accumulate_layout,
-            &work,
+            &[
+                work[0],
+                work[1],
+                ("HISTORY", f64::from(u8::from(keeps_history(near, &p)))),
+            ],
         ),
         split,
         full_bg,
@@ -377,8 +381,16 @@ fn reproject_params(settings: &Settings) -> ReprojectParams {
 }
 
 /// What shapes the passes' pipelines and resources: a change of any of these rebuilds.
+/// Whether the accumulation is kept for the next frame: always with near-field light (hbil's
+/// reprojection reads its geometry), otherwise only under the running mean (`HISTORY` in
+/// accumulate.wgsl; gtao with `temporal=off` or `denoise=svgf` keeps none).
+fn keeps_history(near: bool, p: &HorizonParams) -> bool {
+    near || p.temporal == 1
+}
+
 fn structure(s: &Settings) -> impl PartialEq + use<> {
     (
+        s.march.temporal,
         s.march.slices,
         s.march.steps,
         s.march.interleaved,
