@@ -95,7 +95,7 @@ pub fn new(
             "main",
             frame,
             &layout,
-            &[("AO_SCALES_FAR", f64::from(u8::from(ao_scales_far)))],
+            &super::irradiance_terms_constants(ao_scales_far),
         ),
         own,
     }

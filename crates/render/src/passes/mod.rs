@@ -21,6 +21,12 @@ use crate::util;
 
 pub use crate::contract::frame::FrameGroup;
 
+/// The pipeline constant of the passes that read the technique's irradiance images (composite,
+/// aov; passes/irradiance_terms.wgsl): `AO_SCALES_FAR`, whether the technique writes only ao.
+pub fn irradiance_terms_constants(ao_scales_far: bool) -> [(&'static str, f64); 1] {
+    [("AO_SCALES_FAR", f64::from(u8::from(ao_scales_far)))]
+}
+
 /// Two of a thing a pass keeps across frames: this frame writes one side and reads the other.
 pub struct PingPong<T> {
     sides: [T; 2],
