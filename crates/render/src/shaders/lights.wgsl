@@ -138,7 +138,8 @@ fn shadow_visibility(maps: texture_depth_2d_array, depths: texture_2d_array<f32>
 // DISC_SEARCH_TEXELS) nearer the light than the receiver that
 // can hide part of the disc from p (lateral offset ≤ depth gap · tan r); none: lit, 1.
 // (2) The penumbra's half width at p is
-// (receiver − blocker distance) · tan r. (3) A 5×5 PCF of that radius (at least one texel).
+// (receiver − blocker distance) · tan r. (3) A PCF of that radius (at least one texel): n×n
+// bilinear comparisons at most a texel apart, n = 3 for a one-texel radius, 4 up to 1.5, else 5.
 // Both compare against the receiver's plane (its depth slope over the map from n), not a flat
 // depth, so wide kernels do not shadow a surface by itself.
 const DISC_SEARCH_TEXELS: f32 = 24.0;
@@ -194,14 +195,18 @@ fn disc_shadow(maps: texture_depth_2d_array, depths: texture_2d_array<f32>, smp:
     let gap = max(z - blocker_depth / blockers, 0.0) * metres_per_depth;
     let filter_texels = clamp(gap * l.tan_radius / texel_world, 1.0, DISC_SEARCH_TEXELS);
     let kernel = filter_texels / dims;
+    // Taps per side: as few as keep neighbours at most a texel apart (their bilinear footprints
+    // meet), at most 5: 3 for a one-texel penumbra, 4 up to 1.5 texels, then 5.
+    let taps = min(i32(ceil(2.0 * filter_texels)) + 1, 5);
+    let step = 2.0 * kernel / f32(taps - 1);
     var sum = 0.0;
-    for (var j = 0; j < 5; j++) {
-        for (var i = 0; i < 5; i++) {
-            let o = (vec2<f32>(f32(i), f32(j)) - 2.0) * 0.5 * kernel;
+    for (var j = 0; j < taps; j++) {
+        for (var i = 0; i < taps; i++) {
+            let o = vec2<f32>(f32(i), f32(j)) * step - kernel;
             sum += textureSampleCompareLevel(maps, smp, uv + o, layer, z + dot(slope, o));
         }
     }
-    return sum / 25.0;
+    return sum / f32(taps * taps);
 }
 
 // Length along the light direction from p within which `shadow_visibility` cannot see an
