@@ -7,6 +7,8 @@
 //! texels so that shadows do not crawl as the camera moves), a spot light one (perspective over its
 //! outer cone plus a margin, capped at 160°), a point light six (90° faces ±X, ±Y, ±Z). At most
 //! [`ShadowSettings::max_layers`] layers are allocated; lights beyond get no shadow (logged).
+//! A layer is drawn on the first frame and again only when its projection changed (docs/src/
+//! scenes.md, "Lighting details"): the geometry under a pass is fixed.
 //!
 //! Biases (documented, fixed):
 //! - slope-scaled rasterizer bias: constant 2, slope 2.0 (in the depth format's units), against
@@ -24,6 +26,7 @@ use crate::profiler::GpuProfiler;
 use crate::util;
 use glam::{Mat4, Vec3};
 use nearfield_scene::{Aabb, Camera, LightKind};
+use std::sync::atomic::{AtomicBool, Ordering};
 use wgpu::util::DeviceExt;
 
 pub const SHADER: &str = include_str!("shadow.wgsl");
@@ -86,6 +89,11 @@ pub struct ShadowPass {
     bounds: Aabb,
     /// The last (camera, image size) a disc light's layer was fitted to.
     fitted_to: Option<(Camera, (u32, u32))>,
+    /// Per layer: its projection, and whether the map holds what that projection sees. The
+    /// scene's geometry does not change under a pass, so a layer is drawn again only when its
+    /// projection changed (a disc light refitted to a moved camera, the sun turned).
+    layer_matrices: Vec<Mat4>,
+    drawn: Vec<AtomicBool>,
     view_buffer: wgpu::Buffer,
     pipeline: wgpu::RenderPipeline,
     bind_group: wgpu::BindGroup,
@@ -344,6 +352,8 @@ impl ShadowPass {
             kinds: kinds.to_vec(),
             bounds: scene.bounds,
             fitted_to: None,
+            drawn: matrices.iter().map(|_| AtomicBool::new(false)).collect(),
+            layer_matrices: matrices,
             view_buffer,
             pipeline,
             bind_group,
@@ -376,6 +386,13 @@ impl ShadowPass {
             };
             let (views, texel) =
                 light_views(kind, self.bounds, self.settings.size, Some((camera, image)));
+            changed |= self.light_layers[i].1 != texel;
+            self.light_layers[i].1 = texel;
+            if self.layer_matrices[layer as usize] == views[0] {
+                continue;
+            }
+            self.layer_matrices[layer as usize] = views[0];
+            self.drawn[layer as usize].store(false, Ordering::Relaxed);
             let m = views[0].to_cols_array_2d();
             queue.write_buffer(&self.matrices, layer as u64 * 64, bytemuck::bytes_of(&m));
             queue.write_buffer(
@@ -383,8 +400,6 @@ impl ShadowPass {
                 layer as u64 * VIEW_STRIDE,
                 bytemuck::bytes_of(&m),
             );
-            changed |= self.light_layers[i].1 != texel;
-            self.light_layers[i].1 = texel;
         }
         changed
     }
@@ -410,10 +425,16 @@ impl ShadowPass {
         }
     }
 
-    /// Renders every layer (timed together under the pass's label).
+    /// Renders the layers whose projection changed since they were last drawn (all of them on
+    /// the first frame; none while the camera and the lights stand still), timed together under
+    /// the pass's label. The commands must be submitted: the layers count as drawn.
     pub fn encode(&self, encoder: &mut wgpu::CommandEncoder, profiler: &mut GpuProfiler) {
-        let n = self.layer_views.len();
-        for (i, view) in self.layer_views.iter().enumerate() {
+        let stale: Vec<usize> = (0..self.layer_views.len())
+            .filter(|&i| !self.drawn[i].swap(true, Ordering::Relaxed))
+            .collect();
+        let n = stale.len();
+        for (k, &i) in stale.iter().enumerate() {
+            let view = &self.layer_views[i];
             let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: Some("shadow layer"),
                 color_attachments: &[],
@@ -425,7 +446,7 @@ impl ShadowPass {
                     }),
                     stencil_ops: None,
                 }),
-                timestamp_writes: profiler.render_group(self.label, i == 0, i + 1 == n),
+                timestamp_writes: profiler.render_group(self.label, k == 0, k + 1 == n),
                 occlusion_query_set: None,
                 multiview_mask: None,
             });

@@ -1,0 +1,96 @@
+//! Shadow maps are drawn again only when a layer's projection changed (passes/shadow.rs): a
+//! renderer whose camera moved, or whose sun turned, after its first frame lights the scene
+//! exactly as a renderer made at the new camera or sun does, and a still camera keeps the frame.
+
+mod common;
+
+use nearfield_render::{Aov, RenderSettings, Renderer, TechniqueParams};
+use nearfield_scene::{Camera, Environment};
+
+const SIZE: (u32, u32) = (64, 36);
+
+fn renderer(ctx: &nearfield_render::GpuContext, env: &Environment, camera: Camera) -> Renderer {
+    // Boxes has a point light (six cached layers) and, under the sky with its sun split out, a
+    // disc light whose layer follows the view.
+    let scene = nearfield_scene::builtin::scene("boxes").unwrap();
+    let mut settings = RenderSettings {
+        size: SIZE,
+        ..Default::default()
+    };
+    settings.shadows.size = 512;
+    let mut r = Renderer::new(
+        ctx,
+        &scene,
+        env,
+        camera,
+        "none",
+        &TechniqueParams::default(),
+        settings,
+    )
+    .unwrap();
+    r.render_frame();
+    r
+}
+
+fn light(r: &mut Renderer) -> Vec<u32> {
+    r.read_aov(Aov::LightIrradiance)
+        .pixels
+        .iter()
+        .flatten()
+        .map(|x| x.to_bits())
+        .collect()
+}
+
+fn differing(a: &[u32], b: &[u32]) -> usize {
+    a.iter().zip(b).filter(|(x, y)| x != y).count()
+}
+
+#[test]
+fn moved_camera_and_turned_sun_redraw_the_maps_a_still_one_keeps_them() {
+    let Some(ctx) = common::context() else { return };
+    let (mut env, _) = nearfield_scene::EnvSource::Sky
+        .load_split(nearfield_scene::SunMode::Auto)
+        .unwrap();
+    assert!(env.sun.is_some());
+    let start = nearfield_scene::builtin::scene("boxes")
+        .unwrap()
+        .default_camera();
+    let mut r = renderer(&ctx, &env, start);
+    let first = light(&mut r);
+
+    // A still camera: the cached maps give the same light.
+    r.render_frame();
+    assert_eq!(differing(&light(&mut r), &first), 0, "still camera");
+
+    // The camera turns: the sun's layer is refitted and drawn again.
+    let turned = start.orbit(25.0);
+    r.set_camera(turned);
+    r.render_frame();
+    let moved = light(&mut r);
+    let want = light(&mut renderer(&ctx, &env, turned));
+    assert!(
+        differing(&moved, &first) > 100,
+        "the turn changes what is lit"
+    );
+    assert_eq!(
+        differing(&moved, &want),
+        0,
+        "moved camera against a fresh renderer"
+    );
+
+    // The sun turns (the environment rotates): its layer is drawn again.
+    r.set_environment_rotation(40.0);
+    r.render_frame();
+    let rotated = light(&mut r);
+    env.rotation = 40.0;
+    let want = light(&mut renderer(&ctx, &env, turned));
+    assert!(
+        differing(&rotated, &moved) > 100,
+        "the sun's turn changes what is lit"
+    );
+    assert_eq!(
+        differing(&rotated, &want),
+        0,
+        "turned sun against a fresh renderer"
+    );
+}
