@@ -11,7 +11,8 @@
 //!
 //! into docs/src/generated/results.json, then the pages rendered from it (book_reference).
 //! Scratch output goes to target/figures/. `FIGURES_QUICK=1` runs smaller images and fewer
-//! samples (to try the pipeline, not to publish).
+//! samples (to try the pipeline, not to publish). `FIGURES_ONLY=bench` measures only the frame
+//! times again (dated, the runs kept); `crops` and `far` remake only those pictures.
 
 use nearfield_cli::measure::schema::{Bench, Failure, MethodError, MetricsFile, Results, Run};
 use std::path::{Path, PathBuf};
@@ -116,9 +117,11 @@ fn main() {
         PathBuf::from(std::env::var("NEARFIELD_ASSETS").unwrap_or("../shared/assets".into()));
     // FIGURES_ONLY=crops or far remakes only the crops or the far-field strip (neither is in
     // results.json).
+    // FIGURES_ONLY=bench measures the frame times alone into results.json, dated.
     match std::env::var("FIGURES_ONLY").as_deref() {
         Ok("crops") => return crops(),
         Ok("far") => return far_strip(&assets),
+        Ok("bench") => return bench_only(),
         _ => {}
     }
     let (size, spp, path_spp) = if quick() {
@@ -161,42 +164,7 @@ fn main() {
         }
     }
 
-    // Frame times: every technique in turn, on the default scene.
-    let bench_size = if quick() { "320x180" } else { "640x360" };
-    let bench_json = PathBuf::from("target/figures/bench.json");
-    let bench_cmd = format!(
-        "bench builtin:cornell --size {bench_size} --methods {TECHNIQUES} --frames {} --warmup 4 --json {}",
-        if quick() { 4 } else { 24 },
-        bench_json.display()
-    );
-    nearfield(&words(&bench_cmd));
-    let b = json(&bench_json);
-    let from = b["overhead_from"].as_str().unwrap_or("wall").to_string();
-    let frame_ms = TECHNIQUES
-        .split(',')
-        .map(|t| {
-            let m = &b["methods"][t];
-            let ms = if from == "gpu" {
-                m["gpu_total"]["median_ms"].as_f64()
-            } else {
-                m["wall"]["median_ms"].as_f64()
-            };
-            MethodError {
-                name: t.into(),
-                error: ms.unwrap_or(f64::NAN),
-            }
-        })
-        .collect();
-    let bench = Bench {
-        command: format!("nearfield {bench_cmd}").replace(" --json target/figures/bench.json", ""),
-        adapter: format!(
-            "{} ({})",
-            b["adapter"]["name"].as_str().unwrap_or_default(),
-            b["adapter"]["device_type"].as_str().unwrap_or_default()
-        ),
-        from,
-        frame_ms,
-    };
+    let bench = bench(None);
 
     // Failure strips: what each technique gets wrong, where it shows.
     std::fs::create_dir_all("docs/src/img/failures").expect("docs/src/img/failures");
@@ -314,29 +282,83 @@ fn main() {
     crops();
     far_strip(&assets);
 
-    let date = Command::new("date")
-        .args(["-u", "+%Y-%m-%d"])
-        .output()
-        .map(|o| String::from_utf8_lossy(&o.stdout).trim().to_string())
-        .unwrap_or_default();
     let results = Results {
         adapter,
-        date,
+        date: today(),
         runs,
         bench,
         failures,
     };
-    let text = serde_json::to_string_pretty(&results).expect("results serialise") + "\n";
-    nearfield_scene::atomic::write_bytes(
-        Path::new("docs/src/generated/results.json"),
-        text.as_bytes(),
-    )
-    .expect("write docs/src/generated/results.json");
-    eprintln!("figures: wrote docs/src/generated/results.json");
+    write_results(&results);
 }
 
-/// The vbgi page's crops of the right wall and the short box's top at 1280×720 after 16
-/// frames: hbil, hbil with the svgf denoiser, vbgi.
+const RESULTS: &str = "docs/src/generated/results.json";
+
+fn today() -> String {
+    Command::new("date")
+        .args(["-u", "+%Y-%m-%d"])
+        .output()
+        .map(|o| String::from_utf8_lossy(&o.stdout).trim().to_string())
+        .unwrap_or_default()
+}
+
+fn write_results(results: &Results) {
+    let text = serde_json::to_string_pretty(results).expect("results serialise") + "\n";
+    nearfield_scene::atomic::write_bytes(Path::new(RESULTS), text.as_bytes())
+        .unwrap_or_else(|e| panic!("write {RESULTS}: {e}"));
+    eprintln!("figures: wrote {RESULTS}");
+}
+
+/// `FIGURES_ONLY=bench`: the frame times measured again, the runs and failures kept.
+fn bench_only() {
+    let mut results: Results = serde_json::from_value(json(Path::new(RESULTS)))
+        .unwrap_or_else(|e| panic!("{RESULTS}: {e}"));
+    results.bench = bench(Some(today()));
+    write_results(&results);
+}
+
+/// Frame times: every technique in turn, on the default scene. `date`: set when they are
+/// measured apart from the runs.
+fn bench(date: Option<String>) -> Bench {
+    let bench_size = if quick() { "320x180" } else { "640x360" };
+    std::fs::create_dir_all("target/figures").expect("target/figures");
+    let bench_json = PathBuf::from("target/figures/bench.json");
+    let bench_cmd = format!(
+        "bench builtin:cornell --size {bench_size} --methods {TECHNIQUES} --frames {} --warmup 4 --json {}",
+        if quick() { 4 } else { 24 },
+        bench_json.display()
+    );
+    nearfield(&words(&bench_cmd));
+    let b = json(&bench_json);
+    let from = b["overhead_from"].as_str().unwrap_or("wall").to_string();
+    let frame_ms = TECHNIQUES
+        .split(',')
+        .map(|t| {
+            let m = &b["methods"][t];
+            let ms = if from == "gpu" {
+                m["gpu_total"]["median_ms"].as_f64()
+            } else {
+                m["wall"]["median_ms"].as_f64()
+            };
+            MethodError {
+                name: t.into(),
+                error: ms.unwrap_or(f64::NAN),
+            }
+        })
+        .collect();
+    Bench {
+        command: format!("nearfield {bench_cmd}").replace(" --json target/figures/bench.json", ""),
+        adapter: format!(
+            "{} ({})",
+            b["adapter"]["name"].as_str().unwrap_or_default(),
+            b["adapter"]["device_type"].as_str().unwrap_or_default()
+        ),
+        from,
+        frame_ms,
+        date,
+    }
+}
+
 /// The far field's strip (docs/src/img/sponza-far.png): Sponza's arcade, `lambertian` of `none`
 /// and `vbgi` with the open sky beyond R, `vbgi` with the probe volume, and the path tracer
 /// (4608 spp, its standard error 4.9 % of its mean), all at one exposure (+8 EV).
@@ -363,6 +385,8 @@ fn far_strip(assets: &Path) {
     )));
 }
 
+/// The vbgi page's crops of the right wall and the short box's top at 1280×720 after 16
+/// frames: hbil, hbil with the svgf denoiser, vbgi.
 fn crops() {
     let crops = Path::new("target/figures/crops");
     std::fs::create_dir_all(crops).expect("target/figures/crops");

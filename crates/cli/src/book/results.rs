@@ -24,6 +24,14 @@ fn cost_vs_ssao(r: &Results, technique: &str) -> Option<f64> {
     Some(ms(technique)? / ms("ssao")?)
 }
 
+/// ", measured on DATE" where the frame times are later than the runs (`FIGURES_ONLY=bench`).
+fn bench_date(r: &Results) -> String {
+    match &r.bench.date {
+        Some(d) if *d != r.date => format!(", measured on {d}"),
+        _ => String::new(),
+    }
+}
+
 fn best(run: &Run) -> Option<&MethodError> {
     run.methods
         .iter()
@@ -130,13 +138,14 @@ fn scenes_sentence(r: &Results) -> String {
     let scenes = scene_names(r);
     format!(
         "Scenes: {} ({}); measured on {} ({}). Frame times: `{}` (median {} time; on a CPU \
-         adapter only ratios mean anything).",
+         adapter only ratios mean anything){}.",
         scenes.len(),
         scenes.join(", "),
         r.adapter,
         r.date,
         r.bench.command,
-        r.bench.from
+        r.bench.from,
+        bench_date(r)
     )
 }
 
@@ -202,7 +211,13 @@ fn summary_page(r: &Results) -> String {
                 .unwrap_or_else(|| "–".into())
         );
     }
-    let _ = writeln!(out, "\n`{}` on {}.", r.bench.command, r.bench.adapter);
+    let _ = writeln!(
+        out,
+        "\n`{}` on {}{}.",
+        r.bench.command,
+        r.bench.adapter,
+        bench_date(r)
+    );
     out
 }
 

@@ -147,6 +147,10 @@ pub struct Bench {
     pub from: String,
     /// Median frame time per technique, milliseconds.
     pub frame_ms: Vec<MethodError>,
+    /// When the frame times were measured, where that is later than the runs
+    /// (`FIGURES_ONLY=bench` measures them alone); absent: with the runs (`Results::date`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub date: Option<String>,
 }
 
 /// Everything `examples/figures.rs` measured.
