@@ -6,6 +6,8 @@
 #   scripts/peer-bench.sh                 # 1280x720, builtin:cornell, R = 0.5 m, 2 rounds
 #   SIZE=640x360 ROUNDS=3 scripts/peer-bench.sh
 #
+# Each figure is the median over the rounds (with 2 rounds, their mean).
+#
 # Each round also times nearfield's `none` frame lit as Bevy's "off" frame is (no light, no shadow
 # map: `--sun off --far sky`), the like-for-like base frame.
 #
@@ -82,7 +84,8 @@ import json, sys, statistics
 out, rounds, budgets, ours = sys.argv[1], int(sys.argv[2]), sys.argv[3].split(), sys.argv[4:]
 metrics = {m["name"]: m["metrics"]["relative_error"]
            for m in json.load(open(f"{out}/compare/metrics.json"))["methods"]}
-def mean(v): return sum(v) / len(v)
+# The median over rounds: one round that a busy machine slowed does not move it.
+def mean(v): return statistics.median(v)
 bevy = {}
 for r in range(1, rounds + 1):
     peer = json.load(open(f"{out}/bevy-{r}/peer.json"))
