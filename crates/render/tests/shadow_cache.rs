@@ -4,7 +4,7 @@
 
 mod common;
 
-use nearfield_render::{Aov, RenderSettings, Renderer, TechniqueParams};
+use nearfield_render::{Aov, Renderer};
 use nearfield_scene::{Camera, Environment};
 
 const SIZE: (u32, u32) = (64, 36);
@@ -13,23 +13,7 @@ fn renderer(ctx: &nearfield_render::GpuContext, env: &Environment, camera: Camer
     // Boxes has a point light (six cached layers) and, under the sky with its sun split out, a
     // disc light whose layer follows the view.
     let scene = nearfield_scene::builtin::scene("boxes").unwrap();
-    let mut settings = RenderSettings {
-        size: SIZE,
-        ..Default::default()
-    };
-    settings.shadows.size = 512;
-    let mut r = Renderer::new(
-        ctx,
-        &scene,
-        env,
-        camera,
-        "none",
-        &TechniqueParams::default(),
-        settings,
-    )
-    .unwrap();
-    r.render_frame();
-    r
+    common::renderer(ctx, &scene, env, camera, SIZE)
 }
 
 fn light(r: &mut Renderer) -> Vec<u32> {
