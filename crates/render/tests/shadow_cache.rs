@@ -29,6 +29,23 @@ fn differing(a: &[u32], b: &[u32]) -> usize {
     a.iter().zip(b).filter(|(x, y)| x != y).count()
 }
 
+/// The next frame of `r`, after a change: it must differ from `before` (the change moved the
+/// light) and match `fresh`, a renderer made with the change, bit for bit. Returns its light.
+fn redrawn(r: &mut Renderer, before: &[u32], mut fresh: Renderer, what: &str) -> Vec<u32> {
+    r.render_frame();
+    let after = light(r);
+    assert!(
+        differing(&after, before) > 100,
+        "{what}: the change moves the light"
+    );
+    assert_eq!(
+        differing(&after, &light(&mut fresh)),
+        0,
+        "{what} against a fresh renderer"
+    );
+    after
+}
+
 #[test]
 fn moved_camera_and_turned_sun_redraw_the_maps_a_still_one_keeps_them() {
     let Some(ctx) = common::context() else { return };
@@ -49,32 +66,10 @@ fn moved_camera_and_turned_sun_redraw_the_maps_a_still_one_keeps_them() {
     // The camera turns: the sun's layer is refitted and drawn again.
     let turned = start.orbit(25.0);
     r.set_camera(turned);
-    r.render_frame();
-    let moved = light(&mut r);
-    let want = light(&mut renderer(&ctx, &env, turned));
-    assert!(
-        differing(&moved, &first) > 100,
-        "the turn changes what is lit"
-    );
-    assert_eq!(
-        differing(&moved, &want),
-        0,
-        "moved camera against a fresh renderer"
-    );
+    let moved = redrawn(&mut r, &first, renderer(&ctx, &env, turned), "moved camera");
 
     // The sun turns (the environment rotates): its layer is drawn again.
     r.set_environment_rotation(40.0);
-    r.render_frame();
-    let rotated = light(&mut r);
     env.rotation = 40.0;
-    let want = light(&mut renderer(&ctx, &env, turned));
-    assert!(
-        differing(&rotated, &moved) > 100,
-        "the sun's turn changes what is lit"
-    );
-    assert_eq!(
-        differing(&rotated, &want),
-        0,
-        "turned sun against a fresh renderer"
-    );
+    redrawn(&mut r, &moved, renderer(&ctx, &env, turned), "turned sun");
 }

@@ -7,8 +7,8 @@
 //! texels so that shadows do not crawl as the camera moves), a spot light one (perspective over its
 //! outer cone plus a margin, capped at 160°), a point light six (90° faces ±X, ±Y, ±Z). At most
 //! [`ShadowSettings::max_layers`] layers are allocated; lights beyond get no shadow (logged).
-//! A layer is drawn on the first frame and again only when its projection changed (docs/src/
-//! scenes.md, "Lighting details"): the geometry under a pass is fixed.
+//! A layer is drawn on the first frame and again only when its projection changed
+//! (docs/src/scenes.md, "Lighting details"): the geometry under a pass is fixed.
 //!
 //! Biases (documented, fixed):
 //! - slope-scaled rasterizer bias: constant 2, slope 2.0 (in the depth format's units), against
