@@ -12,6 +12,9 @@ pub struct FrameGroup {
     pub bind_group: wgpu::BindGroup,
     /// The zeroed `Frame` made when none was handed in (kept alive with the bind group).
     _own_frame: Option<wgpu::Buffer>,
+    /// Whether the far field bound is a probe volume (far.wgsl's `far_volume()`), for passes
+    /// that specialise their pipelines on it.
+    pub far_volume: bool,
 }
 
 impl FrameGroup {
@@ -53,6 +56,7 @@ impl FrameGroup {
             layout,
             bind_group,
             _own_frame: own_frame,
+            far_volume: far.mode == crate::far::FarMode::Volume,
         }
     }
 }

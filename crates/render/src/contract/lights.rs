@@ -23,6 +23,18 @@ pub struct LightResources<'a> {
     pub shadow_depths: &'a wgpu::TextureView,
 }
 
+/// lights.wgsl's `override` constants for a light table: which shadow filters its lights need
+/// (`DISC_SHADOWS`: a directional light with a disc, `PUNCTUAL_SHADOWS`: any other light). A
+/// pipeline made with them leaves out the filter no light uses; one made without keeps both.
+pub fn shadow_filter_constants(lights: &[nearfield_scene::Light]) -> [(&'static str, f64); 2] {
+    let disc = |l: &nearfield_scene::Light| matches!(l.kind, nearfield_scene::LightKind::Directional { angular_radius, .. } if angular_radius > 0.0);
+    let flag = |b: bool| f64::from(u8::from(b));
+    [
+        ("DISC_SHADOWS", flag(lights.iter().any(disc))),
+        ("PUNCTUAL_SHADOWS", flag(lights.iter().any(|l| !disc(l)))),
+    ]
+}
+
 /// The light bindings of a frame without nearfield's lights (an engine that hands in only its
 /// images): a table of one switched-off light, one identity matrix, a 1×1 shadow map. The frame's
 /// light count is then 0.

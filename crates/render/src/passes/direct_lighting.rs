@@ -97,7 +97,79 @@ pub fn new(
         .bind_group(device, &layout)
     });
     ScreenPass {
-        step: ComputeStep::new(device, "direct", &module, "main", frame, &layout, &[]),
+        step: ComputeStep::new(
+            device,
+            "direct",
+            &module,
+            "main",
+            frame,
+            &layout,
+            &constants(&scene.scene_lights, frame.far_volume),
+        ),
         own,
+    }
+}
+
+/// The pipeline's `override` constants for a light table and far field: whether there are
+/// lights, which shadow filters they need, and whether the far field is a volume (the kernel
+/// then holds only the code its scene runs; direct_lighting.wgsl).
+pub fn constants(lights: &[nearfield_scene::Light], far_volume: bool) -> Vec<(&'static str, f64)> {
+    let flag = |b: bool| f64::from(u8::from(b));
+    let mut c = vec![
+        ("LIGHTS", flag(!lights.is_empty())),
+        ("FAR_VOLUME", flag(far_volume)),
+    ];
+    c.extend(crate::contract::lights::shadow_filter_constants(lights));
+    c
+}
+
+#[cfg(test)]
+mod tests {
+    use super::constants;
+    use glam::Vec3;
+    use nearfield_scene::{Light, LightKind};
+
+    fn light(kind: LightKind) -> Light {
+        Light {
+            kind,
+            color: Vec3::ONE,
+            intensity: 1.0,
+            range: None,
+        }
+    }
+
+    fn flags(lights: &[Light], far_volume: bool) -> Vec<(&'static str, bool)> {
+        constants(lights, far_volume)
+            .into_iter()
+            .map(|(k, v)| (k, v != 0.0))
+            .collect()
+    }
+
+    #[test]
+    fn the_kernel_keeps_only_what_its_lights_and_far_field_use() {
+        let sun = light(LightKind::Directional {
+            direction: -Vec3::Y,
+            angular_radius: 0.00465,
+        });
+        let parallel = light(LightKind::Directional {
+            direction: -Vec3::Y,
+            angular_radius: 0.0,
+        });
+        let point = light(LightKind::Point { position: Vec3::Y });
+        let f = |l: &[Light], v| flags(l, v);
+        // (LIGHTS, FAR_VOLUME, DISC_SHADOWS, PUNCTUAL_SHADOWS)
+        let expect = |l, v, d, p| {
+            vec![
+                ("LIGHTS", l),
+                ("FAR_VOLUME", v),
+                ("DISC_SHADOWS", d),
+                ("PUNCTUAL_SHADOWS", p),
+            ]
+        };
+        assert_eq!(f(&[], false), expect(false, false, false, false));
+        assert_eq!(f(&[sun], true), expect(true, true, true, false));
+        // A directional light without a disc takes the 3×3 PCF.
+        assert_eq!(f(&[parallel], false), expect(true, false, false, true));
+        assert_eq!(f(&[point, sun], false), expect(true, false, true, true));
     }
 }

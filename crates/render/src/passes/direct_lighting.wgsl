@@ -16,7 +16,12 @@
 // techniques gather as indirect light (L_o of docs/src/aovs.md): it is kept for the next frame.
 // Lights and shadows come from shaders/lights.wgsl.
 // Shadows: 3×3 PCF of hardware 2×2 comparisons from the shadow-map array, receiver offset along
-// the normal by `frame.shadow_normal_offset` shadow-map texels (see passes/shadow.rs for both biases).
+// the normal by `frame.shadow_normal_offset` shadow-map texels (see passes/shadow.rs for both
+// biases); a disc light's soft shadow (lights.wgsl's disc_shadow).
+// The pipeline is specialised for its scene (direct_lighting.rs): LIGHTS, whether the light table
+// has any light, FAR_VOLUME, whether the far field is a probe volume, and lights.wgsl's shadow
+// filters. Code a scene does not need is left out of the kernel rather than branched around
+// (docs/src/architecture.md, "Specialised kernels").
 
 @group(1) @binding(0) var gb_normal: texture_2d<f32>;
 @group(1) @binding(1) var gb_albedo: texture_2d<f32>;
@@ -39,6 +44,9 @@ fn shadow_map_visibility(l: GpuLight, p: vec3<f32>, n: vec3<f32>) -> f32 {
     let layer = shadow_layer(l, p);
     return shadow_visibility(shadow_maps, shadow_depths, shadow_sampler, frame.shadow_normal_offset, l, layer, shadow_clip_from_world[layer], p, n);
 }
+
+override LIGHTS: bool = true;
+override FAR_VOLUME: bool = true;
 
 fn d_ggx(n_h: f32, a: f32) -> f32 {
     let a2 = a * a;
@@ -94,7 +102,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
 
     var irradiance = vec3<f32>(0.0);
     var specular = vec3<f32>(0.0);
-    for (var i = 0u; i < frame.light_count; i++) {
+    for (var i = 0u; LIGHTS && i < frame.light_count; i++) {
         let l = lights[i];
         let inc = incident(l, p);
         let n_l = dot(n, inc.to_light);
@@ -114,7 +122,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     specular += env_specular_at(env_specular, env_sampler, env, r, roughness) * (f0 * ab.x + ab.y);
     // The senders' light: the far field, the open sky's SH irradiance or the probe volume's.
     var far_e = vec3<f32>(0.0);
-    if far_volume(far_probes) {
+    if FAR_VOLUME {
         far_e = far_irradiance_here(far_probes, far_visibility, far_irradiance_atlas, env_sampler, view, p, n);
     } else {
         far_e = env_irradiance_sh(env, n);

@@ -95,6 +95,16 @@ fn shadow_layer(l: GpuLight, p: vec3<f32>) -> u32 {
     return layer;
 }
 
+// The shadow filters a pass's lights need: a pass specialises its pipeline with them from its
+// light table (crate::contract::lights::ShadowFilters), and a kernel that leaves them at true
+// keeps both. A backend that runs a kernel as SIMD over pixels (lavapipe) executes both sides of
+// an `if` for every pixel, so a filter that no light uses costs as much as one that is used
+// unless the pipeline leaves it out (docs/src/architecture.md, "Specialised kernels").
+// DISC_SHADOWS: some light is a directional disc (disc_shadow); PUNCTUAL_SHADOWS: some light
+// is not (the 3×3 PCF).
+override DISC_SHADOWS: bool = true;
+override PUNCTUAL_SHADOWS: bool = true;
+
 // Shadow-map visibility of light l at world point p with normal n: `layer` = shadow_layer(l, p)
 // and `clip_from_world` its matrix (shadow_clip_from_world[layer]); `maps`/`depths` the shadow
 // maps (filtered comparisons, unfilterable loads), `smp` their comparison sampler;
@@ -117,8 +127,11 @@ fn shadow_visibility(maps: texture_depth_2d_array, depths: texture_2d_array<f32>
     if any(uv < vec2<f32>(0.0)) || any(uv > vec2<f32>(1.0)) || ndc.z > 1.0 || ndc.z < 0.0 {
         return 1.0;
     }
-    if kind == 0u && l.tan_radius > 0.0 {
+    if DISC_SHADOWS && kind == 0u && l.tan_radius > 0.0 {
         return disc_shadow(maps, depths, smp, l, layer, clip_from_world, offset_p, n, uv, ndc.z);
+    }
+    if !PUNCTUAL_SHADOWS {
+        return 1.0;
     }
     let texel = 1.0 / vec2<f32>(textureDimensions(maps));
     var sum = 0.0;
