@@ -104,21 +104,21 @@ pub fn new(
             "main",
             frame,
             &layout,
-            &constants(&scene.scene_lights, frame.far_volume),
+            &[
+                constants(&scene.scene_lights),
+                vec![crate::far::field_constant(frame.far_volume)],
+            ]
+            .concat(),
         ),
         own,
     }
 }
 
-/// The pipeline's `override` constants for a light table and far field: whether there are
-/// lights, which shadow filters they need, and whether the far field is a volume (the kernel
-/// then holds only the code its scene runs; direct_lighting.wgsl).
-pub fn constants(lights: &[nearfield_scene::Light], far_volume: bool) -> Vec<(&'static str, f64)> {
-    let flag = |b: bool| f64::from(u8::from(b));
-    let mut c = vec![
-        ("LIGHTS", flag(!lights.is_empty())),
-        ("FAR_VOLUME", flag(far_volume)),
-    ];
+/// The pipeline's `override` constants for a light table: whether there are lights and which
+/// shadow filters they need (the kernel then holds only the code its scene runs;
+/// direct_lighting.wgsl). `new` adds far.wgsl's `FAR_FIELD`.
+pub fn constants(lights: &[nearfield_scene::Light]) -> Vec<(&'static str, f64)> {
+    let mut c = vec![("LIGHTS", f64::from(u8::from(!lights.is_empty())))];
     c.extend(crate::contract::lights::shadow_filter_constants(lights));
     c
 }
@@ -138,15 +138,15 @@ mod tests {
         }
     }
 
-    fn flags(lights: &[Light], far_volume: bool) -> Vec<(&'static str, bool)> {
-        constants(lights, far_volume)
+    fn flags(lights: &[Light]) -> Vec<(&'static str, bool)> {
+        constants(lights)
             .into_iter()
             .map(|(k, v)| (k, v != 0.0))
             .collect()
     }
 
     #[test]
-    fn the_kernel_keeps_only_what_its_lights_and_far_field_use() {
+    fn the_kernel_keeps_only_what_its_lights_use() {
         let sun = light(LightKind::Directional {
             direction: -Vec3::Y,
             angular_radius: 0.00465,
@@ -156,20 +156,12 @@ mod tests {
             angular_radius: 0.0,
         });
         let point = light(LightKind::Point { position: Vec3::Y });
-        let f = |l: &[Light], v| flags(l, v);
-        // (LIGHTS, FAR_VOLUME, DISC_SHADOWS, PUNCTUAL_SHADOWS)
-        let expect = |l, v, d, p| {
-            vec![
-                ("LIGHTS", l),
-                ("FAR_VOLUME", v),
-                ("DISC_SHADOWS", d),
-                ("PUNCTUAL_SHADOWS", p),
-            ]
-        };
-        assert_eq!(f(&[], false), expect(false, false, false, false));
-        assert_eq!(f(&[sun], true), expect(true, true, true, false));
+        // (LIGHTS, DISC_SHADOWS, PUNCTUAL_SHADOWS)
+        let expect = |l, d, p| vec![("LIGHTS", l), ("DISC_SHADOWS", d), ("PUNCTUAL_SHADOWS", p)];
+        assert_eq!(flags(&[]), expect(false, false, false));
+        assert_eq!(flags(&[sun]), expect(true, true, false));
         // A directional light without a disc takes the 3×3 PCF.
-        assert_eq!(f(&[parallel], false), expect(true, false, false, true));
-        assert_eq!(f(&[point, sun], false), expect(true, false, true, true));
+        assert_eq!(flags(&[parallel]), expect(true, false, true));
+        assert_eq!(flags(&[point, sun]), expect(true, true, true));
     }
 }

@@ -19,9 +19,9 @@
 // the normal by `frame.shadow_normal_offset` shadow-map texels (see passes/shadow.rs for both
 // biases); a disc light's soft shadow (lights.wgsl's disc_shadow).
 // The pipeline is specialised for its scene (direct_lighting.rs): LIGHTS, whether the light table
-// has any light, FAR_VOLUME, whether the far field is a probe volume, and lights.wgsl's shadow
-// filters. Code a scene does not need is left out of the kernel rather than branched around
-// (docs/src/architecture.md, "Specialised kernels").
+// has any light, lights.wgsl's shadow filters and far.wgsl's FAR_FIELD. Code a scene does not
+// need is left out of the kernel rather than branched around (docs/src/architecture.md,
+// "Specialised kernels").
 
 @group(1) @binding(0) var gb_normal: texture_2d<f32>;
 @group(1) @binding(1) var gb_albedo: texture_2d<f32>;
@@ -46,7 +46,6 @@ fn shadow_map_visibility(l: GpuLight, p: vec3<f32>, n: vec3<f32>) -> f32 {
 }
 
 override LIGHTS: bool = true;
-override FAR_VOLUME: bool = true;
 
 fn d_ggx(n_h: f32, a: f32) -> f32 {
     let a2 = a * a;
@@ -122,7 +121,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     specular += env_specular_at(env_specular, env_sampler, env, r, roughness) * (f0 * ab.x + ab.y);
     // The senders' light: the far field, the open sky's SH irradiance or the probe volume's.
     var far_e = vec3<f32>(0.0);
-    if FAR_VOLUME {
+    if far_volume(far_probes) {
         far_e = far_irradiance_here(far_probes, far_visibility, far_irradiance_atlas, env_sampler, view, p, n);
     } else {
         far_e = env_irradiance_sh(env, n);

@@ -58,8 +58,21 @@ struct FarSh {
     c: array<vec4<f32>, 9>,
 }
 
+// The far field a pipeline is made for: FAR_FIELD_SKY, FAR_FIELD_VOLUME, or FAR_FIELD_BOUND
+// (the default: far_volume() reads it from the bound probe texture). nearfield's passes set it
+// from the frame group they are built with (passes::ComputeStep), so that the side of every
+// `far_volume()` branch the frame does not take is left out of the kernel: a SIMD backend
+// (lavapipe) would run it for every pixel (docs/src/architecture.md, "Specialised kernels").
+const FAR_FIELD_SKY: u32 = 0u;
+const FAR_FIELD_VOLUME: u32 = 1u;
+const FAR_FIELD_BOUND: u32 = 2u;
+override FAR_FIELD: u32 = 2u;
+
 fn far_volume(probes: texture_2d<f32>) -> bool {
-    return textureLoad(probes, vec2<u32>(0u, 0u), 0).w > 0.5;
+    if FAR_FIELD == FAR_FIELD_BOUND {
+        return textureLoad(probes, vec2<u32>(0u, 0u), 0).w > 0.5;
+    }
+    return FAR_FIELD == FAR_FIELD_VOLUME;
 }
 
 fn far_sign(v: vec2<f32>) -> vec2<f32> {

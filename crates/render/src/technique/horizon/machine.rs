@@ -312,6 +312,8 @@ pub fn build(
         ("STEPS", settings.march.steps as f64),
     ];
     counts.extend(march_counts);
+    let far_field = crate::far::field_constant(frame.far_volume);
+    counts.push(far_field);
     let work = work(near, &p);
     let step = |label: &'static str, source: String, entry: &str, layout, constants: &[_]| {
         let module = crate::pipeline_cache::shader_module(device, label, &source);
@@ -335,6 +337,7 @@ pub fn build(
                 work[0],
                 work[1],
                 ("HISTORY", f64::from(u8::from(keeps_history(near, &p)))),
+                far_field,
             ],
         ),
         split,

@@ -269,9 +269,11 @@ fn create(
             normal_power: 8.0,
         },
     );
+    let far_field = crate::far::field_constant(frame.far_volume);
     let counts = [
         ("SAMPLES", settings.samples as f64),
         ("STEPS", settings.steps as f64),
+        far_field,
     ];
     let step = |label: &'static str, source: String, entry: &str, layout, constants: &[_]| {
         let module = crate::pipeline_cache::shader_module(device, label, &source);
@@ -306,7 +308,13 @@ fn create(
             filter_bg,
         ),
         shade: (
-            step("shade", shade::source(), "shade_pass", &shade_layout, &[]),
+            step(
+                "shade",
+                shade::source(),
+                "shade_pass",
+                &shade_layout,
+                &[far_field],
+            ),
             shade_bg,
         ),
         blur_bent: blur.chain(device, i, &v[4], &v[9], &v[5]),

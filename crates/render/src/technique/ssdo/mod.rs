@@ -319,9 +319,11 @@ fn create(
         crate::pipeline_cache::shader_module(device, "ssdo bounce", &bounce::source());
 
     let blur = BilateralBlur::new(device, frame, blur_settings(&settings));
+    let far_field = crate::far::field_constant(frame.far_volume);
     let counts = [
         ("SAMPLES", settings.samples as f64),
         ("STEPS", settings.steps as f64),
+        far_field,
     ];
     let step = |label, module, entry, layout, constants: &[(&str, f64)]| {
         ComputeStep::new(device, label, module, entry, frame, layout, constants)
@@ -338,7 +340,13 @@ fn create(
             direct_bg,
         ),
         resolve: (
-            step("resolve", &resolve_module, "resolve", &resolve_layout, &[]),
+            step(
+                "resolve",
+                &resolve_module,
+                "resolve",
+                &resolve_layout,
+                &[far_field],
+            ),
             resolve_bg,
         ),
         bounce: (
