@@ -121,7 +121,16 @@ fn resolve(pixel: vec2<u32>, raw_cone: vec4<f32>, raw_near: vec3<f32>, raw_far: 
     }
     let n = normalize(nw.xyz);
     let x = world_position(view, pixel, depth);
-    let acc = temporal_mean(prev_geometry, prev_cone, prev_near, prev_far, view, params, x, n, depth, raw_cone, raw_near, raw_far);
+    // Without history the running mean is off (keeps_history): this frame's values alone, and
+    // the history taps are left out of the kernel rather than masked off (architecture.md,
+    // "Specialised kernels").
+    var acc: Accumulated;
+    acc.cone = raw_cone;
+    acc.near = vec4<f32>(raw_near, 1.0);
+    acc.far = raw_far;
+    if HISTORY {
+        acc = temporal_mean(prev_geometry, prev_cone, prev_near, prev_far, view, params, x, n, depth, raw_cone, raw_near, raw_far);
+    }
     if HISTORY {
         textureStore(acc_cone, pixel, acc.cone);
         textureStore(acc_near, pixel, acc.near);
