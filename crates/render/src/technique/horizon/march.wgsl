@@ -100,7 +100,7 @@ fn search_pixel(depth_layers: texture_2d_array<f32>, normal_layers: texture_2d_a
     let lf = view_local_frame(x);
     // The light of the visible arcs: the environment at a blurred mip, or the probe volume's
     // radiance at this point.
-    let volume = FAR && p.far == FAR_SLICES && far_volume(probes);
+    let volume = FAR && far_volume(probes);
     var far_sh: FarSh;
     if volume {
         let xw = (cam.world_from_view * vec4<f32>(x, 1.0)).xyz;
@@ -141,7 +141,7 @@ fn search_pixel(depth_layers: texture_2d_array<f32>, normal_layers: texture_2d_a
         near += front.yzw + back.yzw;
         let t1 = front.x;
         let t0 = back.x;
-        if FAR && p.far == FAR_SLICES {
+        if FAR {
             // The visible arcs [θ0, 0] and [0, θ1], each in far_steps pieces of equal angle:
             // L_env at the piece's middle × ∫ (n′·ω) |sin θ| dθ over the piece.
             let d_world = to_world(cam, d);

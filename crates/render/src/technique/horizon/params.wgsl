@@ -52,7 +52,8 @@ override SLICES: u32 = 2u;
 override STEPS: u32 = 16u;
 // What a pipeline computes besides the bent cone (fixed per pipeline, so gtao's kernels carry
 // none of hbil's work): near-field light (hbil, vbgi), the far field through the slices' arcs
-// (`far=slices`).
+// (`far=slices`: FAR is set exactly when `far` is FAR_SLICES, and the kernels test FAR alone,
+// so that the other far fields' code is left out of the pipeline).
 override NEAR: bool = true;
 override FAR: bool = true;
 

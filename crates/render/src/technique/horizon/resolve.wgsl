@@ -14,7 +14,12 @@ fn energy_compensation(a: f32) -> f32 {
 // `probes`, `visibility`: the far field's (far_sh_here); `irradiance_map`: the environment's
 // pre-convolved diffuse map (env_irradiance_exact); `smp`: the sampler of both.
 fn cone_far_field(probes: texture_2d<f32>, visibility: texture_2d<f32>, irradiance_map: texture_2d<f32>, smp: sampler, cam: View, e: EnvUniforms, p: HorizonParams, x: vec3<f32>, n: vec3<f32>, bent: vec3<f32>, ao: f32, far: vec4<f32>) -> vec3<f32> {
-    let volume = far_volume(probes) && p.far != FAR_SLICES;
+    if FAR {
+        // The far field through the slices' visible arcs (FAR is set exactly when p.far is
+        // FAR_SLICES): the rest is left out of the pipeline.
+        return max(far.rgb, vec3<f32>(0.0));
+    }
+    let volume = far_volume(probes);
     var f: FarSh;
     if volume {
         f = far_sh_here(probes, visibility, smp, cam, x, n);
@@ -32,12 +37,6 @@ fn cone_far_field(probes: texture_2d<f32>, visibility: texture_2d<f32>, irradian
                 return far_irradiance(f, bent) * energy_compensation(ao);
             }
             return env_irradiance_exact(irradiance_map, smp, e, bent) * energy_compensation(ao);
-        }
-        case FAR_SLICES: {
-            if FAR {
-                return max(far.rgb, vec3<f32>(0.0));
-            }
-            return vec3<f32>(0.0);
         }
         default: {
             if volume {

@@ -137,7 +137,7 @@ fn bitmask(@builtin(global_invocation_id) id: vec3<u32>) {
     let x = world_position(view, pixel, depth);
     // The light of the free sectors: the environment at a blurred mip, or the probe volume's
     // radiance at this point.
-    let volume = params.far == FAR_SLICES && far_volume(far_probes);
+    let volume = FAR && far_volume(far_probes);
     var far_sh: FarSh;
     if volume {
         far_sh = far_sh_here(far_probes, far_visibility, env_sampler, view, x, n);
@@ -333,7 +333,7 @@ fn bitmask(@builtin(global_invocation_id) id: vec3<u32>) {
             let theta = base + PI * (f32(g) + 0.5) / f32(groups);
             let omega = sin(theta) * d + cos(theta) * omega_o;
             bent += omega * w;
-            if params.far == FAR_SLICES {
+            if FAR {
                 if volume {
                     far += far_radiance(far_sh, omega) * w;
                 } else {

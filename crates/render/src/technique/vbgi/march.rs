@@ -25,6 +25,8 @@ pub struct BitmaskMarch {
     back_view: wgpu::TextureView,
     /// With `thickness=layer` and interleaving: the deinterleave.
     back: Option<(ComputeStep, wgpu::BindGroup, (u32, u32))>,
+    /// params.wgsl's `NEAR` and `FAR` of the kernel (the far field through the sectors).
+    work: [(&'static str, f64); 2],
     _textures: Vec<wgpu::Texture>,
 }
 
@@ -119,6 +121,7 @@ pub fn create(m: &MarchContext) -> Result<Box<dyn March>, RenderError> {
         layers,
         back_view,
         back,
+        work: crate::technique::horizon::march::work(true, m.params),
         _textures: textures,
     }))
 }
@@ -147,7 +150,11 @@ impl March for BitmaskMarch {
         (
             bitmask::source(),
             "bitmask",
-            vec![("SECTORS", self.bitmask.sectors as f64)],
+            [
+                vec![("SECTORS", self.bitmask.sectors as f64)],
+                self.work.to_vec(),
+            ]
+            .concat(),
         )
     }
 
