@@ -182,10 +182,12 @@ fn a_hundred_switches_leak_no_gpu_objects() {
         return;
     }
     let dir = scratch("leak");
-    // One cycle: 12 switches that end where they began.
+    // One cycle: 12 switches that end where they began; each scene switch waits for its probe
+    // volume, so that what a cycle builds does not depend on how far a background bake got.
     let cycle = "method hbil\naov extra:reprojected\nsize 96x54\nscene builtin:boxes\n\
-                 split 0.5\nmethod b ssdo\naov ao\nsplit off\nscene builtin:cornell\n\
-                 size 64x36\naov final\nmethod none\nreport\n";
+                 bake-wait\nsplit 0.5\nmethod b ssdo\naov ao\nsplit off\n\
+                 scene builtin:cornell\nbake-wait\nsize 64x36\naov final\nmethod none\n\
+                 report\n";
     let mut script = String::from("size 64x36\nwait 2\nreport\n");
     for _ in 0..9 {
         script.push_str(cycle);
@@ -202,20 +204,24 @@ fn a_hundred_switches_leak_no_gpu_objects() {
     let counts = reports(&out);
     assert_eq!(counts.len(), 10, "{out}");
     eprintln!(
-        "live objects: start {}, after each cycle {}",
-        counts[0], counts[1]
+        "live objects: start {}, after each cycle {counts:?}",
+        counts[0]
     );
-    for (i, c) in counts.iter().enumerate().skip(1) {
+    // Passes are specialised for the lights and far field they bind (the book's architecture
+    // page, "Specialised kernels"), and the device's pipeline cache keeps every variant it has
+    // built: the second cycle, which starts where the first ended, meets a few combinations the
+    // first did not (30 → 33 pipelines on lavapipe). From then on nothing may grow.
+    for (i, c) in counts.iter().enumerate().skip(2) {
         assert_eq!(
-            c, &counts[1],
-            "after cycle {i}: {c} vs after cycle 1: {}",
-            counts[1]
+            c, &counts[2],
+            "after cycle {i}: {c} vs after cycle 2: {}",
+            counts[2]
         );
     }
     // Same state as at the start (the hbil images of cycle 1 are gone with it), but for the
-    // compiled pipelines the first cycle added to the device's cache (bounded by its capacity).
+    // compiled pipelines the first cycles added to the device's cache (bounded by its capacity).
     let (start, start_pipelines) = counts[0].rsplit_once(" pipelines=").unwrap();
-    let (after, after_pipelines) = counts[1].rsplit_once(" pipelines=").unwrap();
+    let (after, after_pipelines) = counts[2].rsplit_once(" pipelines=").unwrap();
     assert_eq!(start, after);
     let (p0, p1): (usize, usize) = (
         start_pipelines.parse().unwrap(),
