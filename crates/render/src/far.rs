@@ -41,13 +41,6 @@ pub enum FarMode {
     Volume,
 }
 
-/// far.wgsl's `FAR_FIELD` constant for a pipeline built over a frame group whose far field is a
-/// probe volume (`true`) or the sky: `far_volume()` is then a constant and the branch the frame
-/// does not take is left out of the kernel.
-pub fn field_constant(volume: bool) -> (&'static str, f64) {
-    ("FAR_FIELD", if volume { 1.0 } else { 0.0 })
-}
-
 /// The far field's GPU resources.
 pub struct GpuFarField {
     pub mode: FarMode,

@@ -12,9 +12,8 @@ pub struct FrameGroup {
     pub bind_group: wgpu::BindGroup,
     /// The zeroed `Frame` made when none was handed in (kept alive with the bind group).
     _own_frame: Option<wgpu::Buffer>,
-    /// Whether the far field bound is a probe volume (far.wgsl's `far_volume()`), for passes
-    /// that specialise their pipelines on it.
-    pub far_volume: bool,
+    /// Whether the far field bound is a probe volume (far.wgsl's `far_volume()`).
+    far_volume: bool,
 }
 
 impl FrameGroup {
@@ -58,5 +57,12 @@ impl FrameGroup {
             _own_frame: own_frame,
             far_volume: far.mode == crate::far::FarMode::Volume,
         }
+    }
+
+    /// far.wgsl's `FAR_FIELD` for a pipeline over this group: the far field it binds, a probe
+    /// volume or the sky, so that `far_volume()` is a constant and the branch the frame does not
+    /// take is left out of the kernel. Every pass that includes far.wgsl sets it.
+    pub fn far_field_constant(&self) -> (&'static str, f64) {
+        ("FAR_FIELD", if self.far_volume { 1.0 } else { 0.0 })
     }
 }

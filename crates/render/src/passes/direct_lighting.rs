@@ -106,7 +106,7 @@ pub fn new(
             &layout,
             &[
                 constants(&scene.scene_lights),
-                vec![crate::far::field_constant(frame.far_volume)],
+                vec![frame.far_field_constant()],
             ]
             .concat(),
         ),

@@ -60,9 +60,10 @@ struct FarSh {
 
 // The far field a pipeline is made for: FAR_FIELD_SKY, FAR_FIELD_VOLUME, or FAR_FIELD_BOUND
 // (the default: far_volume() reads it from the bound probe texture). nearfield's passes set it
-// from the frame group they are built with (passes::ComputeStep), so that the side of every
-// `far_volume()` branch the frame does not take is left out of the kernel: a SIMD backend
-// (lavapipe) would run it for every pixel (docs/src/architecture.md, "Specialised kernels").
+// from the frame group they are built with (FrameGroup::far_field_constant), so that the side
+// of every `far_volume()` branch the frame does not take is left out of the kernel: a SIMD
+// backend (lavapipe) would run it for every pixel (docs/src/architecture.md, "Specialised
+// kernels").
 const FAR_FIELD_SKY: u32 = 0u;
 const FAR_FIELD_VOLUME: u32 = 1u;
 const FAR_FIELD_BOUND: u32 = 2u;

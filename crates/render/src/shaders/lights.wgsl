@@ -96,7 +96,7 @@ fn shadow_layer(l: GpuLight, p: vec3<f32>) -> u32 {
 }
 
 // The shadow filters a pass's lights need: a pass specialises its pipeline with them from its
-// light table (crate::contract::lights::ShadowFilters), and a kernel that leaves them at true
+// light table (crate::contract::lights::shadow_filter_constants), and a kernel that leaves them at true
 // keeps both. A backend that runs a kernel as SIMD over pixels (lavapipe) executes both sides of
 // an `if` for every pixel, so a filter that no light uses costs as much as one that is used
 // unless the pipeline leaves it out (docs/src/architecture.md, "Specialised kernels").

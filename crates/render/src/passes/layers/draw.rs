@@ -125,7 +125,7 @@ impl LayerDrawing {
             "shade",
             frame,
             &shade_layout,
-            &[crate::far::field_constant(frame.far_volume)],
+            &[frame.far_field_constant()],
         );
         LayerDrawing {
             vertices: scene.vertices.clone(),

@@ -312,7 +312,7 @@ pub fn build(
         ("STEPS", settings.march.steps as f64),
     ];
     counts.extend(march_counts);
-    let far_field = crate::far::field_constant(frame.far_volume);
+    let far_field = frame.far_field_constant();
     counts.push(far_field);
     let work = work(near, &p);
     let step = |label: &'static str, source: String, entry: &str, layout, constants: &[_]| {

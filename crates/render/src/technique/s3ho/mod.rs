@@ -269,7 +269,7 @@ fn create(
             normal_power: 8.0,
         },
     );
-    let far_field = crate::far::field_constant(frame.far_volume);
+    let far_field = frame.far_field_constant();
     let counts = [
         ("SAMPLES", settings.samples as f64),
         ("STEPS", settings.steps as f64),

@@ -319,7 +319,7 @@ fn create(
         crate::pipeline_cache::shader_module(device, "ssdo bounce", &bounce::source());
 
     let blur = BilateralBlur::new(device, frame, blur_settings(&settings));
-    let far_field = crate::far::field_constant(frame.far_volume);
+    let far_field = frame.far_field_constant();
     let counts = [
         ("SAMPLES", settings.samples as f64),
         ("STEPS", settings.steps as f64),
