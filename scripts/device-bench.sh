@@ -20,8 +20,10 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-# SIZES, FRAMES, WARMUP, SCENE and BIN (a nearfield binary) may be set to try the script elsewhere.
+# SIZES, PARETO_SIZE, FRAMES, WARMUP, SCENE and BIN (a nearfield binary) may be set to try the
+# script elsewhere.
 read -ra SIZES <<<"${SIZES:-1280x720 1920x1080}"
+PARETO_SIZE=${PARETO_SIZE:-1920x1080}
 FRAMES=${FRAMES:-40}
 WARMUP=${WARMUP:-8}
 SCENE=${SCENE:-builtin:cornell}
@@ -83,7 +85,7 @@ for size in "${SIZES[@]}"; do
         --methods "$METHODS" --json "$OUT/bench-$size.json"
 done
 # gtao's error-versus-time front with GPU timestamps (the goal: gtao High ≤ 0.1 ms at 1080p).
-timeout 150 "$BIN" pareto "$SCENE" --size 1920x1080 --methods gtao --aov ao --radius 1 --spp 16 \
+timeout 150 "$BIN" pareto "$SCENE" --size "$PARETO_SIZE" --methods gtao --aov ao --radius 1 --spp 16 \
     --warmup 10 --timed 30 --out "$OUT/pareto-gtao" || echo "device-bench: pareto did not finish"
 echo "device-bench: $(($(date +%s) - start)) s of benchmarks"
 

@@ -48,14 +48,13 @@ fn bit_range(s: u32, e: u32) -> u32 {
 }
 
 // The projected-cosine weight of the set bits of `m`: Σ over its runs [s, e) of
-// cum[e] − cum[s], with cum the slice's prefix weights.
+// cum[e] − cum[s], with cum the slice's prefix weights. A u32 has at most 16 runs and each trip
+// clears one, so the loop's bound is written out (kernels are compiled without wgpu's loop
+// bounding: architecture.md, "Loop bounds").
 fn mask_weight(m: u32, cum: ptr<function, array<f32, 33>>) -> f32 {
     var w = 0.0;
     var r = m;
-    loop {
-        if r == 0u {
-            break;
-        }
+    for (var run = 0u; run < 16u && r != 0u; run++) {
         let s = firstTrailingBit(r);
         let rest = ~(r >> s);
         var count = 32u - s;
