@@ -84,7 +84,7 @@ for size in "${SIZES[@]}"; do
     timeout 210 "$BIN" bench "$SCENE" --size "$size" --frames "$FRAMES" --warmup "$WARMUP" \
         --methods "$METHODS" --json "$OUT/bench-$size.json"
 done
-# gtao's error-versus-time front with GPU timestamps (the goal: gtao High ≤ 0.1 ms at 1080p).
+# gtao's error-versus-time front with GPU timestamps.
 timeout 150 "$BIN" pareto "$SCENE" --size "$PARETO_SIZE" --methods gtao --aov ao --radius 1 --spp 16 \
     --warmup 10 --timed 30 --out "$OUT/pareto-gtao" || echo "device-bench: pareto did not finish"
 echo "device-bench: $(($(date +%s) - start)) s of benchmarks"
