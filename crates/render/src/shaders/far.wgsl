@@ -270,3 +270,28 @@ fn far_radiance(f: FarSh, d: vec3<f32>) -> vec3<f32> {
     }
     return l;
 }
+
+// Σ w·Y_i(ω) over weighted directions ω (the first 9 of sh_basis). The radiance is linear in
+// the basis, so Σ w·far_radiance(f, ω) = far_apply(f, Σ w·Y(ω)): a kernel that integrates the far
+// field over many directions sums 9 numbers a direction and reads the volume's SH once, after
+// its loops, instead of keeping 9 rgb coefficients live through them.
+struct FarMoments {
+    m: array<f32, 9>,
+}
+
+fn far_moments_add(acc: ptr<function, FarMoments>, d: vec3<f32>, w: f32) {
+    let b = sh_basis(d);
+    for (var i = 0u; i < 9u; i++) {
+        (*acc).m[i] += b[i] * w;
+    }
+}
+
+// Σ c_i·moments_i: the weighted sum of the radiance over the directions the moments were taken
+// from (unclamped, as far_radiance).
+fn far_apply(f: FarSh, acc: FarMoments) -> vec3<f32> {
+    var l = vec3<f32>(0.0);
+    for (var i = 0u; i < 9u; i++) {
+        l += f.c[i].rgb * acc.m[i];
+    }
+    return l;
+}

@@ -99,13 +99,9 @@ fn search_pixel(depth_layers: texture_2d_array<f32>, normal_layers: texture_2d_a
     let x = view_dir(cam, vec2<f32>(pixel) + 0.5) * depth;
     let lf = view_local_frame(x);
     // The light of the visible arcs: the environment at a blurred mip, or the probe volume's
-    // radiance at this point.
+    // radiance at this point (its SH read after the slices, applied to the arcs' moments).
     let volume = FAR && far_volume(probes);
-    var far_sh: FarSh;
-    if volume {
-        let xw = (cam.world_from_view * vec4<f32>(x, 1.0)).xyz;
-        far_sh = far_sh_here(probes, visibility, smp, cam, xw, normalize(centre.xyz));
-    }
+    var moments: FarMoments;
 
     var m: March;
     m.texel = vec2<f32>(texel);
@@ -144,27 +140,42 @@ fn search_pixel(depth_layers: texture_2d_array<f32>, normal_layers: texture_2d_a
         if FAR {
             // The visible arcs [θ0, 0] and [0, θ1], each in far_steps pieces of equal angle:
             // L_env at the piece's middle × ∫ (n′·ω) |sin θ| dθ over the piece.
+            // The pieces' ends and middles step by equal angles: their (cos, sin) by rotation,
+            // each end's slice_g once (four sin/cos a side instead of six a piece).
             let d_world = to_world(cam, d);
             let o_world = to_world(cam, lf.o);
             for (var side = 0u; side < 2u; side++) {
                 let end = select(t1, t0, side == 1u);
+                let h = end / f32(p.far_steps);
+                let step = vec2<f32>(cos(h), sin(h));
+                let half = vec2<f32>(cos(0.5 * h), sin(0.5 * h));
+                // (cos, sin) of the piece's start a, and slice_g(a) (0 at a = 0).
+                var ca = vec2<f32>(1.0, 0.0);
+                var ga = 0.0;
                 for (var s = 0u; s < p.far_steps; s++) {
-                    let a = end * f32(s) / f32(p.far_steps);
-                    let b = end * f32(s + 1u) / f32(p.far_steps);
-                    let mid = 0.5 * (a + b);
-                    let w = abs(slice_g(b, np) - slice_g(a, np));
-                    let omega = sin(mid) * d_world + cos(mid) * o_world;
+                    let b = h * f32(s + 1u);
+                    let cb = rotate_angle(ca, step);
+                    let gb = 0.5 * np.x * (b - cb.y * cb.x) + 0.5 * np.y * cb.y * cb.y;
+                    let w = abs(gb - ga);
+                    let mid = rotate_angle(ca, half);
+                    let omega = mid.y * d_world + mid.x * o_world;
                     if volume {
-                        far += far_radiance(far_sh, omega) * w;
+                        far_moments_add(&moments, omega, w);
                     } else {
                         far += env_radiance_at(env_map, smp, e, omega, far_lod) * w;
                     }
+                    ca = cb;
+                    ga = gb;
                 }
             }
         }
         let g = slice_gxy(t1) + slice_gxy(t0);
         ao += dot(np, g);
         bent += d * g.x + lf.o * g.y;
+    }
+    if volume {
+        let xw = (cam.world_from_view * vec4<f32>(x, 1.0)).xyz;
+        far = far_apply(far_sh_here(probes, visibility, smp, cam, xw, normalize(centre.xyz)), moments);
     }
     // Ratio estimator: divide by the same slices' value for an open hemisphere (their mean is 1
     // over all φ), so that a plane gives exactly 1 with any slice count.

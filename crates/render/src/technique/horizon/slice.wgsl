@@ -40,6 +40,11 @@ fn slice_g(theta: f32, n: vec2<f32>) -> f32 {
     return 0.5 * n.x * (theta - s * c) + 0.5 * n.y * s * s;
 }
 
+// (cos, sin) of α + β from c = (cos α, sin α) and r = (cos β, sin β).
+fn rotate_angle(c: vec2<f32>, r: vec2<f32>) -> vec2<f32> {
+    return vec2<f32>(c.x * r.x - c.y * r.y, c.y * r.x + c.x * r.y);
+}
+
 // The local camera frame at x (technique/horizon/mod.rs): ω_o towards the eye,
 // ω_x = normalize(Y × ω_o) with Y the camera's up vector, ω_y = ω_o × ω_x.
 struct LocalFrame {

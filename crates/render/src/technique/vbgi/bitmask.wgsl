@@ -135,12 +135,9 @@ fn bitmask(@builtin(global_invocation_id) id: vec3<u32>) {
     let n = normalize(centre.xyz);
     let x = world_position(view, pixel, depth);
     // The light of the free sectors: the environment at a blurred mip, or the probe volume's
-    // radiance at this point.
+    // radiance at this point (its SH read after the slices, applied to the sectors' moments).
     let volume = FAR && far_volume(far_probes);
-    var far_sh: FarSh;
-    if volume {
-        far_sh = far_sh_here(far_probes, far_visibility, env_sampler, view, x, n);
-    }
+    var moments: FarMoments;
     let eye = view.camera_position.xyz;
     let forward = -normalize(view.world_from_view[2].xyz);
     let lf = local_frame(view, x);
@@ -190,7 +187,7 @@ fn bitmask(@builtin(global_invocation_id) id: vec3<u32>) {
                 s_base = sv;
             }
             cum[b] = sv - s_base;
-            cs = vec2<f32>(cs.x * rot.x - cs.y * rot.y, cs.y * rot.x + cs.x * rot.y);
+            cs = rotate_angle(cs, rot);
         }
         let dir = slice_screen_dir(view, x, x_screen, d, depth);
         var occupied = 0u;
@@ -322,24 +319,31 @@ fn bitmask(@builtin(global_invocation_id) id: vec3<u32>) {
         ao += mask_weight(visible, &cum);
         unoccluded += cum[SECTORS];
         // Far field and bent normal: each group of sectors' visible weight at the group's middle
-        // direction.
+        // direction, whose (cos, sin) steps by rotation from the first group's.
+        let group_step = vec2<f32>(cos(PI / f32(groups)), sin(PI / f32(groups)));
+        let theta0 = base + 0.5 * PI / f32(groups);
+        var cg = vec2<f32>(cos(theta0), sin(theta0));
         for (var g = 0u; g < groups; g++) {
+            let mid = cg;
+            cg = rotate_angle(cg, group_step);
             let m = visible & bit_range(g * per_group, (g + 1u) * per_group);
             if m == 0u {
                 continue;
             }
             let w = mask_weight(m, &cum);
-            let theta = base + PI * (f32(g) + 0.5) / f32(groups);
-            let omega = sin(theta) * d + cos(theta) * omega_o;
+            let omega = mid.y * d + mid.x * omega_o;
             bent += omega * w;
             if FAR {
                 if volume {
-                    far += far_radiance(far_sh, omega) * w;
+                    far_moments_add(&moments, omega, w);
                 } else {
                     far += env_radiance_at(env_radiance, env_sampler, env, omega, far_lod) * w;
                 }
             }
         }
+    }
+    if volume {
+        far = far_apply(far_sh_here(far_probes, far_visibility, env_sampler, view, x, n), moments);
     }
     let norm = max(unoccluded, 1e-6);
     ao = clamp(ao / norm, 0.0, 1.0);
