@@ -123,8 +123,8 @@ pub(crate) fn shader_module(
     // SAFETY: `force_loop_bounding` off requires that no loop of the module runs forever. Every
     // loop of nearfield's kernels has a trip bound: `for` loops count an integer up to a
     // bound, and the one `loop` (vbgi/bitmask.wgsl's mask_weight) is a `for` over at most 16
-    // runs of bits. `source` is one of this crate's kernels (the function is not public), never
-    // a user's.
+    // runs of bits; tests/portable.rs checks every WGSL file for that form. `source` is one of this
+    // crate's kernels (the function is not public), never a user's.
     let module = unsafe { device.create_shader_module_trusted(desc, checks) };
     with(device, |c| {
         c.modules

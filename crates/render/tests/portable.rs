@@ -296,3 +296,83 @@ fn shared_wgsl_declares_no_globals() {
         .collect();
     assert_eq!(names, expected, "{GLUE} against FrameBindings");
 }
+
+/// The kernels are compiled without wgpu's loop bounding (`pipeline_cache::kernel_runtime_checks`),
+/// whose safety condition is that no loop runs forever. Every loop must therefore be a `for`
+/// that counts an integer variable up by one against a bound and that no statement of its body
+/// writes: no `loop` and no `while`. (The bounds themselves are constants or validated settings.)
+#[test]
+fn every_loop_counts_an_integer_to_a_bound() {
+    let header = regex::Regex::new(r"^var (\w+) = ([^;]+); (.+); (\w+)\+\+$").unwrap();
+    let words = regex::Regex::new(r"\b(loop|while)\b").unwrap();
+    let float = regex::Regex::new(r"\d\.|\d+(\.\d*)?f\b|f32|f16").unwrap();
+    let mut loops = 0;
+    // Every WGSL file of the crate: the entry files and the libraries they include.
+    let mut files = Vec::new();
+    wgsl_files(
+        &std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("src"),
+        &mut files,
+    );
+    assert!(files.len() > 40, "{} WGSL files", files.len());
+    for file in files {
+        let name = file.display();
+        let source = std::fs::read_to_string(&file).unwrap();
+        let code: String = source
+            .lines()
+            .map(|l| l.split("//").next().unwrap_or(""))
+            .collect::<Vec<_>>()
+            .join("\n");
+        assert!(
+            !words.is_match(&code),
+            "{name}: a `loop` or `while` (only counted `for` loops)"
+        );
+        for (at, _) in code.match_indices("for (") {
+            loops += 1;
+            let open = at + "for ".len();
+            let close = matching(&code, open, b'(', b')');
+            let head = &code[open + 1..close];
+            let caps = header
+                .captures(head)
+                .unwrap_or_else(|| panic!("{name}: `for ({head})` does not count an integer up"));
+            let var = &caps[1];
+            assert!(
+                !float.is_match(&caps[2]),
+                "{name}: `for ({head})` counts a float"
+            );
+            assert_eq!(
+                &caps[4], var,
+                "{name}: `for ({head})` steps another variable"
+            );
+            let bound = regex::Regex::new(&format!(r"\b{var}\b( \+ 1u)? <=? ")).unwrap();
+            assert!(
+                bound.is_match(&caps[3]),
+                "{name}: `for ({head})` has no upper bound on {var}"
+            );
+            let body_open = close + code[close..].find('{').unwrap();
+            let body = &code[body_open..=matching(&code, body_open, b'{', b'}')];
+            let write =
+                regex::Regex::new(&format!(r"\b{var}\s*(\+\+|--|[-+*/%&|^]?=[^=])")).unwrap();
+            assert!(
+                !write.is_match(body),
+                "{name}: the body of `for ({head})` writes {var}"
+            );
+        }
+    }
+    assert!(loops > 50, "only {loops} loops found");
+}
+
+/// The index of the bracket that closes the one at `open`.
+fn matching(code: &str, open: usize, left: u8, right: u8) -> usize {
+    let mut depth = 0;
+    for (i, b) in code.bytes().enumerate().skip(open) {
+        if b == left {
+            depth += 1;
+        } else if b == right {
+            depth -= 1;
+            if depth == 0 {
+                return i;
+            }
+        }
+    }
+    panic!("unbalanced brackets")
+}
