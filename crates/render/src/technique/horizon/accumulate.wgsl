@@ -130,8 +130,6 @@ fn resolve(pixel: vec2<u32>, raw_cone: vec4<f32>, raw_near: vec3<f32>, raw_far: 
     acc.far = raw_far;
     if HISTORY {
         acc = temporal_mean(prev_geometry, prev_cone, prev_near, prev_far, view, params, x, n, depth, raw_cone, raw_near, raw_far);
-    }
-    if HISTORY {
         textureStore(acc_cone, pixel, acc.cone);
         textureStore(acc_near, pixel, acc.near);
         textureStore(acc_geometry, pixel, vec4<f32>(n, depth));

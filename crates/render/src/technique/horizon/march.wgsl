@@ -155,7 +155,7 @@ fn search_pixel(depth_layers: texture_2d_array<f32>, normal_layers: texture_2d_a
                 for (var s = 0u; s < p.far_steps; s++) {
                     let b = h * f32(s + 1u);
                     let cb = rotate_angle(ca, step);
-                    let gb = 0.5 * np.x * (b - cb.y * cb.x) + 0.5 * np.y * cb.y * cb.y;
+                    let gb = slice_g_at(b, cb, np);
                     let w = abs(gb - ga);
                     let mid = rotate_angle(ca, half);
                     let omega = mid.y * d_world + mid.x * o_world;

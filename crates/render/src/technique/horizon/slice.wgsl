@@ -35,9 +35,12 @@ fn on_slice_line(cam: View, p: HorizonParams, pos: vec2<f32>, layer: u32, centre
 
 // ½ nx (θ − sin θ cos θ) + ½ ny sin² θ.
 fn slice_g(theta: f32, n: vec2<f32>) -> f32 {
-    let s = sin(theta);
-    let c = cos(theta);
-    return 0.5 * n.x * (theta - s * c) + 0.5 * n.y * s * s;
+    return slice_g_at(theta, vec2<f32>(cos(theta), sin(theta)), n);
+}
+
+// slice_g with cs = (cos θ, sin θ) already known (a march that steps θ by rotation).
+fn slice_g_at(theta: f32, cs: vec2<f32>, n: vec2<f32>) -> f32 {
+    return 0.5 * n.x * (theta - cs.y * cs.x) + 0.5 * n.y * cs.y * cs.y;
 }
 
 // (cos, sin) of α + β from c = (cos α, sin α) and r = (cos β, sin β).

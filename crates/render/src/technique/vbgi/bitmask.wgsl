@@ -181,8 +181,7 @@ fn bitmask(@builtin(global_invocation_id) id: vec3<u32>) {
         var s_base = 0.0;
         for (var b = 0u; b <= SECTORS; b++) {
             let theta = base + delta * f32(b);
-            let g = 0.5 * np.x * (theta - cs.y * cs.x) + 0.5 * np.y * cs.y * cs.y;
-            let sv = sign(theta) * g;
+            let sv = sign(theta) * slice_g_at(theta, cs, np);
             if b == 0u {
                 s_base = sv;
             }
