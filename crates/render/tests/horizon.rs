@@ -45,8 +45,8 @@ fn small_sky() -> Environment {
     .to_environment()
 }
 
-/// A lone plane: ao = 1 and no indirect light at any radius, with and without interleaving;
-/// gtao's env-irradiance is `none`'s; under a constant white sky hbil's per-slice environment
+/// A lone plane: ao = 1 and no indirect light at any radius, with and without interleaving, at half
+/// resolution; gtao's env-irradiance is `none`'s; under a constant white sky hbil's per-slice environment
 /// integral gives env-irradiance = 1 (the closed forms of docs/src/aovs.md).
 #[test]
 fn plane_is_unoccluded() {
@@ -63,8 +63,10 @@ fn plane_is_unoccluded() {
         for method in [
             "gtao",
             "gtao:interleaved=off",
+            "gtao:resolution=half+denoise=off",
             "hbil",
             "hbil:interleaved=off+far=sh",
+            "hbil:resolution=half",
             "vbgi",
             "vbgi:interleaved=off+far=sh",
             "vbgi:thickness=adaptive+denoise=off",
@@ -81,8 +83,10 @@ fn plane_is_unoccluded() {
                         continue;
                     }
                     let what = format!("{method} {env_name} R {radius} pixel {i}");
+                    // Within 3 steps of rgba16float below 1 (2⁻¹¹ each): the bent cone is
+                    // rounded where each image stores it (search, upsample, blur, history).
                     assert!(
-                        (ao.pixels[i][0] - 1.0).abs() < 1e-3,
+                        (ao.pixels[i][0] - 1.0).abs() < 1.5e-3,
                         "{what}: ao {:?}",
                         ao.pixels[i]
                     );
@@ -136,6 +140,14 @@ fn wall_ao_follows_the_curve() {
             0.05,
         ),
         ("gtao:falloff=0", 16, 0.015, 0.06),
+        // Half resolution: the upsample keeps the floor's taps off the wall (their normals are
+        // 90° apart), so the base and the curve hold as at full resolution.
+        (
+            "gtao:resolution=half+slices=8+steps=32+falloff=0+denoise=off",
+            1,
+            0.01,
+            0.05,
+        ),
         // The bitmask with the second layer: the floor and the wall have nothing behind them,
         // so the sectors below each sample are occupied to the ray's end, as a horizon. At the
         // base 0.5 ± 0.02 (the cosine-weighted ao of docs/src/aovs.md).
@@ -201,42 +213,92 @@ fn wall_ao_follows_the_curve() {
     }
 }
 
-/// Interleaved (4×4 quarter-resolution layers) and full-resolution horizon searches agree in the
-/// image mean of ao and of the near-field light within the bounds below (cornell, 16 frames).
+/// Interleaved (4×4 quarter-resolution layers), half-resolution (one pixel of each 2×2 block,
+/// upsampled) and full-resolution horizon searches agree in the image mean of ao and of the
+/// near-field light within the bounds below (cornell, 16 frames); half resolution also pixel by
+/// pixel. The upsample's depth and normal weights keep ao from crossing silhouettes and
+/// creases: measured on lavapipe, |ao_half − ao_full| has a 99th percentile of 0.025 and a mean
+/// of 0.0065 over the pixels by an edge; a plain bilinear upsample gives 0.033 and 0.0097, and
+/// the bounds (0.03, 0.008) lie between.
 #[test]
-fn interleaved_agrees_with_full_resolution() {
+fn interleaved_and_half_resolution_agree_with_full_resolution() {
     let Some(ctx) = common::context() else { return };
     let scene = builtin::scene("cornell").unwrap();
     let env = small_sky();
     let cam = scene.default_camera();
     let size = (256, 144);
-    let mean = |method: &str| {
+    let render = |method: &str| {
         let mut r = make(&ctx, &scene, &env, cam, size, method, 0.5);
         for _ in 0..16 {
             r.render_frame();
         }
-        let avg = |img: AovImage| {
-            let s: Vec<f64> = img
-                .surface()
-                .map(|p| (p[0] + p[1] + p[2]) as f64 / 3.0)
-                .collect();
-            s.iter().sum::<f64>() / s.len() as f64
-        };
         (
-            avg(r.read_aov(Aov::Ao)),
-            avg(r.read_aov(Aov::IndirectIrradiance)),
+            r.read_aov(Aov::Ao),
+            r.read_aov(Aov::IndirectIrradiance),
+            r.read_aov(Aov::Depth),
+            r.read_aov(Aov::Normal),
         )
     };
-    let (ao_i, ind_i) = mean("hbil:source=direct");
-    let (ao_f, ind_f) = mean("hbil:source=direct+interleaved=off");
-    eprintln!(
-        "image means: ao {ao_i:.4} (interleaved) vs {ao_f:.4}; indirect {ind_i:.4} vs {ind_f:.4}"
-    );
-    assert!((ao_i - ao_f).abs() < 0.03, "ao {ao_i} vs {ao_f}");
-    assert!(
-        (ind_i - ind_f).abs() < 0.1 * ind_f,
-        "indirect {ind_i} vs {ind_f}"
-    );
+    let avg = |img: &AovImage| {
+        let s: Vec<f64> = img
+            .surface()
+            .map(|p| (p[0] + p[1] + p[2]) as f64 / 3.0)
+            .collect();
+        s.iter().sum::<f64>() / s.len() as f64
+    };
+    let (ao_f, ind_f, depth, normal) = render("hbil:source=direct+interleaved=off");
+    // Pixels by an edge: a neighbour (3×3) on another surface (depth 5 % off, or normal 30° off).
+    let (w, h) = (size.0 as usize, size.1 as usize);
+    let edge: Vec<bool> = (0..w * h)
+        .map(|k| {
+            let (x, y) = (k % w, k / w);
+            let (d, n) = (depth.pixels[k][0], normal.pixels[k]);
+            if depth.pixels[k][3] == 0.0 || x == 0 || y == 0 || x + 1 == w || y + 1 == h {
+                return false;
+            }
+            (0..9).any(|j| {
+                let q = (y + j / 3 - 1) * w + x + j % 3 - 1;
+                let (dq, nq) = (depth.pixels[q][0], normal.pixels[q]);
+                (dq - d).abs() > 0.05 * d || n[0] * nq[0] + n[1] * nq[1] + n[2] * nq[2] < 0.866
+            })
+        })
+        .collect();
+    for (what, method) in [
+        ("interleaved", "hbil:source=direct"),
+        ("half", "hbil:source=direct+resolution=half"),
+    ] {
+        let (ao, ind, _, _) = render(method);
+        let (a, af, i, f) = (avg(&ao), avg(&ao_f), avg(&ind), avg(&ind_f));
+        eprintln!("image means: ao {a:.4} ({what}) vs {af:.4}; indirect {i:.4} vs {f:.4}");
+        assert!((a - af).abs() < 0.03, "{what}: ao {a} vs {af}");
+        assert!((i - f).abs() < 0.1 * f, "{what}: indirect {i} vs {f}");
+        if what == "half" {
+            let mut d: Vec<f32> = ao
+                .pixels
+                .iter()
+                .zip(&ao_f.pixels)
+                .filter(|(p, q)| p[3] != 0.0 && q[3] != 0.0)
+                .map(|(p, q)| (p[0] - q[0]).abs())
+                .collect();
+            let by_edge: Vec<f64> = (0..w * h)
+                .filter(|&k| edge[k] && ao.pixels[k][3] != 0.0)
+                .map(|k| (ao.pixels[k][0] - ao_f.pixels[k][0]).abs() as f64)
+                .collect();
+            let edge_mean = by_edge.iter().sum::<f64>() / by_edge.len() as f64;
+            eprintln!(
+                "half: {} pixels by an edge, mean |ao − full| {edge_mean:.4}",
+                by_edge.len()
+            );
+            assert!(edge_mean < 0.008, "half: by an edge {edge_mean}");
+            d.sort_by(f32::total_cmp);
+            let p99 = d[d.len() * 99 / 100];
+            eprintln!(
+                "half: 99th percentile of |ao − full| {p99:.4}, largest {:.4}",
+                d[d.len() - 1]
+            );
+            assert!(p99 < 0.03, "half: 99th percentile {p99}");
+        }
+    }
 }
 
 /// Push/pull after an orbit step that disoccludes: every hole of the raw reprojection is filled,
@@ -445,8 +507,10 @@ fn disoccluded_history_is_rejected() {
                 let clear = p.x.abs() > 0.5 + 2.0 * radius || p.z.abs() > 0.5 + 2.0 * radius;
                 if on_plane && clear {
                     far_checked += 1;
+                    // Within 3 steps of rgba16float below 1 (2⁻¹¹ each): the bent cone is
+                    // rounded where each image stores it (search, upsample, blur, history).
                     assert!(
-                        (ao.pixels[i][0] - 1.0).abs() < 1e-3,
+                        (ao.pixels[i][0] - 1.0).abs() < 1.5e-3,
                         "{method}: ({x}, {y}) ao {:?}",
                         ao.pixels[i]
                     );

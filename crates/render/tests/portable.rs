@@ -151,6 +151,10 @@ const LIBRARIES: &[(&str, &[&str])] = &[
         &["shaders/common.wgsl", "technique/horizon/params.wgsl"],
     ),
     (
+        "technique/horizon/half.wgsl",
+        &["shaders/common.wgsl", "technique/horizon/params.wgsl"],
+    ),
+    (
         "technique/horizon/march.wgsl",
         &[
             "shaders/common.wgsl",

@@ -13,6 +13,7 @@ pub fn source() -> String {
         util::FRAME_BINDINGS_WGSL,
         util::FAR_WGSL,
         include_str!("params.wgsl"),
+        include_str!("half.wgsl"),
         include_str!("accumulate.wgsl"),
         include_str!("resolve.wgsl"),
     ])
@@ -27,7 +28,7 @@ crate::bind_group! {
         gb_normal: view = kind::TEXTURE,
         /// View depth (r32float, m).
         gb_view_depth: view = kind::TEXTURE_UNFILTERABLE,
-        /// This frame's (blurred) bent cone.
+        /// This frame's (blurred) bent cone; with `HALF` the search's, one texel per 2×2 block.
         raw_cone: view = kind::TEXTURE,
         /// This frame's near-field irradiance.
         raw_near: view = kind::TEXTURE,

@@ -146,6 +146,13 @@ fn accumulate(@builtin(global_invocation_id) id: vec3<u32>) {
     if !in_bounds(view, pixel) {
         return;
     }
+    if HALF {
+        // resolution=half without the blur: this frame's values from the searched 2×2 blocks
+        // around the pixel (half.wgsl), raw_* holding one texel per block.
+        let h = half_upsample(gb_normal, gb_view_depth, raw_cone, raw_near, raw_far, view, pixel);
+        resolve(pixel, h.cone, h.near, h.far);
+        return;
+    }
     var far = vec4<f32>(0.0);
     if FAR {
         far = textureLoad(raw_far, pixel, 0);

@@ -5,7 +5,7 @@
 use super::march::{Flavor, March, MarchContext, MarchIo, work};
 use super::params::{FAR_SLICES, HorizonParams};
 use super::settings::Far;
-use super::{GEOMETRY_FORMAT, Settings, Source, accumulate, split};
+use super::{GEOMETRY_FORMAT, Resolution, Settings, Source, accumulate, split, upsample};
 use crate::RenderError;
 use crate::contract::formats::HDR_FORMAT;
 use crate::contract::technique::{
@@ -36,10 +36,15 @@ struct Horizon {
     /// The host handed in a bent-normal output.
     bent_normal: bool,
     size: (u32, u32),
+    /// The search's grid: `size`, or with `resolution=half` one texel per 2×2 block.
+    search_size: (u32, u32),
     source: Source,
     split_step: ComputeStep,
     search_step: ComputeStep,
     accumulate_step: ComputeStep,
+    /// With `resolution=half` and the blur: the pass that brings the search's results to every
+    /// pixel (upsample.wgsl) and its bind group.
+    upsample: Option<(ComputeStep, wgpu::BindGroup)>,
     /// With interleaving.
     split: Option<Split>,
     /// Without interleaving, the search's bind group by radiance source (direct side 0, side 1,
@@ -104,9 +109,23 @@ pub fn build(
         usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
     });
     let full = |label: &str, format| screen_texture(device, size, label, format);
-    let raw_cone = full("horizon cone", HDR_FORMAT);
-    let raw_near = full("horizon near", HDR_FORMAT);
-    let raw_far = full("horizon far", HDR_FORMAT);
+    // The search's results: at every pixel, or with `resolution=half` one texel per 2×2 block
+    // (half.wgsl), which accumulate upsamples on its way in. With the blur, which reads every
+    // pixel, the upsample pass first writes them at full resolution (`upsampled`).
+    let half = settings.march.resolution == Resolution::Half;
+    let blurred = settings.denoise == Denoise::Bilateral;
+    let search_size = search_size(half, size);
+    let raw = |label: &str| screen_texture(device, search_size, label, HDR_FORMAT);
+    let raw_cone = raw("horizon cone");
+    let raw_near = raw("horizon near");
+    let raw_far = raw("horizon far");
+    let upsampled = (half && blurred).then(|| {
+        [
+            full("horizon cone upsampled", HDR_FORMAT),
+            full("horizon near upsampled", HDR_FORMAT),
+            full("horizon far upsampled", HDR_FORMAT),
+        ]
+    });
     let pair = |label: &str, format| {
         [
             full(&format!("{label} 0"), format),
@@ -232,7 +251,12 @@ pub fn build(
         None
     };
 
-    let blur = (settings.denoise == Denoise::Bilateral).then(|| {
+    // What the blur reads: the search's results, or with `resolution=half` their upsample.
+    let [blur_cone, blur_near, blur_far] = match &upsampled {
+        Some(u) => [&u[0], &u[1], &u[2]],
+        None => [&raw_cone, &raw_near, &raw_far],
+    };
+    let blur = blurred.then(|| {
         let b = BilateralBlur::new(device, frame, blur_settings(&settings));
         let scratch = full("horizon blur scratch", HDR_FORMAT);
         let cone_out = full("horizon cone blurred", HDR_FORMAT);
@@ -241,12 +265,12 @@ pub fn build(
         let chain = |from: &wgpu::Texture, to: &wgpu::Texture| {
             b.chain(device, i, &view(from), &view(&scratch), &view(to))
         };
-        let mut chains = vec![chain(&raw_cone, &cone_out)];
+        let mut chains = vec![chain(blur_cone, &cone_out)];
         if near {
-            chains.push(chain(&raw_near, &near_out));
+            chains.push(chain(blur_near, &near_out));
         }
         if p.far == FAR_SLICES {
-            chains.push(chain(&raw_far, &far_out));
+            chains.push(chain(blur_far, &far_out));
         }
         (b, chains, [scratch, cone_out, near_out, far_out])
     });
@@ -262,6 +286,21 @@ pub fn build(
         ),
         None => (view(&raw_cone), view(&raw_near), view(&raw_far)),
     };
+    let upsample_layout = upsample::UpsampleBindings::layout(device);
+    let upsample_bg = upsampled.as_ref().map(|u| {
+        upsample::UpsampleBindings {
+            params: &params,
+            gb_normal: i.normal,
+            gb_view_depth: i.view_depth,
+            half_cone: &view(&raw_cone),
+            half_near: &view(&raw_near),
+            half_far: &view(&raw_far),
+            out_cone: &view(&u[0]),
+            out_near: &view(&u[1]),
+            out_far: &view(&u[2]),
+        }
+        .bind_group(device, &upsample_layout)
+    });
 
     let accumulate_layout = accumulate::AccumulateBindings::layout(device);
     let accumulate_bg = PingPong::from_fn(|side| {
@@ -312,6 +351,9 @@ pub fn build(
         ("STEPS", settings.march.steps as f64),
     ];
     counts.extend(march_counts);
+    if half {
+        counts.push(("HALF", 1.0));
+    }
     let far_field = frame.far_field_constant();
     counts.push(far_field);
     let work = work(near, &p);
@@ -325,6 +367,7 @@ pub fn build(
         near,
         bent_normal: o.bent_normal.is_some(),
         size,
+        search_size,
         source: settings.march.source,
         split_step: step("split", split::source(), "split", &split_layout, &[]),
         search_step: step(name, search_source, search_entry, march.layout(), &counts),
@@ -338,8 +381,23 @@ pub fn build(
                 work[1],
                 ("HISTORY", f64::from(u8::from(keeps_history(near, &p)))),
                 far_field,
+                ("HALF", f64::from(u8::from(half && !blurred))),
             ],
         ),
+        upsample: upsample_bg.map(|bg| {
+            let module =
+                crate::pipeline_cache::shader_module(device, "upsample", &upsample::source());
+            let step = ComputeStep::new(
+                device,
+                "upsample",
+                &module,
+                "upsample",
+                frame,
+                &upsample_layout,
+                &work,
+            );
+            (step, bg)
+        }),
         split,
         full_bg,
         accumulate_bg,
@@ -351,6 +409,7 @@ pub fn build(
         }),
         _textures: {
             textures.extend([raw_cone, raw_near, raw_far, spare_hdr, spare_in]);
+            textures.extend(upsampled.into_iter().flatten());
             textures.extend(hist_far);
             textures.extend(hist_cone);
             textures.extend(hist_near);
@@ -363,6 +422,16 @@ pub fn build(
         march,
     };
     Ok(Box::new(technique))
+}
+
+/// The search's grid at image size `size`: one texel per 2×2 block with `resolution=half`
+/// (half.wgsl's `half_size`).
+fn search_size(half: bool, size: (u32, u32)) -> (u32, u32) {
+    if half {
+        (size.0.div_ceil(2), size.1.div_ceil(2))
+    } else {
+        size
+    }
 }
 
 fn blur_settings(settings: &Settings) -> BlurSettings {
@@ -397,6 +466,7 @@ fn structure(s: &Settings) -> impl PartialEq + use<> {
         s.march.slices,
         s.march.steps,
         s.march.interleaved,
+        s.march.resolution,
         s.march.reprojection,
         s.march.source,
         s.denoise,
@@ -448,9 +518,13 @@ impl Technique for Horizon {
                         .dispatch(&mut pass, &s.search_bg, (gx, gy * 16, 1));
                 }
             }
-            None => self
-                .search_step
-                .encode(encoder, profiler, &self.full_bg[source], self.size),
+            None => {
+                self.search_step
+                    .encode(encoder, profiler, &self.full_bg[source], self.search_size)
+            }
+        }
+        if let Some((step, bg)) = &self.upsample {
+            step.encode(encoder, profiler, bg, self.size);
         }
         if let Some((blur, chains)) = &self.blur {
             let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {

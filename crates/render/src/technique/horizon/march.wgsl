@@ -88,10 +88,11 @@ struct Horizon {
 }
 
 // The search at layer texel `texel` of `layer` (full-resolution `pixel`, in the image), whose
-// geometry `centre` (xyz normal, w view depth > 0) was read by the caller. `env_map`: the
+// geometry `centre` (xyz normal, w view depth > 0) was read by the caller. `pattern` picks the
+// slice angles' cell and the step jitter: the pixel, or with HALF its 2×2 block. `env_map`: the
 // environment's radiance with box-filtered mips (env_radiance_at); `probes`, `visibility`: the
 // far field's (far_sh_here); `smp`: the sampler of both.
-fn search_pixel(depth_layers: texture_2d_array<f32>, normal_layers: texture_2d_array<f32>, radiance_layers: texture_2d_array<f32>, env_map: texture_2d<f32>, probes: texture_2d<f32>, visibility: texture_2d<f32>, smp: sampler, cam: View, e: EnvUniforms, p: HorizonParams, texel: vec2<u32>, layer: u32, pixel: vec2<u32>, centre: vec4<f32>) -> Horizon {
+fn search_pixel(depth_layers: texture_2d_array<f32>, normal_layers: texture_2d_array<f32>, radiance_layers: texture_2d_array<f32>, env_map: texture_2d<f32>, probes: texture_2d<f32>, visibility: texture_2d<f32>, smp: sampler, cam: View, e: EnvUniforms, p: HorizonParams, texel: vec2<u32>, layer: u32, pixel: vec2<u32>, pattern: vec2<u32>, centre: vec4<f32>) -> Horizon {
     let depth = centre.w;
     // Environment mip of about 32×16 texels (11°) for the arc integration.
     let far_lod = max(e.radiance_mips - 5.0, 0.0);
@@ -109,9 +110,9 @@ fn search_pixel(depth_layers: texture_2d_array<f32>, normal_layers: texture_2d_a
     m.x = x;
     m.omega_o = lf.o;
     m.r_layer = march_reach(cam, p, depth);
-    m.step_jitter = fract(noise(pixel) + golden(cam.frame_index + 7u));
+    m.step_jitter = fract(noise(pattern) + golden(cam.frame_index + 7u));
     m.fade_width = max(p.falloff * p.radius, 1e-6);
-    let cell = cell_index(pixel);
+    let cell = cell_index(pattern);
     let frame_jitter = golden(cam.frame_index);
 
     var ao = 0.0;

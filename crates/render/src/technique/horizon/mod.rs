@@ -70,6 +70,16 @@
 //! sees every direction. (Turning them by ξ_frame/16 only, within each cell's sixteenth, left
 //! each pixel's mean converged to its own sixteenth of the integral: a fixed 4×4 pattern that
 //! neither the running mean nor an edge-stopping filter removes.)
+//! Half resolution (`resolution=half`, gtao and hbil, half.wgsl): the search runs at one pixel
+//! of each 2×2 block, the block's four in turn over frames ((0,0), (1,1), (1,0), (0,1)), reading
+//! the full-resolution G-buffer; slice angles and step jitter follow the block grid, so that the
+//! blocks around a pixel bring different directions. Every pixel then takes the four searched
+//! pixels around it with the bilinear weights of its position, each times
+//! (n·n_s)⁸ / (1 + (d/(0.01 depth))²), d the searched point's distance from the pixel's tangent
+//! plane: a tap on another surface (across a silhouette or a crease) hardly counts, and a pixel
+//! whose nearest taps all lie on other surfaces takes the likeliest of them. The bilinear weights
+//! carry a floor of 10⁻³ for that case. Accumulate upsamples on its way in; with the bilateral
+//! blur the `upsample` pass writes full-resolution images first, which the blur reads.
 
 pub mod accumulate;
 mod machine;
@@ -78,6 +88,7 @@ pub mod params;
 pub mod search;
 pub mod settings;
 pub mod split;
+pub mod upsample;
 
 use crate::contract::technique::{Output, TechniqueDesc, TechniqueParams};
 use crate::passes::denoise::{Denoise, SvgfConfig};
@@ -86,7 +97,7 @@ use crate::settings::Declared;
 pub use machine::build;
 pub use march::{Flavor, HorizonMarch, March, MarchContext, MarchIo};
 pub use params::HorizonParams;
-pub use settings::{Aperture, Far, PRESETS, ReprojectMode, Settings, Source};
+pub use settings::{Aperture, Far, PRESETS, ReprojectMode, Resolution, Settings, Source};
 
 /// The history geometry and split geometry: world normal xyz, view depth w.
 pub const GEOMETRY_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
@@ -172,6 +183,7 @@ pub fn svgf_config(s: &Settings) -> (Denoise, SvgfConfig) {
 pub fn pass_layouts() -> Vec<crate::bindings::PassLayout> {
     vec![
         split::pass_layout(),
+        upsample::pass_layout(),
         search::pass_layout(),
         accumulate::pass_layout(),
     ]

@@ -56,6 +56,9 @@ override STEPS: u32 = 16u;
 // so that the other far fields' code is left out of the pipeline).
 override NEAR: bool = true;
 override FAR: bool = true;
+// `resolution=half` (half.wgsl): the search runs at one pixel of each 2×2 block and accumulate
+// brings its results to every pixel.
+override HALF: bool = false;
 
 
 const BAYER4: array<u32, 16> = array<u32, 16>(0u, 8u, 2u, 10u, 12u, 4u, 14u, 6u, 3u, 11u, 1u, 9u, 15u, 7u, 13u, 5u);

@@ -11,6 +11,7 @@ pub fn source() -> String {
         util::FRAME_BINDINGS_WGSL,
         util::FAR_WGSL,
         include_str!("params.wgsl"),
+        include_str!("half.wgsl"),
         include_str!("search.wgsl"),
         include_str!("march.wgsl"),
         include_str!("slice.wgsl"),

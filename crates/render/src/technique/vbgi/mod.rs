@@ -111,7 +111,11 @@ impl Settings {
     /// The horizon machinery's settings and the bitmask part (pure).
     pub fn split(&self) -> (horizon::Settings, Bitmask) {
         let h = horizon::Settings {
-            march: self.march,
+            // vbgi's march runs at every pixel (`resolution` is gtao's and hbil's).
+            march: crate::settings::march::MarchSettings {
+                resolution: horizon::Resolution::Full,
+                ..self.march
+            },
             far: match self.far {
                 VbgiFar::Sectors => horizon::Far::Slices,
                 VbgiFar::Sh => horizon::Far::Sh,

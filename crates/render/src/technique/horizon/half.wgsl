@@ -1,0 +1,122 @@
+// half.wgsl — `resolution=half` (gtao, hbil): the pixel of each 2×2 block that the search takes,
+// and the edge-aware upsample that brings its results to every pixel. A library (after
+// common.wgsl and params.wgsl): it declares no bindings; its functions take the view (`cam`), the
+// G-buffer images they read (`normals`: world normal, `depths`: view depth) and the search's
+// results (`cones`, `nears`, `fars`: search.wgsl's `out_cone`, `out_near`, `out_far`, one texel
+// per 2×2 block). accumulate.wgsl upsamples on its way in; upsample.wgsl writes full-resolution
+// images where the bilateral blur comes first.
+// Derivations and sources: technique/horizon/mod.rs.
+
+// The upsample's tolerance: a tap counts half when its surface point lies this far (relative to
+// the pixel's view depth) from the pixel's tangent plane.
+const HALF_PLANE: f32 = 0.01;
+
+// The pixel of its 2×2 block that frame `frame`'s search takes: (0,0), (1,1), (1,0), (0,1) in
+// turn, so that a running mean sees all four.
+fn half_offset(frame: u32) -> vec2<u32> {
+    let k = frame % 4u;
+    return vec2<u32>(((k + 1u) >> 1u) & 1u, k & 1u);
+}
+
+// The size of the searched grid: one texel per 2×2 block.
+fn half_size(cam: View) -> vec2<u32> {
+    return (vec2<u32>(cam.size) + 1u) / 2u;
+}
+
+// The full-resolution pixel that half-resolution `texel` searches this frame.
+fn half_pixel(cam: View, texel: vec2<u32>) -> vec2<u32> {
+    return min(texel * 2u + half_offset(cam.frame_index), vec2<u32>(cam.size) - 1u);
+}
+
+// The four searched texels around a pixel (tap i at `base` + (i & 1, i >> 1)) and their
+// weights, which sum to 1 (all 0 where no tap sees a surface).
+struct HalfTaps {
+    base: vec2<i32>,
+    weight: vec4<f32>,
+}
+
+fn half_tap(h: HalfTaps, i: u32) -> vec2<i32> {
+    return h.base + vec2<i32>(i32(i & 1u), i32(i >> 1u));
+}
+
+// The upsample's taps of full-resolution `pixel` (world point x, unit normal n, view depth
+// `depth`): the bilinear weights of the four searched pixels around it, each times
+// (n·n_s)⁸ / (1 + (d/(HALF_PLANE depth))²), d the searched point's distance from x's tangent
+// plane, so that a tap on another surface hardly counts. A small floor under the bilinear weight
+// lets a pixel whose nearest taps lie on other surfaces take the farther one on its own.
+fn half_taps(normals: texture_2d<f32>, depths: texture_2d<f32>, cam: View, pixel: vec2<u32>, x: vec3<f32>, n: vec3<f32>, depth: f32) -> HalfTaps {
+    let off = half_offset(cam.frame_index);
+    let rel = vec2<i32>(pixel) - vec2<i32>(off);
+    var h: HalfTaps;
+    h.base = vec2<i32>(floor(vec2<f32>(rel) * 0.5));
+    // 0 on a searched row or column, ½ between two.
+    let f = vec2<f32>(rel - 2 * h.base) * 0.5;
+    let grid = vec2<i32>(half_size(cam));
+    let last = vec2<u32>(cam.size) - 1u;
+    let tol = HALF_PLANE * depth;
+    var sum = 0.0;
+    for (var i = 0u; i < 4u; i++) {
+        let t = half_tap(h, i);
+        if any(t < vec2<i32>(0)) || any(t >= grid) {
+            continue;
+        }
+        let s = min(vec2<u32>(t) * 2u + off, last);
+        let ds = textureLoad(depths, s, 0).r;
+        let ns = textureLoad(normals, s, 0);
+        if ds <= 0.0 || ns.w == 0.0 {
+            continue;
+        }
+        let bx = select(1.0 - f.x, f.x, (i & 1u) == 1u);
+        let by = select(1.0 - f.y, f.y, (i >> 1u) == 1u);
+        let plane = dot(n, world_position(cam, s, ds) - x) / tol;
+        let c = max(dot(n, normalize(ns.xyz)), 0.0);
+        let c2 = c * c;
+        let c4 = c2 * c2;
+        let w = (bx * by + 1e-3) * c4 * c4 / (1.0 + plane * plane);
+        h.weight[i] = w;
+        sum += w;
+    }
+    if sum > 0.0 {
+        h.weight /= sum;
+    }
+    return h;
+}
+
+// This frame's search results at full-resolution `pixel`: bent cone, near field (NEAR) and far
+// field (FAR), the searched texels' weighted by half_taps. A pixel without a surface, or whose
+// taps all lack one, gets the open cone (0, 0, 0, 1) and no light.
+struct HalfResults {
+    cone: vec4<f32>,
+    near: vec3<f32>,
+    far: vec4<f32>,
+}
+
+fn half_upsample(normals: texture_2d<f32>, depths: texture_2d<f32>, cones: texture_2d<f32>, nears: texture_2d<f32>, fars: texture_2d<f32>, cam: View, pixel: vec2<u32>) -> HalfResults {
+    var r: HalfResults;
+    r.cone = vec4<f32>(0.0, 0.0, 0.0, 1.0);
+    let nw = textureLoad(normals, pixel, 0);
+    let depth = textureLoad(depths, pixel, 0).r;
+    if nw.w == 0.0 || depth <= 0.0 {
+        return r;
+    }
+    let h = half_taps(normals, depths, cam, pixel, world_position(cam, pixel, depth), normalize(nw.xyz), depth);
+    if dot(h.weight, vec4<f32>(1.0)) == 0.0 {
+        return r;
+    }
+    r.cone = vec4<f32>(0.0);
+    for (var i = 0u; i < 4u; i++) {
+        let w = h.weight[i];
+        if w == 0.0 {
+            continue;
+        }
+        let t = half_tap(h, i);
+        r.cone += w * textureLoad(cones, t, 0);
+        if NEAR {
+            r.near += w * textureLoad(nears, t, 0).rgb;
+        }
+        if FAR {
+            r.far += w * textureLoad(fars, t, 0);
+        }
+    }
+    return r;
+}
