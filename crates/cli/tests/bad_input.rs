@@ -185,6 +185,7 @@ fn every_bad_input_exits_2_with_one_line() {
         (vec!["render".into(), "--size".into(), "16x16".into(), "--method".into(), "hbil".into(), "--radius".into(), "inf".into()], "radius=inf: must be a finite number"),
         (vec!["render".into(), "--size".into(), "16x16".into(), "--method".into(), "hbil".into(), "--set".into(), "reprojection=teleport".into()], "scatter or gather"),
         (vec!["render".into(), "--size".into(), "16x16".into(), "--method".into(), "hbil".into(), "--set".into(), "far=moon".into()], "sh, envmap or slices"),
+        (vec!["render".into(), "--size".into(), "16x16".into(), "--method".into(), "gtao".into(), "--set".into(), "resolution=quarter".into()], "full or half"),
         (vec!["render".into(), "--size".into(), "16x16".into(), "--method".into(), "hbil".into(), "--set".into(), "quality=insane".into()], "low, medium, high, ultra"),
         (vec!["render".into(), "--size".into(), "16x16".into(), "--method".into(), "hbil".into(), "--set".into(), "temporal=sometimes".into()], "on or off"),
         (vec!["render".into(), "--size".into(), "16x16".into(), "--method".into(), "hbil".into(), "--set".into(), "reject_a=0.5".into()], "reject_a"),
