@@ -94,11 +94,9 @@ fn write_outputs(pixel: vec2<u32>, x: vec3<f32>, n: vec3<f32>, cone: vec4<f32>, 
     textureStore(out_feedback, pixel, vec4<f32>(min(feedback, vec3<f32>(65000.0)), 1.0));
 }
 
-// This frame's raw cone, near field (NEAR) and far field (FAR) of `pixel` → history
-// (resolve.wgsl's temporal_mean) and AOVs.
-fn resolve(pixel: vec2<u32>, raw_cone: vec4<f32>, raw_near: vec3<f32>, raw_far: vec4<f32>) {
-    let nw = textureLoad(gb_normal, pixel, 0);
-    let depth = textureLoad(gb_view_depth, pixel, 0).r;
+// This frame's raw cone, near field (NEAR) and far field (FAR) of `pixel` (G-buffer normal `nw`,
+// view depth `depth`) → history (resolve.wgsl's temporal_mean) and AOVs.
+fn resolve(pixel: vec2<u32>, nw: vec4<f32>, depth: f32, raw_cone: vec4<f32>, raw_near: vec3<f32>, raw_far: vec4<f32>) {
     if nw.w == 0.0 || depth <= 0.0 {
         if HISTORY {
             textureStore(acc_cone, pixel, vec4<f32>(0.0));
@@ -146,11 +144,13 @@ fn accumulate(@builtin(global_invocation_id) id: vec3<u32>) {
     if !in_bounds(view, pixel) {
         return;
     }
+    let nw = textureLoad(gb_normal, pixel, 0);
+    let depth = textureLoad(gb_view_depth, pixel, 0).r;
     if HALF {
         // resolution=half without the blur: this frame's values from the searched 2×2 blocks
         // around the pixel (half.wgsl), raw_* holding one texel per block.
-        let h = half_upsample(gb_normal, gb_view_depth, raw_cone, raw_near, raw_far, view, pixel);
-        resolve(pixel, h.cone, h.near, h.far);
+        let h = half_upsample(gb_normal, gb_view_depth, raw_cone, raw_near, raw_far, view, pixel, nw, depth);
+        resolve(pixel, nw, depth, h.cone, h.near, h.far);
         return;
     }
     var far = vec4<f32>(0.0);
@@ -161,5 +161,5 @@ fn accumulate(@builtin(global_invocation_id) id: vec3<u32>) {
     if NEAR {
         near = textureLoad(raw_near, pixel, 0).rgb;
     }
-    resolve(pixel, textureLoad(raw_cone, pixel, 0), near, far);
+    resolve(pixel, nw, depth, textureLoad(raw_cone, pixel, 0), near, far);
 }

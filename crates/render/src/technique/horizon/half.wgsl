@@ -82,20 +82,19 @@ fn half_taps(normals: texture_2d<f32>, depths: texture_2d<f32>, cam: View, pixel
     return h;
 }
 
-// This frame's search results at full-resolution `pixel`: bent cone, near field (NEAR) and far
-// field (FAR), the searched texels' weighted by half_taps. A pixel without a surface, or whose
-// taps all lack one, gets the open cone (0, 0, 0, 1) and no light.
+// This frame's search results at full-resolution `pixel` (its G-buffer normal `nw`, w = 0
+// without a surface, and view depth `depth`, which the caller has read): bent cone, near field
+// (NEAR) and far field (FAR), the searched texels' weighted by half_taps. A pixel without a
+// surface, or whose taps all lack one, gets the open cone (0, 0, 0, 1) and no light.
 struct HalfResults {
     cone: vec4<f32>,
     near: vec3<f32>,
     far: vec4<f32>,
 }
 
-fn half_upsample(normals: texture_2d<f32>, depths: texture_2d<f32>, cones: texture_2d<f32>, nears: texture_2d<f32>, fars: texture_2d<f32>, cam: View, pixel: vec2<u32>) -> HalfResults {
+fn half_upsample(normals: texture_2d<f32>, depths: texture_2d<f32>, cones: texture_2d<f32>, nears: texture_2d<f32>, fars: texture_2d<f32>, cam: View, pixel: vec2<u32>, nw: vec4<f32>, depth: f32) -> HalfResults {
     var r: HalfResults;
     r.cone = vec4<f32>(0.0, 0.0, 0.0, 1.0);
-    let nw = textureLoad(normals, pixel, 0);
-    let depth = textureLoad(depths, pixel, 0).r;
     if nw.w == 0.0 || depth <= 0.0 {
         return r;
     }
