@@ -9,7 +9,9 @@
 # Each figure is the median over the rounds (with 2 rounds, their mean).
 #
 # Each round also times nearfield's `none` frame lit as Bevy's "off" frame is (no light, no shadow
-# map: `--sun off --far sky`), the like-for-like base frame.
+# map: `--sun off --far sky`), and Bevy's frame lit as nearfield's `none` is: "off" plus the same
+# sun (elevation, azimuth and radius as nearfield prints them) as a directional light with Bevy's
+# cascaded shadow maps and percentage-closer soft shadows. The base frame both ways round.
 #
 # Needs: the Bevy harness's toolchain (peers/bevy_ssao/README.md: `cargo +nightly`, Bevy 0.20.1
 # declares rust-version 1.97.1), an X display (Xvfb is started when DISPLAY is unset), Vulkan.
@@ -66,11 +68,16 @@ export XDG_RUNTIME_DIR=${XDG_RUNTIME_DIR:-/tmp/nearfield-xdg}
 mkdir -p "$XDG_RUNTIME_DIR"
 
 "$NF" export "$SCENE" --size "$SIZE" --out "$OUT/scene.glb"
+# The scene's sun as `nearfield render` reports it (none under a map without one).
+SUN=$("$NF" render "$SCENE" --method none --size 16x9 -o "$OUT/sun-probe.png" 2>&1 |
+  sed -n 's/.*sun at elevation \([-0-9.]*\)°, azimuth \([-0-9.]*\)°, radius \([0-9.]*\)°.*/\1,\2,\3/p')
+SUN_ARGS=()
+if [ -n "$SUN" ]; then SUN_ARGS=(--sun "$SUN"); fi
 methods=$(IFS=,; echo "none,${OURS[*]}")
 for round in $(seq 1 "$ROUNDS"); do
   echo "== round $round: Bevy" >&2
   "$PEER" "$OUT/scene.glb" --size "$SIZE" --radius "$RADIUS" --warmup "$WARMUP" \
-    --frames "$FRAMES" --rounds 1 --out "$OUT/bevy-$round" >/dev/null
+    --frames "$FRAMES" --rounds 1 "${SUN_ARGS[@]}" --out "$OUT/bevy-$round" >/dev/null
   echo "== round $round: nearfield" >&2
   "$NF" bench "$SCENE" --size "$SIZE" --radius "$RADIUS" --warmup "$WARMUP" \
     --frames "$FRAMES" --methods "$methods" --json "$OUT/ours-$round.json" >/dev/null
@@ -118,6 +125,8 @@ for p in ["low", "medium", "high", "ultra"]:
     rows.append({"side": "bevy", "config": p, "samples": b["samples"], "overhead_ms": mean(b["overhead"]),
                  "overheads_ms": b["overhead"], "frame_ms": mean(b["frame"]), "error": e})
     print(f"{'bevy':<6} {p:<62} {b['samples']:>4} {mean(b['frame']):>9.1f} {mean(b['overhead']):>12.1f} {e:>10.4f}")
+if "sun" in bevy:
+    print(f"{'bevy':<6} {'off + the sun (directional light, cascaded shadows, PCSS)':<62} {'-':>4} {mean(bevy['sun']['frame']):>9.1f} {mean(bevy['sun']['overhead']):>12.1f} {'-':>10}")
 print(f"{'ours':<6} {'none':<62} {'-':>4} {mean(mine['none']['frame']):>9.1f} {0:>12.1f} {'-':>10}")
 print(f"{'ours':<6} {'none --sun off --far sky (lit as Bevy off: no light, no shadow)':<62} {'-':>4} {mean(mine['ambient']['frame']):>9.1f} {'-':>12} {'-':>10}")
 for m, budget in zip(ours, budgets):
@@ -142,7 +151,8 @@ summary = {
     "cheapest_as_accurate": cheapest,
     "cheapest_ratio": cheapest["overhead_ms"] / high["overhead_ms"] if cheapest else None,
     "base_frame_ms": {"bevy_off": mean(bevy["off"]["frame"]), "ours_none": mean(mine["none"]["frame"]),
-                      "ours_none_ambient": mean(mine["ambient"]["frame"])},
+                      "ours_none_ambient": mean(mine["ambient"]["frame"]),
+                      "bevy_sun": mean(bevy["sun"]["frame"]) if "sun" in bevy else None},
     "rows": rows, "note": "Bevy's AO is not cosine-weighted (visibility bitmask with constant thickness); the reference is the cosine-weighted AO within R.",
 }
 json.dump(summary, open(f"{out}/peer-bench.json", "w"), indent=1)
@@ -150,6 +160,9 @@ base = summary["base_frame_ms"]
 print(f"\nbase frame: ours none {base['ours_none']:.1f} ms = {base['ours_none'] / base['bevy_off']:.2f}x Bevy off "
       f"{base['bevy_off']:.1f} ms; lit as Bevy off (no sun, sky SH) {base['ours_none_ambient']:.1f} ms = "
       f"{base['ours_none_ambient'] / base['bevy_off']:.2f}x")
+if base["bevy_sun"]:
+    print(f"base frame with the sun on both sides: ours none {base['ours_none']:.1f} ms = "
+          f"{base['ours_none'] / base['bevy_sun']:.2f}x Bevy's off + sun {base['bevy_sun']:.1f} ms")
 print(f"ours at Bevy High's budget (18 spp): {matched['overhead_ms']:.1f} ms vs Bevy High {high['overhead_ms']:.1f} ms "
       f"= {summary['budget_ratio']:.2f}x; error {matched['error']:.4f} vs {high['error']:.4f}")
 print(f"the same at half resolution: {matched_half['overhead_ms']:.1f} ms = {summary['budget_ratio_half']:.2f}x; "

@@ -4,7 +4,14 @@
 //! `nearfield compare --image bevy-high=ao-high.exr` measures it against nearfield's reference.
 //!
 //! Usage: bevy-ssao-peer SCENE.glb [--size 1280x720] [--radius 0.5] [--warmup 10] [--frames 30]
-//!        [--rounds 2] [--presets off,low,medium,high,ultra] [--out DIR]
+//!        [--rounds 2] [--presets off,low,medium,high,ultra] [--sun ELEVATION,AZIMUTH,RADIUS]
+//!        [--out DIR]
+//!
+//! With `--sun` (degrees: nearfield's sun, as `nearfield render` prints it) a further timed
+//! configuration, "sun", adds a directional light with Bevy's shadows to "off": cascaded shadow
+//! maps and percentage-closer soft shadows sized to the disc (`soft_shadow_size`, Bevy's
+//! `experimental_pbr_pcss`). It is the frame of a Bevy app that draws the same sun as
+//! nearfield's `none` frame, for timing only (no AO is read from it).
 //!
 //! Timing: one window (no vsync), frames measured from the start of one frame to the next.
 //! Round 0 runs every configuration untimed (pipelines compile on first use); then `--rounds`
@@ -45,13 +52,15 @@ struct Options {
     frames: u32,
     rounds: u32,
     presets: Vec<String>,
+    /// The sun's direction towards it and its angular radius (rad).
+    sun: Option<(Vec3, f32)>,
     out: PathBuf,
 }
 
 fn usage(msg: &str) -> ! {
     eprintln!("bevy-ssao-peer: error: {msg}");
     eprintln!(
-        "usage: bevy-ssao-peer SCENE.glb [--size WxH] [--radius R] [--warmup N] [--frames N] [--rounds N] [--presets off,low,medium,high,ultra] [--out DIR]"
+        "usage: bevy-ssao-peer SCENE.glb [--size WxH] [--radius R] [--warmup N] [--frames N] [--rounds N] [--presets off,low,medium,high,ultra] [--sun ELEVATION,AZIMUTH,RADIUS] [--out DIR]"
     );
     std::process::exit(2)
 }
@@ -68,6 +77,7 @@ fn parse_options() -> Options {
         presets: ["off", "low", "medium", "high", "ultra"]
             .map(String::from)
             .to_vec(),
+        sun: None,
         out: PathBuf::from("bevy-ssao"),
     };
     let mut scene = None;
@@ -107,9 +117,9 @@ fn parse_options() -> Options {
                 let v = value("--presets");
                 o.presets = v.split(',').map(|s| s.trim().to_string()).collect();
                 for p in &o.presets {
-                    if preset(p).is_none() && p != "off" {
+                    if preset(p).is_none() && p != "off" && p != "sun" {
                         usage(&format!(
-                            "--presets: unknown preset {p} (known: off, low, medium, high, ultra)"
+                            "--presets: unknown preset {p} (known: off, low, medium, high, ultra, sun)"
                         ));
                     }
                 }
@@ -117,9 +127,33 @@ fn parse_options() -> Options {
                     o.presets.insert(0, "off".into());
                 }
             }
+            "--sun" => {
+                let v = value("--sun");
+                let p: Vec<f32> = v.split(',').filter_map(|s| s.trim().parse().ok()).collect();
+                match p[..] {
+                    [el, az, r]
+                        if (-90.0..=90.0).contains(&el)
+                            && az.is_finite()
+                            && r > 0.0
+                            && r < 45.0 =>
+                    {
+                        // nearfield's angles: elevation above the horizon, azimuth
+                        // atan2(x, −z) of the direction towards the sun.
+                        let (el, az) = (el.to_radians(), az.to_radians());
+                        let d = Vec3::new(az.sin() * el.cos(), el.sin(), -az.cos() * el.cos());
+                        o.sun = Some((d, r.to_radians()));
+                    }
+                    _ => usage(&format!(
+                        "--sun {v}: expected ELEVATION,AZIMUTH,RADIUS in degrees (radius in (0, 45))"
+                    )),
+                }
+            }
             s if s.starts_with("--") => usage(&format!("unknown option {s}")),
             s => scene = Some(PathBuf::from(s)),
         }
+    }
+    if o.sun.is_some() && !o.presets.iter().any(|p| p == "sun") {
+        o.presets.push("sun".into());
     }
     o.scene =
         scene.unwrap_or_else(|| usage("no scene given (a .glb or .gltf from `nearfield export`)"));
@@ -259,7 +293,7 @@ fn main() {
         .unwrap_or_else(|e| usage(&format!("{}: {e}", options.out.display())));
     let (w, h) = options.size;
     let mut shots_todo = vec!["off".to_string()];
-    shots_todo.extend(options.presets.iter().filter(|p| *p != "off").cloned());
+    shots_todo.extend(options.presets.iter().filter(|p| preset(p).is_some()).cloned());
     App::new()
         .add_plugins(DefaultPlugins.set(WindowPlugin {
             primary_window: Some(Window {
@@ -299,6 +333,10 @@ fn main() {
 #[derive(Component)]
 struct TheCamera;
 
+/// The entity that carries the sun's `DirectionalLight` in the "sun" configuration.
+#[derive(Component)]
+struct TheSun;
+
 fn setup(
     mut commands: Commands,
     loaded: Res<Loaded>,
@@ -311,6 +349,10 @@ fn setup(
         perceptual_roughness: 1.0,
         metallic: 0.0,
         reflectance: 0.0,
+        // Single-sided walls cast shadows whichever side the sun is on, as in nearfield's
+        // shadow maps (the camera sees only front faces, so the AO is unchanged).
+        cull_mode: None,
+        double_sided: true,
         ..default()
     });
     for (pos, nrm, idx) in &loaded.meshes {
@@ -322,6 +364,12 @@ fn setup(
         .with_inserted_attribute(Mesh::ATTRIBUTE_NORMAL, nrm.clone())
         .with_inserted_indices(Indices::U32(idx.clone()));
         commands.spawn((Mesh3d(meshes.add(mesh)), MeshMaterial3d(material.clone())));
+    }
+    if let Some((towards, _)) = run.options.sun {
+        commands.spawn((
+            TheSun,
+            Transform::default().looking_to(-towards, if towards.y.abs() > 0.99 { Vec3::X } else { Vec3::Y }),
+        ));
     }
     let (w, h) = run.options.size;
     commands.spawn((
@@ -344,7 +392,27 @@ fn setup(
     ));
 }
 
-fn configure(commands: &mut Commands, camera: Entity, config: &str, radius: f32) {
+fn configure(
+    commands: &mut Commands,
+    camera: Entity,
+    sun: Option<(Entity, f32)>,
+    config: &str,
+    radius: f32,
+) {
+    if let Some((entity, angular_radius)) = sun {
+        let mut s = commands.entity(entity);
+        if config == "sun" {
+            s.insert(DirectionalLight {
+                // Timing only: the value does not change the cost.
+                illuminance: 10_000.0,
+                shadow_maps_enabled: true,
+                soft_shadow_size: Some(angular_radius.tan()),
+                ..default()
+            });
+        } else {
+            s.remove::<DirectionalLight>();
+        }
+    }
     let mut c = commands.entity(camera);
     match preset(config) {
         Some(q) => {
@@ -368,9 +436,13 @@ fn step(
     mut commands: Commands,
     mut run: ResMut<Run>,
     camera: Single<(Entity, &mut AmbientLight), With<TheCamera>>,
+    sun: Option<Single<Entity, With<TheSun>>>,
     mut exit: MessageWriter<AppExit>,
 ) {
     let (camera, mut ambient) = camera.into_inner();
+    let sun = sun
+        .map(|s| *s)
+        .zip(run.options.sun.map(|(_, angular_radius)| angular_radius));
     let now = Instant::now();
     let dt = run.last.map(|l| (now - l).as_secs_f64() * 1e3);
     run.last = Some(now);
@@ -379,7 +451,7 @@ fn step(
     if run.phase < run.phases.len() {
         let (config, timed) = run.phases[run.phase].clone();
         if run.frame_in_phase == 0 {
-            configure(&mut commands, camera, &config, radius);
+            configure(&mut commands, camera, sun, &config, radius);
         } else if timed && run.frame_in_phase > run.options.warmup + 1 {
             // Frame k's time is the interval that ends at the start of frame k + 1.
             if let Some(dt) = dt {
@@ -422,7 +494,7 @@ fn step(
     }
     if let Some(name) = run.shots_todo.first().cloned() {
         if run.frame_in_phase == 0 {
-            configure(&mut commands, camera, &name, radius);
+            configure(&mut commands, camera, sun, &name, radius);
         }
         run.frame_in_phase += 1;
         if run.frame_in_phase > run.options.warmup + 2 {
