@@ -9,9 +9,10 @@
 //!
 //! With `--sun` (degrees: nearfield's sun, as `nearfield render` prints it) a further timed
 //! configuration, "sun", adds a directional light with Bevy's shadows to "off": cascaded shadow
-//! maps and percentage-closer soft shadows sized to the disc (`soft_shadow_size`, Bevy's
-//! `experimental_pbr_pcss`). It is the frame of a Bevy app that draws the same sun as
-//! nearfield's `none` frame, for timing only (no AO is read from it).
+//! maps with Bevy's default filter, or, built with `--features pcss`, percentage-closer soft
+//! shadows sized to the disc (`soft_shadow_size`, Bevy's `experimental_pbr_pcss`, which makes
+//! every frame dearer, "off" included). It is the frame of a Bevy app that draws the same sun
+//! as nearfield's `none` frame, for timing only (no AO is read from it).
 //!
 //! Timing: one window (no vsync), frames measured from the start of one frame to the next.
 //! Round 0 runs every configuration untimed (pipelines compile on first use); then `--rounds`
@@ -406,9 +407,12 @@ fn configure(
                 // Timing only: the value does not change the cost.
                 illuminance: 10_000.0,
                 shadow_maps_enabled: true,
+                #[cfg(feature = "pcss")]
                 soft_shadow_size: Some(angular_radius.tan()),
                 ..default()
             });
+            #[cfg(not(feature = "pcss"))]
+            let _ = angular_radius;
         } else {
             s.remove::<DirectionalLight>();
         }
