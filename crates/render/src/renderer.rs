@@ -577,14 +577,6 @@ impl Renderer {
         self.frame_index += 1;
     }
 
-    /// Makes the sun's soft shadow run its blocker search and filter at every receiver until
-    /// its shadow map is next drawn (passes/shadow.rs, `ShadowPass::undecide_tiles`): for the
-    /// test that the depth tiles' decisions change no pixel.
-    #[doc(hidden)]
-    pub fn undecide_shadow_tiles(&self) {
-        self.shadows.undecide_tiles(&self.queue);
-    }
-
     /// Per-pass GPU milliseconds of the last frame (waits for it).
     pub fn timings(&self) -> Vec<(&'static str, f64)> {
         self.profiler.read(&self.device)

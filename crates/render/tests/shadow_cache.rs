@@ -1,8 +1,6 @@
 //! Shadow maps are drawn again only when a layer's projection changed (passes/shadow.rs): a
 //! renderer whose camera moved, or whose sun turned, after its first frame lights the scene
 //! exactly as a renderer made at the new camera or sun does, and a still camera keeps the frame.
-//! The sun's depth tiles, drawn with its layer, settle receivers without the soft shadow's
-//! search, and change no pixel.
 
 mod common;
 
@@ -74,36 +72,4 @@ fn moved_camera_and_turned_sun_redraw_the_maps_a_still_one_keeps_them() {
     r.set_environment_rotation(40.0);
     env.rotation = 40.0;
     redrawn(&mut r, &moved, renderer(&ctx, &env, turned), "turned sun");
-}
-
-/// The depth tiles (lights.wgsl's disc_tiles_decide) settle lit and umbra receivers of the sun's
-/// soft shadow without its blocker search and filter, and must give exactly what those give: a
-/// frame whose tiles decide nothing (the search everywhere; the still camera keeps the maps and
-/// their tiles) is the same bit for bit, on scenes with wide penumbrae, contact shadows and
-/// receivers edge-on to the sun.
-#[test]
-fn the_sun_depth_tiles_change_no_pixel() {
-    let Some(ctx) = common::context() else { return };
-    let (env, _) = nearfield_scene::EnvSource::Sky
-        .load_split(nearfield_scene::SunMode::Auto)
-        .unwrap();
-    assert!(env.sun.is_some());
-    for name in ["cornell", "city"] {
-        let scene = nearfield_scene::builtin::scene(name).unwrap();
-        let mut r = common::renderer(&ctx, &scene, &env, scene.default_camera(), (320, 180));
-        let image = r.read_aov(Aov::LightIrradiance);
-        let surface: Vec<f32> = image.surface().map(|p| p[0]).collect();
-        let max = surface.iter().fold(0f32, |a, &b| a.max(b));
-        let dark = surface.iter().filter(|&&x| x < 0.1 * max).count();
-        assert!(
-            dark > surface.len() / 50 && dark < surface.len() / 2,
-            "{name}: some surfaces in the sun's shadow, more in its light: {dark} of {}",
-            surface.len()
-        );
-        let tiled = light(&mut r);
-        r.undecide_shadow_tiles();
-        r.render_frame();
-        let searched = light(&mut r);
-        assert_eq!(differing(&tiled, &searched), 0, "{name}");
-    }
 }

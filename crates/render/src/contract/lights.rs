@@ -21,9 +21,6 @@ pub struct LightResources<'a> {
     /// `textureLoad` reads on every backend (GL cannot load from a depth texture); the same view
     /// as `shadow_maps` serves.
     pub shadow_depths: &'a wgpu::TextureView,
-    /// Each 32² block's nearest and farthest depth in a disc light's layer (rgba32float array,
-    /// `texture_2d_array<f32>`), written after the layer is drawn (crate::passes::shadow).
-    pub shadow_tiles: &'a wgpu::TextureView,
 }
 
 /// lights.wgsl's `override` constants for a light table: which shadow filters its lights need
@@ -45,7 +42,6 @@ pub struct NoLights {
     table: wgpu::Buffer,
     matrices: wgpu::Buffer,
     map: wgpu::TextureView,
-    tiles: wgpu::TextureView,
     sampler: wgpu::Sampler,
 }
 
@@ -72,25 +68,7 @@ impl NoLights {
             usage: wgpu::TextureUsages::TEXTURE_BINDING,
             view_formats: &[],
         });
-        let tiles = device.create_texture(&wgpu::TextureDescriptor {
-            label: Some("no shadow depth tiles"),
-            size: wgpu::Extent3d {
-                width: 1,
-                height: 1,
-                depth_or_array_layers: 1,
-            },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format: wgpu::TextureFormat::Rgba32Float,
-            usage: wgpu::TextureUsages::TEXTURE_BINDING,
-            view_formats: &[],
-        });
         NoLights {
-            tiles: tiles.create_view(&wgpu::TextureViewDescriptor {
-                dimension: Some(wgpu::TextureViewDimension::D2Array),
-                ..Default::default()
-            }),
             table: buffer(
                 "no lights",
                 bytemuck::bytes_of(&crate::gpu_scene::GpuLight::zeroed()),
@@ -117,7 +95,6 @@ impl NoLights {
             shadow_maps: &self.map,
             shadow_sampler: &self.sampler,
             shadow_depths: &self.map,
-            shadow_tiles: &self.tiles,
         }
     }
 }

@@ -54,8 +54,6 @@ crate::bind_group! {
         /// The shadow maps as unfilterable floats, for the disc search's loads (GL cannot load
         /// from a depth texture).
         shadow_depths: view = kind::TEXTURE_ARRAY_UNFILTERABLE,
-        /// The shadow maps' depth tiles (lights.wgsl's disc_tiles_decide).
-        shadow_tiles: view = kind::TEXTURE_ARRAY_UNFILTERABLE,
     }
 }
 
@@ -91,7 +89,6 @@ pub fn new(
             shadow_maps: l.shadow_maps,
             shadow_sampler: l.shadow_sampler,
             shadow_depths: l.shadow_depths,
-            shadow_tiles: l.shadow_tiles,
             out_light_irradiance: &targets.light_irradiance.view,
             out_specular: &targets.specular.view,
             out_direct_radiance: &targets.direct_radiance[side].view,

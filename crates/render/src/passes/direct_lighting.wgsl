@@ -37,13 +37,12 @@
 @group(1) @binding(11) var out_direct_radiance: texture_storage_2d<rgba16float, write>;
 @group(1) @binding(12) var out_env_irradiance: texture_storage_2d<rgba16float, write>;
 @group(1) @binding(13) var shadow_depths: texture_2d_array<f32>;
-@group(1) @binding(14) var shadow_tiles: texture_2d_array<f32>;
 
 // lights.wgsl's shadow_visibility of light l at world p with normal n, from this pass's shadow
 // maps: the layer that sees p, its matrix, the frame's normal offset.
 fn shadow_map_visibility(l: GpuLight, p: vec3<f32>, n: vec3<f32>) -> f32 {
     let layer = shadow_layer(l, p);
-    return shadow_visibility(shadow_maps, shadow_depths, shadow_tiles, shadow_sampler, frame.shadow_normal_offset, l, layer, shadow_clip_from_world[layer], p, n);
+    return shadow_visibility(shadow_maps, shadow_depths, shadow_sampler, frame.shadow_normal_offset, l, layer, shadow_clip_from_world[layer], p, n);
 }
 
 override LIGHTS: bool = true;

@@ -9,9 +9,6 @@
 //! [`ShadowSettings::max_layers`] layers are allocated; lights beyond get no shadow (logged).
 //! A layer is drawn on the first frame and again only when its projection changed
 //! (docs/src/scenes.md, "Lighting details"): the geometry under a pass is fixed.
-//! After a disc light's layer is drawn, shadow_tiles.wgsl records each [`SHADOW_TILE`]² block's
-//! nearest and farthest depth (rgba32float array, a layer per map layer), from which
-//! lights.wgsl's soft shadow settles lit and umbra receivers without its blocker search.
 //!
 //! Biases (documented, fixed):
 //! - slope-scaled rasterizer bias: constant 2, slope 2.0 (in the depth format's units), against
@@ -33,22 +30,10 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use wgpu::util::DeviceExt;
 
 pub const SHADER: &str = include_str!("shadow.wgsl");
-pub const TILES_SHADER: &str = include_str!("shadow_tiles.wgsl");
-
-/// Side of a depth tile in shadow-map texels (lights.wgsl's `SHADOW_TILE`).
-pub const SHADOW_TILE: u32 = 32;
-
-/// The format of the depth tiles: (nearest, farthest, 0, 0).
-const TILES_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
 
 /// The shadow pass's WGSL as compiled.
 pub fn source() -> String {
     util::compose(&[util::GPU_MATERIAL_WGSL, SHADER])
-}
-
-/// The depth tiles' kernel as compiled (lights.wgsl for `SHADOW_TILE`).
-pub fn tiles_source() -> String {
-    util::compose(&[util::LIGHTS_WGSL, TILES_SHADER])
 }
 
 /// Shadow-map settings.
@@ -88,37 +73,14 @@ crate::bind_group! {
     }
 }
 
-crate::bind_group! {
-    /// Group 1 of the depth tiles' kernel (group 0 is empty).
-    pub struct ShadowTilesBindings: COMPUTE {
-        /// One layer of the shadow maps, as unfilterable floats.
-        depth: view = kind::TEXTURE_UNFILTERABLE,
-        /// That layer of the tiles (rgba32float).
-        out_tiles: view = kind::write(TILES_FORMAT),
-    }
-}
-
-/// The binding declarations the reflection test checks (vertex and fragment stage, and the
-/// depth tiles' kernel).
+/// The binding declarations the reflection test checks (vertex and fragment stage).
 pub fn pass_layouts() -> Vec<PassLayout> {
-    let mut v = PassLayout::entries(
+    PassLayout::entries(
         "shadow",
         source(),
         &["vs_main", "fs_main"],
         ShadowBindings::SLOTS,
-    );
-    v.push(PassLayout {
-        name: "shadow_tiles",
-        source: tiles_source(),
-        entry_point: "main",
-        group1: ShadowTilesBindings::SLOTS,
-    });
-    v
-}
-
-/// Tiles per side of a `size`-texel shadow map.
-pub fn tiles_per_side(size: u32) -> u32 {
-    size.div_ceil(SHADOW_TILE)
+    )
 }
 
 pub struct ShadowPass {
@@ -138,12 +100,6 @@ pub struct ShadowPass {
     layer_views: Vec<wgpu::TextureView>,
     /// All layers as a D2Array view (for sampling).
     pub array_view: wgpu::TextureView,
-    /// The depth tiles of every layer (D2Array; written for disc lights' layers only).
-    pub tiles_view: wgpu::TextureView,
-    tiles: wgpu::Texture,
-    /// Per disc light's layer: its index and the tiles kernel's bind group.
-    tile_groups: Vec<(usize, wgpu::BindGroup)>,
-    tiles_pipeline: wgpu::ComputePipeline,
     pub compare_sampler: wgpu::Sampler,
     /// light_clip_from_world per layer (storage buffer for the lighting pass).
     pub matrices: wgpu::Buffer,
@@ -331,58 +287,6 @@ impl ShadowPass {
             dimension: Some(wgpu::TextureViewDimension::D2Array),
             ..Default::default()
         });
-        let tiles = device.create_texture(&wgpu::TextureDescriptor {
-            label: Some("shadow depth tiles"),
-            size: wgpu::Extent3d {
-                width: tiles_per_side(settings.size),
-                height: tiles_per_side(settings.size),
-                depth_or_array_layers: layers,
-            },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format: TILES_FORMAT,
-            usage: wgpu::TextureUsages::STORAGE_BINDING
-                | wgpu::TextureUsages::TEXTURE_BINDING
-                | wgpu::TextureUsages::COPY_DST,
-            view_formats: &[],
-        });
-        let tiles_view = tiles.create_view(&wgpu::TextureViewDescriptor {
-            dimension: Some(wgpu::TextureViewDimension::D2Array),
-            ..Default::default()
-        });
-        let tiles_layout = ShadowTilesBindings::layout(device);
-        let tiles_module =
-            crate::pipeline_cache::shader_module(device, "shadow tiles", &tiles_source());
-        let tiles_pipeline = crate::pipeline_cache::standalone_pipeline(
-            device,
-            "shadow tiles",
-            &tiles_module,
-            "main",
-            &tiles_layout,
-        );
-        let tile_groups = kinds
-            .iter()
-            .zip(&light_layers)
-            .filter(|(k, _)| is_disc(k))
-            .filter_map(|(_, &(first, _))| first)
-            .map(|layer| {
-                let one = |t: &wgpu::Texture| {
-                    t.create_view(&wgpu::TextureViewDescriptor {
-                        dimension: Some(wgpu::TextureViewDimension::D2),
-                        base_array_layer: layer,
-                        array_layer_count: Some(1),
-                        ..Default::default()
-                    })
-                };
-                let group = ShadowTilesBindings {
-                    depth: &one(&texture),
-                    out_tiles: &one(&tiles),
-                }
-                .bind_group(device, &tiles_layout);
-                (layer as usize, group)
-            })
-            .collect();
         let flat: Vec<[[f32; 4]; 4]> = if matrices.is_empty() {
             vec![Mat4::IDENTITY.to_cols_array_2d()]
         } else {
@@ -455,10 +359,6 @@ impl ShadowPass {
             bind_group,
             layer_views,
             array_view,
-            tiles_view,
-            tiles,
-            tile_groups,
-            tiles_pipeline,
             compare_sampler,
             matrices: matrix_buffer,
             light_layers,
@@ -474,7 +374,7 @@ impl ShadowPass {
     /// disc lights or when neither changed). Returns whether any light's texel factor changed:
     /// the light table must then be rewritten (`GpuScene::write_lights`).
     pub fn fit_to_view(&mut self, queue: &wgpu::Queue, camera: &Camera, image: (u32, u32)) -> bool {
-        let disc = is_disc;
+        let disc = |k: &LightKind| matches!(k, LightKind::Directional { angular_radius, .. } if *angular_radius > 0.0);
         if !self.kinds.iter().any(disc) || self.fitted_to == Some((*camera, image)) {
             return false;
         }
@@ -522,31 +422,7 @@ impl ShadowPass {
             shadow_maps: &self.array_view,
             shadow_sampler: &self.compare_sampler,
             shadow_depths: &self.array_view,
-            shadow_tiles: &self.tiles_view,
         }
-    }
-
-    /// Fills every depth tile with (nearest 0, farthest 1), which decides no receiver, until
-    /// the layers are next drawn: the soft shadow then runs its search and filter everywhere.
-    /// For the test that the tiles change no pixel.
-    pub fn undecide_tiles(&self, queue: &wgpu::Queue) {
-        let (w, h, layers) = (
-            self.tiles.width(),
-            self.tiles.height(),
-            self.tiles.depth_or_array_layers(),
-        );
-        let texel = [0f32, 1.0, 0.0, 0.0];
-        let data: Vec<f32> = (0..w * h * layers).flat_map(|_| texel).collect();
-        queue.write_texture(
-            self.tiles.as_image_copy(),
-            bytemuck::cast_slice(&data),
-            wgpu::TexelCopyBufferLayout {
-                offset: 0,
-                bytes_per_row: Some(w * 16),
-                rows_per_image: Some(h),
-            },
-            self.tiles.size(),
-        );
     }
 
     /// Renders the layers whose projection changed since they were last drawn (all of them on
@@ -580,44 +456,5 @@ impl ShadowPass {
             pass.set_index_buffer(self.indices.slice(..), wgpu::IndexFormat::Uint32);
             pass.draw_indexed(0..self.index_count, 0, 0..1);
         }
-        let redrawn: Vec<&wgpu::BindGroup> = self
-            .tile_groups
-            .iter()
-            .filter(|(layer, _)| stale.contains(layer))
-            .map(|(_, group)| group)
-            .collect();
-        if redrawn.is_empty() {
-            return;
-        }
-        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-            label: Some("shadow tiles"),
-            timestamp_writes: profiler.compute("shadow tiles"),
-        });
-        pass.set_pipeline(&self.tiles_pipeline);
-        let (gx, gy) = util::groups_8x8((
-            tiles_per_side(self.settings.size),
-            tiles_per_side(self.settings.size),
-        ));
-        for group in redrawn {
-            pass.set_bind_group(1, group, &[]);
-            pass.dispatch_workgroups(gx, gy, 1);
-        }
-    }
-}
-
-/// Whether a light is a directional disc (the environment's sun): its layer gets depth tiles
-/// and lights.wgsl's soft shadow.
-fn is_disc(kind: &LightKind) -> bool {
-    matches!(kind, LightKind::Directional { angular_radius, .. } if *angular_radius > 0.0)
-}
-
-#[cfg(test)]
-mod tests {
-    use super::SHADOW_TILE;
-
-    #[test]
-    fn the_tile_side_is_the_one_lights_wgsl_reads() {
-        let declared = format!("const SHADOW_TILE: i32 = {SHADOW_TILE};");
-        assert!(crate::util::LIGHTS_WGSL.contains(&declared), "{declared}");
     }
 }

@@ -6,9 +6,7 @@
 //   lights: array<GpuLight> (storage, read), shadow_clip_from_world: array<mat4x4<f32>>
 //   (storage, read), shadow_maps: texture_depth_2d_array, shadow_sampler: sampler_comparison,
 //   shadow_depths: texture_2d_array<f32> (the same maps, unfilterable: the loads of the disc
-//   search, which GL cannot make from a depth texture), shadow_tiles: texture_2d_array<f32>
-//   (each SHADOW_TILE² block of a disc light's layer, its nearest and farthest depth:
-//   shadow_tiles.wgsl),
+//   search, which GL cannot make from a depth texture),
 // loops over `lights` itself, and passes the layer's matrix, shadow_clip_from_world[layer] with
 // layer = shadow_layer(l, p), to shadow_visibility, and the frame's shadow normal offset (in
 // shadow-map texels) to shadow_visibility and shadow_bias_length.
@@ -109,10 +107,9 @@ override PUNCTUAL_SHADOWS: bool = true;
 
 // Shadow-map visibility of light l at world point p with normal n: `layer` = shadow_layer(l, p)
 // and `clip_from_world` its matrix (shadow_clip_from_world[layer]); `maps`/`depths` the shadow
-// maps (filtered comparisons, unfilterable loads), `tiles` their depth tiles, `smp` their
-// comparison sampler;
+// maps (filtered comparisons, unfilterable loads), `smp` their comparison sampler;
 // `normal_offset` the receiver offset along n in shadow-map texels (frame.shadow_normal_offset).
-fn shadow_visibility(maps: texture_depth_2d_array, depths: texture_2d_array<f32>, tiles: texture_2d_array<f32>, smp: sampler_comparison, normal_offset: f32, l: GpuLight, layer: u32, clip_from_world: mat4x4<f32>, p: vec3<f32>, n: vec3<f32>) -> f32 {
+fn shadow_visibility(maps: texture_depth_2d_array, depths: texture_2d_array<f32>, smp: sampler_comparison, normal_offset: f32, l: GpuLight, layer: u32, clip_from_world: mat4x4<f32>, p: vec3<f32>, n: vec3<f32>) -> f32 {
     let first = l.shadow_layer;
     if first < 0.0 {
         return 1.0;
@@ -131,7 +128,7 @@ fn shadow_visibility(maps: texture_depth_2d_array, depths: texture_2d_array<f32>
         return 1.0;
     }
     if DISC_SHADOWS && kind == 0u && l.tan_radius > 0.0 {
-        return disc_shadow(maps, depths, tiles, smp, l, layer, clip_from_world, offset_p, n, uv, ndc.z);
+        return disc_shadow(maps, depths, smp, l, layer, clip_from_world, offset_p, n, uv, ndc.z);
     }
     if !PUNCTUAL_SHADOWS {
         return 1.0;
@@ -158,60 +155,10 @@ fn shadow_visibility(maps: texture_depth_2d_array, depths: texture_2d_array<f32>
 // bilinear comparisons at most a texel apart, n = 3 for a one-texel radius, 4 up to 1.5, else 5.
 // Both compare against the receiver's plane (its depth slope over the map from n), not a flat
 // depth, so wide kernels do not shadow a surface by itself.
-// Before both, the layer's depth tiles decide most receivers at a few loads
-// (disc_tiles_decide): lit where no texel the search reads can count as a blocker, in umbra
-// where every texel the filter's comparisons can touch lies nearer than the receiver's plane.
-// Either decision is the value the search and filter would return, exactly.
 const DISC_SEARCH_TEXELS: f32 = 24.0;
 const DISC_SEARCH_SAMPLES: i32 = 32;
 
-// Side of a depth tile in shadow-map texels (crate::passes::shadow::SHADOW_TILE).
-const SHADOW_TILE: i32 = 32;
-
-// (nearest, farthest) depth over the texels [lo, hi] (inclusive, clamped to the map) of a
-// layer, from the tiles that cover them.
-fn shadow_tiles_range(tiles: texture_2d_array<f32>, layer: u32, dims: vec2<f32>, lo: vec2<f32>, hi: vec2<f32>) -> vec2<f32> {
-    let last = vec2<i32>(dims) - 1;
-    let a = clamp(vec2<i32>(floor(lo)), vec2<i32>(0), last) / SHADOW_TILE;
-    let b = clamp(vec2<i32>(floor(hi)), vec2<i32>(0), last) / SHADOW_TILE;
-    var range = vec2<f32>(3.0e38, -3.0e38);
-    for (var y = a.y; y <= b.y; y++) {
-        for (var x = a.x; x <= b.x; x++) {
-            let t = textureLoad(tiles, vec2<i32>(x, y), layer, 0).xy;
-            range = vec2<f32>(min(range.x, t.x), max(range.y, t.y));
-        }
-    }
-    return range;
-}
-
-// What the tiles decide of disc_shadow at a receiver (its uv and depth z on the map, its
-// plane's slope, the search's half size `search` and the depth slack, in the map's units): 1
-// where no texel within the search can count as a blocker, 0 where every comparison of the
-// filter, at any radius its blockers allow, fails; −1 where the search and filter must run.
-// One read of the tiles over uv ± (search + a texel) serves both: the filter's radius is at
-// most the search's (both are the disc's cone over a depth gap no larger than z), and its
-// bilinear comparisons reach half a texel beyond it. Depths are compared with a margin of
-// 10⁻⁶ so that rounding cannot turn either decision.
-fn disc_tiles_decide(tiles: texture_2d_array<f32>, layer: u32, dims: vec2<f32>, uv: vec2<f32>, z: f32, slope: vec2<f32>, search: vec2<f32>, slack: f32, metres_per_depth: f32, texel_world: f32, tan_radius: f32) -> f32 {
-    let eps = 1e-6;
-    let c = uv * dims;
-    let reach = search * dims + 1.0;
-    let range = shadow_tiles_range(tiles, layer, dims, c - reach, c + reach);
-    // Lit: a texel the search reads is a blocker only where z + slope·o − d > slack, and
-    // z + slope·o is at most z + |slope|·search there.
-    let lit = range.x >= z + dot(abs(slope), search) - slack + eps;
-    // Umbra: the blockers' mean depth is no nearer than the nearest texel, which bounds the
-    // filter's radius. Every texel its comparisons touch nearer than the receiver's plane at
-    // the plane's nearest point within that radius fails its comparison, and the centre texel
-    // is then a blocker, so the filter returns 0.
-    let gap = max(z - range.x, 0.0) * metres_per_depth;
-    let kernel = clamp(gap * tan_radius / texel_world, 1.0, DISC_SEARCH_TEXELS);
-    let plane_min = z - dot(abs(slope), vec2<f32>(kernel) / dims);
-    let umbra = range.y < min(plane_min, z - slack) - eps;
-    return select(select(-1.0, 0.0, umbra), 1.0, lit);
-}
-
-fn disc_shadow(maps: texture_depth_2d_array, depths: texture_2d_array<f32>, tiles: texture_2d_array<f32>, smp: sampler_comparison, l: GpuLight, layer: u32, clip_from_world: mat4x4<f32>, p: vec3<f32>, n: vec3<f32>, uv: vec2<f32>, z: f32) -> f32 {
+fn disc_shadow(maps: texture_depth_2d_array, depths: texture_2d_array<f32>, smp: sampler_comparison, l: GpuLight, layer: u32, clip_from_world: mat4x4<f32>, p: vec3<f32>, n: vec3<f32>, uv: vec2<f32>, z: f32) -> f32 {
     let m = clip_from_world;
     let dims = vec2<f32>(textureDimensions(maps));
     // Metres of depth per unit of the map's depth (orthographic: a constant).
@@ -237,14 +184,9 @@ fn disc_shadow(maps: texture_depth_2d_array, depths: texture_2d_array<f32>, tile
 
     let search_world = l.tan_radius * z * metres_per_depth;
     let search = clamp(search_world / texel_world, 1.0, DISC_SEARCH_TEXELS) / dims;
-    let known = disc_tiles_decide(tiles, layer, dims, uv, z, slope, search, slack, metres_per_depth, texel_world, l.tan_radius);
-    // A receiver the tiles decided runs neither loop: its loop counts are 0 rather than the
-    // loops sitting behind an early return, since a SIMD backend (lavapipe) runs both sides of
-    // an `if` for every lane but leaves a loop once no lane is left in it.
-    let samples = select(DISC_SEARCH_SAMPLES, -1, known >= 0.0);
     var blockers = 0.0;
     var blocker_depth = 0.0;
-    for (var k = 0; k <= samples; k++) {
+    for (var k = 0; k <= DISC_SEARCH_SAMPLES; k++) {
         // The centre, then a golden-angle spiral filling the search disc evenly.
         let rk = sqrt(f32(k) / f32(DISC_SEARCH_SAMPLES));
         let ak = f32(k) * 2.39996323;
@@ -260,14 +202,16 @@ fn disc_shadow(maps: texture_depth_2d_array, depths: texture_2d_array<f32>, tile
             blocker_depth += d;
         }
     }
+    // Without blockers the receiver is lit, and the filter gets no trips: it is not put behind
+    // an early return, since a SIMD backend (lavapipe) runs both sides of an `if` for every lane
+    // but leaves a loop once no lane is left in it.
     let gap = max(z - blocker_depth / max(blockers, 1.0), 0.0) * metres_per_depth;
     let filter_texels = clamp(gap * l.tan_radius / texel_world, 1.0, DISC_SEARCH_TEXELS);
     let kernel = filter_texels / dims;
     // Taps per side: as few as keep neighbours at most a texel apart (their bilinear footprints
-    // meet), at most 5: 3 for a one-texel penumbra, 4 up to 1.5 texels, then 5. None without
-    // blockers (lit) or for a decided receiver.
+    // meet), at most 5: 3 for a one-texel penumbra, 4 up to 1.5 texels, then 5.
     let taps = select(0, min(i32(ceil(2.0 * filter_texels)) + 1, 5), blockers > 0.0);
-    let step = 2.0 * kernel / f32(taps - 1);
+    let step = 2.0 * kernel / f32(max(taps - 1, 1));
     var sum = 0.0;
     for (var j = 0; j < taps; j++) {
         for (var i = 0; i < taps; i++) {
@@ -275,8 +219,7 @@ fn disc_shadow(maps: texture_depth_2d_array, depths: texture_2d_array<f32>, tile
             sum += textureSampleCompareLevel(maps, smp, uv + o, layer, z + dot(slope, o));
         }
     }
-    let undecided = select(1.0, sum / f32(max(taps * taps, 1)), blockers > 0.0);
-    return select(undecided, known, known >= 0.0);
+    return select(1.0, sum / f32(max(taps * taps, 1)), blockers > 0.0);
 }
 
 // Length along the light direction from p within which `shadow_visibility` cannot see an

@@ -113,7 +113,6 @@ impl LayerDrawing {
                 shadow_maps: l.shadow_maps,
                 shadow_sampler: l.shadow_sampler,
                 shadow_depths: l.shadow_depths,
-                shadow_tiles: l.shadow_tiles,
             }
             .bind_group(device, &shade_layout)
         };

@@ -250,7 +250,6 @@ fn create(
         shadow_maps: l.shadow_maps,
         shadow_sampler: l.shadow_sampler,
         shadow_depths: l.shadow_depths,
-        shadow_tiles: l.shadow_tiles,
         in_coeffs0: c0,
         in_coeffs1: c1,
         in_bent: &v[5],

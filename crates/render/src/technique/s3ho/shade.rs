@@ -48,8 +48,6 @@ crate::bind_group! {
         /// The shadow maps as unfilterable floats, for the disc search's loads (GL cannot load
         /// from a depth texture).
         shadow_depths: view = kind::TEXTURE_ARRAY_UNFILTERABLE,
-        /// The shadow maps' depth tiles (lights.wgsl's disc_tiles_decide).
-        shadow_tiles: view = kind::TEXTURE_ARRAY_UNFILTERABLE,
     }
 }
 

@@ -25,13 +25,12 @@
 @group(1) @binding(18) var light_irradiance: texture_2d<f32>;
 @group(1) @binding(19) var out_indirect: texture_storage_2d<rgba16float, write>;
 @group(1) @binding(20) var shadow_depths: texture_2d_array<f32>;
-@group(1) @binding(21) var shadow_tiles: texture_2d_array<f32>;
 
 // lights.wgsl's shadow_visibility of light l at world p with normal n, from this pass's shadow
 // maps: the layer that sees p, its matrix, the frame's normal offset.
 fn shadow_map_visibility(l: GpuLight, p: vec3<f32>, n: vec3<f32>) -> f32 {
     let layer = shadow_layer(l, p);
-    return shadow_visibility(shadow_maps, shadow_depths, shadow_tiles, shadow_sampler, frame.shadow_normal_offset, l, layer, shadow_clip_from_world[layer], p, n);
+    return shadow_visibility(shadow_maps, shadow_depths, shadow_sampler, frame.shadow_normal_offset, l, layer, shadow_clip_from_world[layer], p, n);
 }
 
 @compute @workgroup_size(8, 8, 1)

@@ -23,7 +23,6 @@
 @group(1) @binding(14) var out_b: texture_storage_2d<rgba16float, write>;
 @group(1) @binding(15) var out_light_irradiance: texture_storage_2d<rgba16float, write>;
 @group(1) @binding(16) var shadow_depths: texture_2d_array<f32>;
-@group(1) @binding(17) var shadow_tiles: texture_2d_array<f32>;
 
 fn luminance(c: vec3<f32>) -> f32 {
     return dot(c, vec3<f32>(0.2126, 0.7152, 0.0722));
@@ -33,7 +32,7 @@ fn luminance(c: vec3<f32>) -> f32 {
 // maps: the layer that sees p, its matrix, the frame's normal offset.
 fn shadow_map_visibility(l: GpuLight, p: vec3<f32>, n: vec3<f32>) -> f32 {
     let layer = shadow_layer(l, p);
-    return shadow_visibility(shadow_maps, shadow_depths, shadow_tiles, shadow_sampler, frame.shadow_normal_offset, l, layer, shadow_clip_from_world[layer], p, n);
+    return shadow_visibility(shadow_maps, shadow_depths, shadow_sampler, frame.shadow_normal_offset, l, layer, shadow_clip_from_world[layer], p, n);
 }
 
 @compute @workgroup_size(8, 8, 1)
