@@ -294,7 +294,13 @@ fn main() {
         .unwrap_or_else(|e| usage(&format!("{}: {e}", options.out.display())));
     let (w, h) = options.size;
     let mut shots_todo = vec!["off".to_string()];
-    shots_todo.extend(options.presets.iter().filter(|p| preset(p).is_some()).cloned());
+    shots_todo.extend(
+        options
+            .presets
+            .iter()
+            .filter(|p| preset(p).is_some())
+            .cloned(),
+    );
     App::new()
         .add_plugins(DefaultPlugins.set(WindowPlugin {
             primary_window: Some(Window {
@@ -334,9 +340,9 @@ fn main() {
 #[derive(Component)]
 struct TheCamera;
 
-/// The entity that carries the sun's `DirectionalLight` in the "sun" configuration.
+/// The entity that carries the sun's `DirectionalLight` (this one) in the "sun" configuration.
 #[derive(Component)]
-struct TheSun;
+struct TheSun(DirectionalLight);
 
 fn setup(
     mut commands: Commands,
@@ -366,10 +372,26 @@ fn setup(
         .with_inserted_indices(Indices::U32(idx.clone()));
         commands.spawn((Mesh3d(meshes.add(mesh)), MeshMaterial3d(material.clone())));
     }
-    if let Some((towards, _)) = run.options.sun {
+    if let Some((towards, angular_radius)) = run.options.sun {
+        #[cfg(not(feature = "pcss"))]
+        let _ = angular_radius;
         commands.spawn((
-            TheSun,
-            Transform::default().looking_to(-towards, if towards.y.abs() > 0.99 { Vec3::X } else { Vec3::Y }),
+            TheSun(DirectionalLight {
+                // Timing only: the value does not change the cost.
+                illuminance: 10_000.0,
+                shadow_maps_enabled: true,
+                #[cfg(feature = "pcss")]
+                soft_shadow_size: Some(angular_radius.tan()),
+                ..default()
+            }),
+            Transform::default().looking_to(
+                -towards,
+                if towards.y.abs() > 0.99 {
+                    Vec3::X
+                } else {
+                    Vec3::Y
+                },
+            ),
         ));
     }
     let (w, h) = run.options.size;
@@ -396,23 +418,14 @@ fn setup(
 fn configure(
     commands: &mut Commands,
     camera: Entity,
-    sun: Option<(Entity, f32)>,
+    sun: Option<(Entity, &TheSun)>,
     config: &str,
     radius: f32,
 ) {
-    if let Some((entity, angular_radius)) = sun {
+    if let Some((entity, TheSun(light))) = sun {
         let mut s = commands.entity(entity);
         if config == "sun" {
-            s.insert(DirectionalLight {
-                // Timing only: the value does not change the cost.
-                illuminance: 10_000.0,
-                shadow_maps_enabled: true,
-                #[cfg(feature = "pcss")]
-                soft_shadow_size: Some(angular_radius.tan()),
-                ..default()
-            });
-            #[cfg(not(feature = "pcss"))]
-            let _ = angular_radius;
+            s.insert(light.clone());
         } else {
             s.remove::<DirectionalLight>();
         }
@@ -440,13 +453,11 @@ fn step(
     mut commands: Commands,
     mut run: ResMut<Run>,
     camera: Single<(Entity, &mut AmbientLight), With<TheCamera>>,
-    sun: Option<Single<Entity, With<TheSun>>>,
+    sun: Option<Single<(Entity, &TheSun)>>,
     mut exit: MessageWriter<AppExit>,
 ) {
     let (camera, mut ambient) = camera.into_inner();
-    let sun = sun
-        .map(|s| *s)
-        .zip(run.options.sun.map(|(_, angular_radius)| angular_radius));
+    let sun = sun.map(|s| s.into_inner());
     let now = Instant::now();
     let dt = run.last.map(|l| (now - l).as_secs_f64() * 1e3);
     run.last = Some(now);
