@@ -13,7 +13,7 @@ nf=${NEARFIELD:-target/release/nearfield}
 [ -x "$nf" ] || cargo build --release -p nearfield-cli
 out=docs/src/pareto
 size=${PARETO_SIZE:-160x90}
-common=(--size "$size" --radius 1 --spp 256 --frames 8 --warmup 1 --timed 3)
+common=(--size "$size" --radius 1 --spp 256 --frames 8 --warmup 3 --timed 15)
 sponza=$assets/scenes/crytek_sponza/Sponza.gltf
 park=$assets/env/rooitou_park_1k.hdr
 for scene in ${PARETO_SCENES:-cornell sponza}; do
