@@ -3,16 +3,20 @@
 //!
 //! ```text
 //! cargo +nightly run --release --ignore-rust-version --example sponza -- [SCENE] [options]
-//!   --technique gtao|hbil|vbgi|off|bevy-ssao   what the camera runs (default vbgi)
+//!   --technique gtao|hbil|vbgi|off|bevy-ssao|gtao-budget
+//!                                               what the camera runs (default vbgi); gtao-budget:
+//!                                               gtao at Bevy SSAO High's 18 samples a pixel, at
+//!                                               half resolution, without denoiser (GTAO_BUDGET)
 //!   --quality low|medium|high|ultra             the preset (default high)
 //!   --volume FILE.ktx2                          `nearfield bake --format bevy`'s volume
 //!   --size WxH                                  window size (default 1280x720)
 //!   --screenshot FILE.png                       save the window after --frames frames and exit
 //!   --frames N                                  (default 60)
-//!   --bench                                     time off, bevy-ssao and the three techniques
+//!   --bench                                     time off, bevy-ssao, the three techniques and
+//!                                               gtao-budget
 //!                                               A B A B and print a table
 //! ```
-//! Keys in the window: 0 off, 1 gtao, 2 hbil, 3 vbgi, 4 Bevy's SSAO High.
+//! Keys in the window: 0 off, 1 gtao, 2 hbil, 3 vbgi, 4 Bevy's SSAO High, 5 gtao-budget.
 //!
 //! SCENE defaults to `../shared/assets/scenes/crytek_sponza/Sponza.gltf` (beside the repository).
 //! The camera is the one nearfield's fits use in Sponza (`docs/src/fits/sponza-camera.json`).
@@ -110,10 +114,11 @@ fn options() -> Options {
             s => fail(&format!("unknown option {s}")),
         }
     }
-    if !["off", "bevy-ssao", "gtao", "hbil", "vbgi"].contains(&o.technique.as_str()) {
+    if !BENCH.contains(&o.technique.as_str()) {
         fail(&format!(
-            "--technique {}: one of off, bevy-ssao, gtao, hbil, vbgi",
-            o.technique
+            "--technique {}: one of {}",
+            o.technique,
+            BENCH.join(", ")
         ));
     }
     o
@@ -309,8 +314,16 @@ fn configure(commands: &mut Commands, camera: Entity, name: &str, options: &Opti
         MotionVectorPrepass,
         DeferredPrepass,
     )>();
+    let mut settings = Vec::new();
     let technique = match name {
         "gtao" => NearFieldTechnique::Gtao,
+        "gtao-budget" => {
+            settings = GTAO_BUDGET
+                .iter()
+                .map(|(k, v)| (k.to_string(), v.to_string()))
+                .collect();
+            NearFieldTechnique::Gtao
+        }
         "hbil" => NearFieldTechnique::Hbil,
         "vbgi" => NearFieldTechnique::Vbgi,
         "bevy-ssao" => {
@@ -326,6 +339,7 @@ fn configure(commands: &mut Commands, camera: Entity, name: &str, options: &Opti
         technique,
         quality: options.quality,
         radius: Some(1.0),
+        settings,
         ..default()
     });
     if !options.bench {
@@ -345,6 +359,7 @@ fn keys(
         (KeyCode::Digit2, "hbil"),
         (KeyCode::Digit3, "vbgi"),
         (KeyCode::Digit4, "bevy-ssao"),
+        (KeyCode::Digit5, "gtao-budget"),
     ] {
         if input.just_pressed(key) {
             configure(&mut commands, *camera, name, &options);
@@ -352,7 +367,20 @@ fn keys(
     }
 }
 
-const BENCH: [&str; 5] = ["off", "bevy-ssao", "gtao", "hbil", "vbgi"];
+const BENCH: [&str; 6] = ["off", "bevy-ssao", "gtao", "hbil", "vbgi", "gtao-budget"];
+
+/// gtao at Bevy SSAO High's budget (3 slices × 3 steps a side: 18 samples a pixel), the cheapest
+/// configuration the book's peer run found at least as accurate as Bevy High (results.md,
+/// "Costs"): half resolution, no interleaving, no blur, no running mean.
+const GTAO_BUDGET: [(&str, &str); 7] = [
+    ("slices", "3"),
+    ("steps", "3"),
+    ("resolution", "half"),
+    ("step_power", "1"),
+    ("interleaved", "off"),
+    ("denoise", "off"),
+    ("temporal", "off"),
+];
 const BENCH_WARMUP: u32 = 10;
 const BENCH_FRAMES: u32 = 30;
 const BENCH_ROUNDS: usize = 2;
