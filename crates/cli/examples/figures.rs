@@ -6,7 +6,7 @@
 //! - `nearfield bench` of every technique;
 //! - each technique's failure strip (docs/src/img/failures/TECH.png);
 //! - the demo strip (docs/src/img/cornell-compare.png, the same command as `make demo`);
-//! - the vbgi page's crops (docs/src/img/crops-wall.png, crops-box.png);
+//! - the vbgi page's crops (docs/src/img/crops-wall.png, crops-box.png, vbgi-denoisers-wall.png);
 //! - the far field's Sponza strip (docs/src/img/sponza-far.png);
 //!
 //! into docs/src/generated/results.json, then the pages rendered from it (book_reference).
@@ -386,7 +386,8 @@ fn far_strip(assets: &Path) {
 }
 
 /// The vbgi page's crops of the right wall and the short box's top at 1280×720 after 16
-/// frames: hbil, hbil with the svgf denoiser, vbgi.
+/// frames: hbil, hbil with the svgf denoiser, vbgi; and of the wall with vbgi's two denoisers
+/// (vbgi-denoisers-wall.png).
 fn crops() {
     let crops = Path::new("target/figures/crops");
     std::fs::create_dir_all(crops).expect("target/figures/crops");
@@ -395,6 +396,7 @@ fn crops() {
         ("hbil", "--method hbil"),
         ("hbil denoise=svgf", "--method hbil --set denoise=svgf"),
         ("vbgi", "--method vbgi"),
+        ("vbgi denoise=bilateral", "--method vbgi --set denoise=bilateral"),
     ] {
         let file = crops.join(format!("{}.png", title.replace([' ', '='], "-")));
         nearfield(&words(&format!(
@@ -403,9 +405,15 @@ fn crops() {
         )));
         shots.push((title, image::open(&file).expect("render's PNG").to_rgb8()));
     }
-    for (name, (x, y, w, h)) in [("wall", (840, 60, 220, 600)), ("box", (600, 400, 320, 160))] {
+    let crops_of = [
+        ("crops-wall", &["hbil", "hbil denoise=svgf", "vbgi"][..], (840, 60, 220, 600)),
+        ("crops-box", &["hbil", "hbil denoise=svgf", "vbgi"][..], (600, 400, 320, 160)),
+        ("vbgi-denoisers-wall", &["vbgi", "vbgi denoise=bilateral"][..], (840, 60, 220, 600)),
+    ];
+    for (name, titles, (x, y, w, h)) in crops_of {
         let panels: Vec<_> = shots
             .iter()
+            .filter(|(title, _)| titles.contains(title))
             .map(|(title, img)| nearfield_eval::strip::Panel {
                 image: image::imageops::crop_imm(img, x, y, w, h).to_image(),
                 title: title.to_string(),
@@ -413,7 +421,7 @@ fn crops() {
             })
             .collect();
         let strip = nearfield_eval::strip::strip(&panels);
-        let path = PathBuf::from(format!("docs/src/img/crops-{name}.png"));
+        let path = PathBuf::from(format!("docs/src/img/{name}.png"));
         nearfield_scene::atomic::write_atomically(&path, |tmp| {
             strip.save_with_format(tmp, image::ImageFormat::Png)
         })
