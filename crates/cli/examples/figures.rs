@@ -396,7 +396,10 @@ fn crops() {
         ("hbil", "--method hbil"),
         ("hbil denoise=svgf", "--method hbil --set denoise=svgf"),
         ("vbgi", "--method vbgi"),
-        ("vbgi denoise=bilateral", "--method vbgi --set denoise=bilateral"),
+        (
+            "vbgi denoise=bilateral",
+            "--method vbgi --set denoise=bilateral",
+        ),
     ] {
         let file = crops.join(format!("{}.png", title.replace([' ', '='], "-")));
         nearfield(&words(&format!(
@@ -406,9 +409,21 @@ fn crops() {
         shots.push((title, image::open(&file).expect("render's PNG").to_rgb8()));
     }
     let crops_of = [
-        ("crops-wall", &["hbil", "hbil denoise=svgf", "vbgi"][..], (840, 60, 220, 600)),
-        ("crops-box", &["hbil", "hbil denoise=svgf", "vbgi"][..], (600, 400, 320, 160)),
-        ("vbgi-denoisers-wall", &["vbgi", "vbgi denoise=bilateral"][..], (840, 60, 220, 600)),
+        (
+            "crops-wall",
+            &["hbil", "hbil denoise=svgf", "vbgi"][..],
+            (840, 60, 220, 600),
+        ),
+        (
+            "crops-box",
+            &["hbil", "hbil denoise=svgf", "vbgi"][..],
+            (600, 400, 320, 160),
+        ),
+        (
+            "vbgi-denoisers-wall",
+            &["vbgi", "vbgi denoise=bilateral"][..],
+            (840, 60, 220, 600),
+        ),
     ];
     for (name, titles, (x, y, w, h)) in crops_of {
         let panels: Vec<_> = shots
