@@ -119,6 +119,57 @@ fn plane_is_unoccluded() {
     }
 }
 
+/// A plane whose shading normals face away from the eye (as a normal map's can): under a white
+/// sky no estimate may exceed the open sky's, env-irradiance = 1, nor the light the plane
+/// sends back, indirect-irradiance ≤ its albedo. The slices' ratio estimators divided by an open
+/// hemisphere's weight that such a normal can make vanish; with one slice per pixel hbil wrote
+/// env-irradiance of thousands (technique/horizon/mod.rs, "taken at the eye's horizon").
+#[test]
+fn normals_facing_away_stay_bounded() {
+    let Some(ctx) = common::context() else { return };
+    let mut scene = builtin::scene("plane").unwrap();
+    // The camera at (0, 2, 5) looks at (0, 0, −1): n·ω_o < 0 at every visible point of the plane.
+    let away = Vec3::new(0.3, 0.3, -1.0).normalize();
+    for n in &mut scene.meshes[0].normals {
+        *n = away;
+    }
+    let white = Environment::constant(Vec3::ONE);
+    let cam = scene.default_camera();
+    for method in [
+        "gtao:slices=1",
+        "hbil",
+        "hbil:slices=1",
+        "hbil:slices=1+interleaved=off+denoise=off+far=sh",
+        "vbgi",
+        "vbgi:slices=1",
+    ] {
+        let mut r = make(&ctx, &scene, &white, cam, (64, 40), method, 1.0);
+        r.render_frame();
+        r.render_frame();
+        let ao = r.read_aov(Aov::Ao);
+        let e = r.read_aov(Aov::EnvIrradiance);
+        let ind = r.read_aov(Aov::IndirectIrradiance);
+        let mut seen = 0;
+        for (i, (e, ind)) in e.pixels.iter().zip(&ind.pixels).enumerate() {
+            if ao.pixels[i][3] == 0.0 {
+                continue;
+            }
+            seen += 1;
+            for c in 0..3 {
+                assert!(
+                    (0.0..=1.01).contains(&e[c]),
+                    "{method} pixel {i}: env-irradiance {e:?} under a white sky"
+                );
+                assert!(
+                    (0.0..=0.81).contains(&ind[c]),
+                    "{method} pixel {i}: indirect-irradiance {ind:?} from a plane of albedo 0.8"
+                );
+            }
+        }
+        assert!(seen > 1000, "{method}: {seen} plane pixels");
+    }
+}
+
 /// `wall`: ao at the base of the wall within 0.05 of 0.5 (the horizon search is exact for V_R
 /// there given enough steps; full resolution, no blur) and following 1 − (acos k − k√(1−k²))/π,
 /// k = d/R, away from it. With the defaults (interleaved, blurred over 4 pixels, 16 frames) the

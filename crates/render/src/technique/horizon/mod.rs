@@ -34,7 +34,16 @@
 //! vector in the local frame is the same correction without the intermediate angles.
 //! Horizons are initialised from the normal (Sec. 2.1): with the projected normal
 //! n′ = (n·D, n·ω_o) at slice angle γ = atan2(n′x, n′y), θ_front = γ + π/2 and θ_back = γ − π/2,
-//! so they never fall below the tangent plane. Only samples within the near-field radius R count
+//! so they never fall below the tangent plane. A shading normal may face away from the eye (a
+//! normal map's, or one interpolated across a silhouette: n·ω_o < 0). Its hemisphere then
+//! reaches past the slice's half circle θ ∈ [−π, π]: the initial horizons cross (θ_back > 0),
+//! the open hemisphere's weight U (below) can vanish or turn negative while the visible arcs'
+//! weights do not, and the ratio estimators blow up (hbil with one slice wrote irradiance of
+//! 8000 on Crytek Sponza's normal-mapped pillars). Such a normal is taken at the eye's horizon,
+//! n′y = max(n·ω_o, 0) in every slice, which is the normal with its ω_o part removed (the
+//! common length cancels in every ratio below): γ ∈ [−π/2, π/2], both horizons stay on their
+//! sides, and every weight is ≥ 0. XeGTAO clamps the projected normal's angle the same way.
+//! Only samples within the near-field radius R count
 //! (V_R of docs/src/aovs.md); over the last `falloff`·R their rise fades out (GTAO's falloff).
 //! Steps: t_j = r_px ((j + ξ)/steps)^power along the screen line, r_px the screen length of R at
 //! the point (capped by `max_pixels`), ξ a per-pixel, per-frame jitter; with 4×4 interleaving the
