@@ -46,7 +46,8 @@ fn small_sky() -> Environment {
 }
 
 /// A lone plane: ao = 1 and no indirect light at any radius, with and without interleaving, at half
-/// resolution; gtao's env-irradiance is `none`'s; under a constant white sky hbil's per-slice environment
+/// resolution; gtao's env-irradiance is `none`'s (also through svgf, which filters only what a
+/// technique declares); under a constant white sky hbil's per-slice environment
 /// integral gives env-irradiance = 1 (the closed forms of docs/src/aovs.md).
 #[test]
 fn plane_is_unoccluded() {
@@ -64,6 +65,7 @@ fn plane_is_unoccluded() {
             "gtao",
             "gtao:interleaved=off",
             "gtao:resolution=half+denoise=off",
+            "gtao:denoise=svgf",
             "hbil",
             "hbil:interleaved=off+far=sh",
             "hbil:resolution=half",

@@ -156,9 +156,11 @@ pub fn create(
         }
     }
     match desc.denoise {
-        Some(config) => denoise::create_denoised(ctx, params, desc.name, config, |ctx| {
-            (desc.create)(ctx, params)
-        }),
+        Some(config) => {
+            denoise::create_denoised(ctx, params, desc.name, desc.writes, config, |ctx| {
+                (desc.create)(ctx, params)
+            })
+        }
         None => (desc.create)(ctx, params),
     }
 }

@@ -4,7 +4,8 @@
 //! The model is SVGF (Schied et al. 2017, "Spatiotemporal Variance-Guided Filtering: Real-Time
 //! Reconstruction for Path-Traced Global Illumination"). A technique made with
 //! [`create_denoised`] writes its `ao`, `env-irradiance` and `indirect-irradiance` into the
-//! denoiser's own images. The denoiser then writes the AOVs:
+//! denoiser's own images. The denoiser then writes the AOVs, of the last two only those the
+//! technique declares (gtao declares neither; the host's images keep what they hold):
 //!   temporal   running means of the three through the motion vectors, with last frame's taps
 //!              rejected by `history_taps` (common.wgsl: tangent plane, normal, footprint), and
 //!              the first two moments of ao and of the indirect light's luminance
@@ -124,11 +125,14 @@ struct Denoised {
 
 /// Makes the technique `inner` builds; with `denoise=svgf` (by `config`) its AOVs are written
 /// into the denoiser's images and the denoiser writes `ctx.outputs` (light-irradiance passes
-/// through untouched).
+/// through untouched). `writes`: what the technique declares; env-irradiance and
+/// indirect-irradiance that it does not declare are left as the host handed them in (gtao's
+/// env-irradiance holds the direct pass's unoccluded far field, which ao scales).
 pub fn create_denoised(
     ctx: &TechniqueContext,
     tp: &TechniqueParams,
     name: &str,
+    writes: &[Output],
     config_fn: ConfigFn,
     inner: impl FnOnce(&TechniqueContext) -> Result<Box<dyn Technique>, RenderError>,
 ) -> Result<Box<dyn Technique>, RenderError> {
@@ -147,9 +151,24 @@ pub fn create_denoised(
         full("svgf raw indirect", HDR_FORMAT),
     ];
     let raw_views = [view(&raw[0]), view(&raw[1]), view(&raw[2])];
-    // The denoiser writes these three (whatever the inner technique declares).
-    let out_env = ctx.outputs.require(name, Output::EnvIrradiance)?;
-    let out_indirect = ctx.outputs.require(name, Output::IndirectIrradiance)?;
+    // The denoiser writes ao, and env-irradiance and indirect-irradiance where the technique
+    // declares them; the others' filtered zeros go to images of its own.
+    let unwritten =
+        |output: Output, label: &str| (!writes.contains(&output)).then(|| full(label, HDR_FORMAT));
+    let spare_env = unwritten(Output::EnvIrradiance, "svgf env (not declared)");
+    let spare_indirect = unwritten(Output::IndirectIrradiance, "svgf indirect (not declared)");
+    let spare_views = [
+        spare_env.as_ref().map(view),
+        spare_indirect.as_ref().map(view),
+    ];
+    let out_env = match &spare_views[0] {
+        Some(v) => v,
+        None => ctx.outputs.require(name, Output::EnvIrradiance)?,
+    };
+    let out_indirect = match &spare_views[1] {
+        Some(v) => v,
+        None => ctx.outputs.require(name, Output::IndirectIrradiance)?,
+    };
     let inner_outputs = NearFieldOutputs {
         ao: &raw_views[0],
         bent_normal: ctx.outputs.bent_normal,
@@ -292,6 +311,8 @@ pub fn create_denoised(
     textures.extend(indirect);
     textures.extend(geometry);
     textures.extend(work.into_iter().flatten());
+    textures.extend(spare_env);
+    textures.extend(spare_indirect);
     Ok(Box::new(Denoised {
         inner,
         config_fn,
