@@ -39,7 +39,7 @@
 //! reaches past the slice's half circle θ ∈ [−π, π]: the initial horizons cross (θ_back > 0),
 //! the open hemisphere's weight U (below) can vanish or turn negative while the visible arcs'
 //! weights do not, and the ratio estimators blow up (hbil with one slice wrote irradiance of
-//! 8000 on Crytek Sponza's normal-mapped pillars). Such a normal is taken at the eye's horizon,
+//! 8000 on Crytek Sponza's normal-mapped arcade). Such a normal is taken at the eye's horizon,
 //! n′y = max(n·ω_o, 0) in every slice, which is the normal with its ω_o part removed (the
 //! common length cancels in every ratio below): γ ∈ [−π/2, π/2], both horizons stay on their
 //! sides, and every weight is ≥ 0. XeGTAO clamps the projected normal's angle the same way.
