@@ -408,17 +408,10 @@ fn crops() {
         )));
         shots.push((title, image::open(&file).expect("render's PNG").to_rgb8()));
     }
+    let three = &["hbil", "hbil denoise=svgf", "vbgi"][..];
     let crops_of = [
-        (
-            "crops-wall",
-            &["hbil", "hbil denoise=svgf", "vbgi"][..],
-            (840, 60, 220, 600),
-        ),
-        (
-            "crops-box",
-            &["hbil", "hbil denoise=svgf", "vbgi"][..],
-            (600, 400, 320, 160),
-        ),
+        ("crops-wall", three, (840, 60, 220, 600)),
+        ("crops-box", three, (600, 400, 320, 160)),
         (
             "vbgi-denoisers-wall",
             &["vbgi", "vbgi denoise=bilateral"][..],

@@ -123,9 +123,7 @@ fn search_pixel(depth_layers: texture_2d_array<f32>, normal_layers: texture_2d_a
     for (var k = 0u; k < SLICES; k++) {
         let phi = slice_phi(k, SLICES, cell, frame_jitter);
         let d = cos(phi) * lf.x + sin(phi) * lf.y;
-        // A normal facing away from the eye (a normal map's, or one interpolated across a
-        // silhouette) is taken at the eye's horizon: n′y ≥ 0 (technique/horizon/mod.rs).
-        let np = vec2<f32>(dot(n, d), max(dot(n, lf.o), 0.0));
+        let np = projected_normal(n, d, lf.o);
         // Normal of the slice plane: samples snapped to texel centres are projected back into it.
         m.slice_normal = cross(d, lf.o);
         m.np = np;

@@ -33,6 +33,13 @@ fn on_slice_line(cam: View, p: HorizonParams, pos: vec2<f32>, layer: u32, centre
     return vec4<f32>(eye + r * along, 1.0);
 }
 
+// The projected normal n′ = (n·d, n·ω_o) of slice direction `d`, a normal facing away from the
+// eye taken at the eye's horizon (n′y ≥ 0: technique/horizon/mod.rs), in world or view space
+// alike.
+fn projected_normal(n: vec3<f32>, d: vec3<f32>, omega_o: vec3<f32>) -> vec2<f32> {
+    return vec2<f32>(dot(n, d), max(dot(n, omega_o), 0.0));
+}
+
 // ½ nx (θ − sin θ cos θ) + ½ ny sin² θ.
 fn slice_g(theta: f32, n: vec2<f32>) -> f32 {
     return slice_g_at(theta, vec2<f32>(cos(theta), sin(theta)), n);

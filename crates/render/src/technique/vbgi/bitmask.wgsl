@@ -168,9 +168,7 @@ fn bitmask(@builtin(global_invocation_id) id: vec3<u32>) {
     for (var k = 0u; k < SLICES; k++) {
         let phi = slice_phi(k, SLICES, cell, frame_jitter);
         let d = cos(phi) * omega_x + sin(phi) * omega_y;
-        // A normal facing away from the eye is taken at the eye's horizon, n′y ≥ 0, as in
-        // technique/horizon's march (technique/horizon/mod.rs).
-        let np = vec2<f32>(dot(n, d), max(dot(n, omega_o), 0.0));
+        let np = projected_normal(n, d, omega_o);
         let slice_normal = cross(d, omega_o);
         // The hemisphere about the projected normal: θ ∈ [γ − π/2, γ + π/2].
         let gamma = clamp(atan2(np.x, np.y), -0.5 * PI, 0.5 * PI);
