@@ -77,7 +77,7 @@ fi
 nvidia-smi --query-gpu=name,driver_version,memory.total --format=csv 2>/dev/null || true
 
 # Every registered technique, and the horizon techniques at full and half resolution too.
-METHODS=none,ssao,ssdo,ssdo-vpl,instant-radiosity,s3ho,ssbn,gtao,gtao:interleaved=off,gtao:resolution=half,gtao:quality=high,gtao:slices=3+steps=3,hbil,hbil:interleaved=off,hbil:resolution=half,hbil:denoise=svgf,vbgi,vbgi:thickness=adaptive,vbgi:interleaved=off
+METHODS=none,ssao,ssdo,ssdo-vpl,instant-radiosity,s3ho,ssbn,gtao,gtao:interleaved=off,gtao:resolution=half,gtao:quality=high,gtao:slices=3+steps=3,hbil,hbil:interleaved=off,hbil:resolution=half,hbil:denoise=svgf,vbgi,vbgi:thickness=adaptive,vbgi:interleaved=off,vbgi:resolution=half
 start=$(date +%s)
 for size in "${SIZES[@]}"; do
     echo "== $size"

@@ -25,7 +25,7 @@ choice! {
 }
 
 choice! {
-    /// Where the slice march runs (gtao, hbil).
+    /// Where the slice march runs (gtao, hbil, vbgi).
     pub enum Resolution {
         /// At every pixel.
         Full = "full",
@@ -42,7 +42,7 @@ declare_settings! {
         steps: u32 = "16", integer(1, 128), count, "", "samples per side of a slice (`samples`, `--samples`)";
         radius: f32 = "0.5", log(1e-6, 1e6), uniform, "m", "near-field radius R (`--radius`; finite); only occluders within R count";
         interleaved: bool = "on", toggle, structural, "", "4×4 deinterleaved quarter-resolution layers (HBIL Sec. 3.3)";
-        resolution: Resolution = "full", choice, structural("gtao", "hbil"), "", "`half`: the search at one pixel of each 2×2 block (the four in turn over frames), brought to every pixel by a depth- and normal-aware bilinear upsample (a quarter of the search's work; `interleaved` does not apply)";
+        resolution: Resolution = "full", choice, structural("gtao", "hbil", "vbgi"), "", "`half`: the search at one pixel of each 2×2 block (the four in turn over frames), brought to every pixel by a depth- and normal-aware bilinear upsample (a quarter of the search's work; `interleaved` does not apply)";
         reprojection: ReprojectMode = "scatter", choice, structural("hbil", "vbgi"), "", "`scatter` (forward, atomic depth test) then push/pull, or `gather` through motion vectors then push/pull";
         source: Source = "previous", choice, structural("hbil", "vbgi"), "", "near-field radiance: `previous` last frame's diffuse radiance, reprojected (bounces add up, Eq. 17); `direct` this frame's direct radiance (exactly one bounce)";
         temporal: bool = "on", toggle, denoiser, "", "running mean over frames, disocclusion-rejected (in svgf with `denoise=svgf`)";

@@ -1,4 +1,4 @@
-// half.wgsl — `resolution=half` (gtao, hbil): the pixel of each 2×2 block that the search takes,
+// half.wgsl — `resolution=half` (gtao, hbil, vbgi): the pixel of each 2×2 block that the search takes,
 // and the edge-aware upsample that brings its results to every pixel. A library (after
 // common.wgsl and params.wgsl): it declares no bindings; its functions take the view (`cam`), the
 // G-buffer images they read (`normals`: world normal, `depths`: view depth) and the search's

@@ -79,7 +79,7 @@
 //! sees every direction. (Turning them by ξ_frame/16 only, within each cell's sixteenth, left
 //! each pixel's mean converged to its own sixteenth of the integral: a fixed 4×4 pattern that
 //! neither the running mean nor an edge-stopping filter removes.)
-//! Half resolution (`resolution=half`, gtao and hbil, half.wgsl): the search runs at one pixel
+//! Half resolution (`resolution=half`, gtao, hbil and vbgi, half.wgsl): the search runs at one pixel
 //! of each 2×2 block, the block's four in turn over frames ((0,0), (1,1), (1,0), (0,1)), reading
 //! the full-resolution G-buffer; slice angles and step jitter follow the block grid, so that the
 //! blocks around a pixel bring different directions. Every pixel then takes the four searched

@@ -11,6 +11,7 @@ pub fn source() -> String {
         util::FRAME_BINDINGS_WGSL,
         util::FAR_WGSL,
         include_str!("../horizon/params.wgsl"),
+        include_str!("../horizon/half.wgsl"),
         include_str!("bitmask.wgsl"),
         include_str!("../horizon/slice.wgsl"),
     ])

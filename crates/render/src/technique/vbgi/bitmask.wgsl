@@ -4,7 +4,8 @@
 
 // bitmask: one invocation per pixel of one layer, the 16 layers stacked vertically as in
 // search.wgsl (technique/horizon). Inputs as there, and `in_back`: the view depth of the second
-// depth layer (0 where there is none), split like the geometry with interleaving.
+// depth layer (0 where there is none), split like the geometry with interleaving. With HALF
+// (`resolution=half`) one invocation per 2×2 block instead, as there.
 
 struct VbgiParams {
     // 0 layer, 1 constant, 2 adaptive.
@@ -113,22 +114,42 @@ fn range_bits(range: vec2<f32>, base: f32, jitter: f32) -> u32 {
 
 @compute @workgroup_size(8, 8, 1)
 fn bitmask(@builtin(global_invocation_id) id: vec3<u32>) {
-    let rows = ((params.layer_height + 7u) / 8u) * 8u;
-    let texel = vec2<u32>(id.x, id.y % rows);
-    let layer = id.y / rows;
-    if texel.x >= params.layer_width || texel.y >= params.layer_height {
-        return;
-    }
-    let pixel = layer_pixel(params, texel, layer);
-    if !in_bounds(view, pixel) {
-        return;
+    // The pixel marched, where its results go, its layer texel, and the position that picks its
+    // slice angles and jitters (as search.wgsl's `horizon`).
+    var pixel: vec2<u32>;
+    var store_at: vec2<u32>;
+    var texel: vec2<u32>;
+    var layer = 0u;
+    var pattern: vec2<u32>;
+    if HALF {
+        // resolution=half (half.wgsl): one invocation per 2×2 block, at its pixel of this frame.
+        store_at = id.xy;
+        if any(store_at >= half_size(view)) {
+            return;
+        }
+        pixel = half_pixel(view, store_at);
+        texel = pixel;
+        pattern = store_at;
+    } else {
+        let rows = ((params.layer_height + 7u) / 8u) * 8u;
+        texel = vec2<u32>(id.x, id.y % rows);
+        layer = id.y / rows;
+        if texel.x >= params.layer_width || texel.y >= params.layer_height {
+            return;
+        }
+        pixel = layer_pixel(params, texel, layer);
+        if !in_bounds(view, pixel) {
+            return;
+        }
+        store_at = pixel;
+        pattern = pixel;
     }
     let centre = geometry(in_depth, in_normal, params, vec2<i32>(texel), layer);
     let depth = centre.w;
     if depth <= 0.0 {
-        textureStore(out_cone, pixel, vec4<f32>(0.0, 0.0, 0.0, 1.0));
-        textureStore(out_near, pixel, vec4<f32>(0.0));
-        textureStore(out_far, pixel, vec4<f32>(0.0));
+        textureStore(out_cone, store_at, vec4<f32>(0.0, 0.0, 0.0, 1.0));
+        textureStore(out_near, store_at, vec4<f32>(0.0));
+        textureStore(out_far, store_at, vec4<f32>(0.0));
         return;
     }
     let far_lod = max(env.radiance_mips - 5.0, 0.0);
@@ -146,13 +167,13 @@ fn bitmask(@builtin(global_invocation_id) id: vec3<u32>) {
     let omega_y = lf.y;
 
     let r_layer = march_reach(view, params, depth);
-    let cell = cell_index(pixel);
+    let cell = cell_index(pattern);
     let frame_jitter = golden(view.frame_index);
-    let step_jitter = fract(noise(pixel) + golden(view.frame_index + 7u));
+    let step_jitter = fract(noise(pattern) + golden(view.frame_index + 7u));
     // Stochastic rounding of the sector boundaries: every sample of the pixel rounds with the
     // same offset, so neighbouring samples' ranges tile without gaps, and over frames a sector's
     // expected coverage is the exact fraction of it that the range covers.
-    let round_jitter = fract(noise(pixel + vec2<u32>(17u, 29u)) + golden(view.frame_index + 3u));
+    let round_jitter = fract(noise(pattern + vec2<u32>(17u, 29u)) + golden(view.frame_index + 3u));
     let x_screen = to_screen(view, view.clip_from_world, x);
     let layer_size = vec2<i32>(i32(params.layer_width), i32(params.layer_height));
     let all_sectors = bit_range(0u, SECTORS);
@@ -347,7 +368,7 @@ fn bitmask(@builtin(global_invocation_id) id: vec3<u32>) {
     let norm = max(unoccluded, 1e-6);
     ao = clamp(ao / norm, 0.0, 1.0);
     let b = select(n, normalize(bent), dot(bent, bent) > 1e-12);
-    textureStore(out_cone, pixel, vec4<f32>(b, ao));
-    textureStore(out_near, pixel, vec4<f32>(near / norm, 1.0));
-    textureStore(out_far, pixel, vec4<f32>(far / norm, 1.0));
+    textureStore(out_cone, store_at, vec4<f32>(b, ao));
+    textureStore(out_near, store_at, vec4<f32>(near / norm, 1.0));
+    textureStore(out_far, store_at, vec4<f32>(far / norm, 1.0));
 }

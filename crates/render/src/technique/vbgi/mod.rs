@@ -8,6 +8,9 @@
 //!
 //! Frame: [depth peeling (layer 2)] → [reproject → push/pull] → split (+ back) → bitmask →
 //! merge → [bilateral blur | temporal mean, by `denoise`] → outputs → [svgf].
+//! With `resolution=half` the bitmask march runs at one pixel of each 2×2 block, reading the
+//! full-resolution G-buffer and second layer (no split), and its results are upsampled as gtao's
+//! and hbil's are (technique/horizon, half.wgsl).
 //!
 //! Sectors. In slice φ (plane of ω_o and D(φ), angles θ from ω_o, positive towards D, as in
 //! technique/horizon) the hemisphere above the tangent plane is θ ∈ [γ − π/2, γ + π/2], γ the
@@ -111,11 +114,7 @@ impl Settings {
     /// The horizon machinery's settings and the bitmask part (pure).
     pub fn split(&self) -> (horizon::Settings, Bitmask) {
         let h = horizon::Settings {
-            // vbgi's march runs at every pixel (`resolution` is gtao's and hbil's).
-            march: crate::settings::march::MarchSettings {
-                resolution: horizon::Resolution::Full,
-                ..self.march
-            },
+            march: self.march,
             far: match self.far {
                 VbgiFar::Sectors => horizon::Far::Slices,
                 VbgiFar::Sh => horizon::Far::Sh,

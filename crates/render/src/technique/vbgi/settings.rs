@@ -71,6 +71,11 @@ impl Settings {
         let mut s = Settings::default();
         crate::settings::apply(&mut s, params, &[("samples", "steps")])?;
         crate::settings::march::check_march(&s.march)?;
+        // Half resolution marches full-resolution pixels, one of each 2×2 block: the 4×4
+        // deinterleave does not apply (as for gtao and hbil).
+        if s.march.resolution == crate::settings::march::Resolution::Half {
+            s.march.interleaved = false;
+        }
         Ok(s)
     }
 }
