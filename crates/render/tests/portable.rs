@@ -148,7 +148,11 @@ const LIBRARIES: &[(&str, &[&str])] = &[
     ("technique/horizon/params.wgsl", &["shaders/common.wgsl"]),
     (
         "technique/horizon/slice.wgsl",
-        &["shaders/common.wgsl", "technique/horizon/params.wgsl"],
+        &[
+            "shaders/common.wgsl",
+            "technique/horizon/params.wgsl",
+            "technique/horizon/half.wgsl",
+        ],
     ),
     (
         "technique/horizon/half.wgsl",
@@ -161,6 +165,7 @@ const LIBRARIES: &[(&str, &[&str])] = &[
             "shaders/env.wgsl",
             "shaders/far.wgsl",
             "technique/horizon/params.wgsl",
+            "technique/horizon/half.wgsl",
             "technique/horizon/slice.wgsl",
         ],
     ),

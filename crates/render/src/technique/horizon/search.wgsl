@@ -7,7 +7,7 @@
 // Inputs: with interleaving `in_normal` is the split geometry (xyz normal, w depth) and
 // `in_depth` is not read; without, they are the G-buffer's normal and view depth. The results
 // go straight to the layer texel's full-resolution pixel (no re-interleaving pass). With HALF
-// (`resolution=half`) there is one invocation per 2×2 block instead (below).
+// (`resolution=half`) there is one invocation per 2×2 block instead (slice.wgsl's `march_at`).
 // Everything is computed in view space (positions from depth and pixel, no matrix per sample);
 // the bent normal and the far field's directions go back to world space.
 // NEAR (hbil's near-field light) and FAR (the far field through the arcs) are override
@@ -23,43 +23,16 @@
 
 @compute @workgroup_size(8, 8, 1)
 fn horizon(@builtin(global_invocation_id) id: vec3<u32>) {
-    // The pixel searched, where its results go, its layer texel, and the position that picks
-    // its slice angles and step jitter.
-    var pixel: vec2<u32>;
-    var store_at: vec2<u32>;
-    var texel: vec2<u32>;
-    var layer = 0u;
-    var pattern: vec2<u32>;
-    if HALF {
-        // resolution=half (half.wgsl): one invocation per 2×2 block, at its pixel of this frame,
-        // read from the full-resolution G-buffer; the results go to the block's texel, and the
-        // angles follow the block grid so that neighbouring blocks take different ones.
-        store_at = id.xy;
-        if any(store_at >= half_size(view)) {
-            return;
-        }
-        pixel = half_pixel(view, store_at);
-        texel = pixel;
-        pattern = store_at;
-    } else {
-        let rows = ((params.layer_height + 7u) / 8u) * 8u;
-        texel = vec2<u32>(id.x, id.y % rows);
-        layer = id.y / rows;
-        if texel.x >= params.layer_width || texel.y >= params.layer_height {
-            return;
-        }
-        pixel = layer_pixel(params, texel, layer);
-        if !in_bounds(view, pixel) {
-            return;
-        }
-        store_at = pixel;
-        pattern = pixel;
+    let at = march_at(view, params, id.xy);
+    if !at.valid {
+        return;
     }
-    let centre = geometry(in_depth, in_normal, params, vec2<i32>(texel), layer);
+    let store_at = at.store_at;
+    let centre = geometry(in_depth, in_normal, params, vec2<i32>(at.texel), at.layer);
     var r: Horizon;
     r.cone = vec4<f32>(0.0, 0.0, 0.0, 1.0);
     if centre.w > 0.0 {
-        r = search_pixel(in_depth, in_normal, in_radiance, env_radiance, far_probes, far_visibility, env_sampler, view, env, params, texel, layer, pixel, pattern, centre);
+        r = search_pixel(in_depth, in_normal, in_radiance, env_radiance, far_probes, far_visibility, env_sampler, view, env, params, at.texel, at.layer, at.pixel, at.pattern, centre);
     }
     textureStore(out_cone, store_at, r.cone);
     if NEAR {

@@ -1,9 +1,48 @@
 // slice.wgsl — what the slice marches of gtao/hbil (search.wgsl) and vbgi (vbgi/bitmask.wgsl)
-// share: layer texels, the point on the slice line, the slice integral G. A library (after
-// common.wgsl and params.wgsl): it declares no bindings; its functions take the view (`cam`),
-// the pass's `HorizonParams` (`p`) and the layer textures they read (`depth_layers`,
-// `normal_layers`: search.wgsl's `in_depth` and `in_normal`, described there).
+// share: the invocation's pixel, layer texels, the point on the slice line, the slice integral
+// G. A library (after common.wgsl, params.wgsl and half.wgsl): it declares no bindings; its
+// functions take the view (`cam`), the pass's `HorizonParams` (`p`) and the layer textures they
+// read (`depth_layers`, `normal_layers`: search.wgsl's `in_depth` and `in_normal`, described
+// there).
 // Derivations and sources: technique/horizon/mod.rs.
+
+// What one invocation of a slice march (search.wgsl's `horizon`, vbgi's `bitmask`) works on:
+// the pixel it searches, where its results go, its layer texel and layer, and the position that
+// picks its slice angles and step jitter. The layers are stacked vertically in one 2D dispatch
+// (rows of workgroups [l·G, (l+1)·G) with G = ⌈layer height / 8⌉ serve layer l; without
+// interleaving there is one full-size layer). With HALF (`resolution=half`, half.wgsl, which the
+// kernel includes too) there is one invocation per 2×2 block, at its pixel of this frame, read
+// from the full-resolution G-buffer; the results go to the block's texel, and the angles follow
+// the block grid so that neighbouring blocks take different ones. `valid` is false for an
+// invocation past the image.
+struct MarchAt {
+    pixel: vec2<u32>,
+    store_at: vec2<u32>,
+    texel: vec2<u32>,
+    layer: u32,
+    pattern: vec2<u32>,
+    valid: bool,
+}
+
+fn march_at(cam: View, p: HorizonParams, id: vec2<u32>) -> MarchAt {
+    var m: MarchAt;
+    if HALF {
+        m.store_at = id;
+        m.pixel = half_pixel(cam, min(id, half_size(cam) - 1u));
+        m.texel = m.pixel;
+        m.pattern = id;
+        m.valid = all(id < half_size(cam));
+        return m;
+    }
+    let rows = ((p.layer_height + 7u) / 8u) * 8u;
+    m.texel = vec2<u32>(id.x, id.y % rows);
+    m.layer = id.y / rows;
+    m.pixel = layer_pixel(p, m.texel, m.layer);
+    m.store_at = m.pixel;
+    m.pattern = m.pixel;
+    m.valid = m.texel.x < p.layer_width && m.texel.y < p.layer_height && in_bounds(cam, m.pixel);
+    return m;
+}
 
 // Normal (xyz) and view depth (w) of a layer texel.
 fn geometry(depth_layers: texture_2d_array<f32>, normal_layers: texture_2d_array<f32>, p: HorizonParams, q: vec2<i32>, layer: u32) -> vec4<f32> {

@@ -114,36 +114,16 @@ fn range_bits(range: vec2<f32>, base: f32, jitter: f32) -> u32 {
 
 @compute @workgroup_size(8, 8, 1)
 fn bitmask(@builtin(global_invocation_id) id: vec3<u32>) {
-    // The pixel marched, where its results go, its layer texel, and the position that picks its
-    // slice angles and jitters (as search.wgsl's `horizon`).
-    var pixel: vec2<u32>;
-    var store_at: vec2<u32>;
-    var texel: vec2<u32>;
-    var layer = 0u;
-    var pattern: vec2<u32>;
-    if HALF {
-        // resolution=half (half.wgsl): one invocation per 2×2 block, at its pixel of this frame.
-        store_at = id.xy;
-        if any(store_at >= half_size(view)) {
-            return;
-        }
-        pixel = half_pixel(view, store_at);
-        texel = pixel;
-        pattern = store_at;
-    } else {
-        let rows = ((params.layer_height + 7u) / 8u) * 8u;
-        texel = vec2<u32>(id.x, id.y % rows);
-        layer = id.y / rows;
-        if texel.x >= params.layer_width || texel.y >= params.layer_height {
-            return;
-        }
-        pixel = layer_pixel(params, texel, layer);
-        if !in_bounds(view, pixel) {
-            return;
-        }
-        store_at = pixel;
-        pattern = pixel;
+    let at = march_at(view, params, id.xy);
+    if !at.valid {
+        return;
     }
+    // Named once here: the march below uses them throughout.
+    let pixel = at.pixel;
+    let texel = at.texel;
+    let layer = at.layer;
+    let pattern = at.pattern;
+    let store_at = at.store_at;
     let centre = geometry(in_depth, in_normal, params, vec2<i32>(texel), layer);
     let depth = centre.w;
     if depth <= 0.0 {
