@@ -274,7 +274,8 @@ fn wall_ao_follows_the_curve() {
 /// creases: measured on lavapipe, hbil's |ao_half − ao_full| has a 99th percentile of 0.025 and
 /// a mean of 0.0065 over the pixels by an edge, where a plain bilinear upsample gives 0.033 and
 /// 0.0097; vbgi's (svgf, noisier) 0.0405 and 0.0120, bilinear 0.0459 and 0.0150. The bounds
-/// (hbil 0.03 and 0.008, vbgi 0.043 and 0.0135) lie between.
+/// (hbil 0.03 and 0.008, vbgi 0.043 and 0.0135) lie between. vbgi's interleaved march keeps
+/// within the image-mean bounds too (ao 0.8427 against 0.8527, indirect 0.0514 against 0.0505).
 #[test]
 fn interleaved_and_half_resolution_agree_with_full_resolution() {
     let Some(ctx) = common::context() else { return };
@@ -301,7 +302,10 @@ fn interleaved_and_half_resolution_agree_with_full_resolution() {
             .collect();
         s.iter().sum::<f64>() / s.len() as f64
     };
-    let (_, _, depth, normal) = render("hbil:source=direct+interleaved=off");
+    // Each technique's full-resolution march without interleaving is the reference; hbil's also
+    // gives the depth and normals the edge mask reads.
+    let hbil_full = render("hbil:source=direct+interleaved=off");
+    let (depth, normal) = (&hbil_full.2, &hbil_full.3);
     // Pixels by an edge: a neighbour (3×3) on another surface (depth 5 % off, or normal 30° off).
     let (w, h) = (size.0 as usize, size.1 as usize);
     let edge: Vec<bool> = (0..w * h)
@@ -319,14 +323,20 @@ fn interleaved_and_half_resolution_agree_with_full_resolution() {
         })
         .collect();
     for (technique, p99_bound, edge_bound) in [("hbil", 0.03, 0.008), ("vbgi", 0.043, 0.0135)] {
-        let (ao_f, ind_f, _, _) = render(&format!("{technique}:source=direct+interleaved=off"));
+        let other_full;
+        let (ao_f, ind_f) = if technique == "hbil" {
+            (&hbil_full.0, &hbil_full.1)
+        } else {
+            other_full = render(&format!("{technique}:source=direct+interleaved=off"));
+            (&other_full.0, &other_full.1)
+        };
         for what in ["interleaved", "half"] {
             let method = match what {
                 "interleaved" => format!("{technique}:source=direct"),
                 _ => format!("{technique}:source=direct+resolution=half"),
             };
             let (ao, ind, _, _) = render(&method);
-            let (a, af, i, f) = (avg(&ao), avg(&ao_f), avg(&ind), avg(&ind_f));
+            let (a, af, i, f) = (avg(&ao), avg(ao_f), avg(&ind), avg(ind_f));
             eprintln!("image means: ao {a:.4} ({method}) vs {af:.4}; indirect {i:.4} vs {f:.4}");
             assert!((a - af).abs() < 0.03, "{method}: ao {a} vs {af}");
             assert!((i - f).abs() < 0.1 * f, "{method}: indirect {i} vs {f}");

@@ -1,5 +1,5 @@
-//! The `upsample` kernel of gtao/hbil (upsample.wgsl): `resolution=half`'s results brought to
-//! every pixel before the bilateral blur.
+//! The `upsample` kernel of gtao, hbil and vbgi (upsample.wgsl): `resolution=half`'s results
+//! brought to every pixel before the bilateral blur.
 
 use crate::bindings::{PassLayout, kind};
 use crate::targets::HDR_FORMAT;
