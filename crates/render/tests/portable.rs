@@ -150,13 +150,18 @@ const LIBRARIES: &[(&str, &[&str])] = &[
         "technique/horizon/slice.wgsl",
         &[
             "shaders/common.wgsl",
+            "shaders/env.wgsl",
             "technique/horizon/params.wgsl",
             "technique/horizon/half.wgsl",
         ],
     ),
     (
         "technique/horizon/half.wgsl",
-        &["shaders/common.wgsl", "technique/horizon/params.wgsl"],
+        &[
+            "shaders/common.wgsl",
+            "shaders/env.wgsl",
+            "technique/horizon/params.wgsl",
+        ],
     ),
     (
         "technique/horizon/march.wgsl",

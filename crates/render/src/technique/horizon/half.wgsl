@@ -1,10 +1,10 @@
-// half.wgsl — `resolution=half` (gtao, hbil, vbgi): the pixel of each 2×2 block that the search takes,
-// and the edge-aware upsample that brings its results to every pixel. A library (after
-// common.wgsl and params.wgsl): it declares no bindings; its functions take the view (`cam`), the
-// G-buffer images they read (`normals`: world normal, `depths`: view depth) and the search's
-// results (`cones`, `nears`, `fars`: search.wgsl's `out_cone`, `out_near`, `out_far`, one texel
-// per 2×2 block). accumulate.wgsl upsamples on its way in; upsample.wgsl writes full-resolution
-// images where the bilateral blur comes first.
+// half.wgsl — `resolution=half` (gtao, hbil, vbgi): the pixel of each 2×2 block that the search
+// takes, and the edge-aware upsample that brings its results to every pixel. A library (after
+// common.wgsl, env.wgsl and params.wgsl): it declares no bindings; its functions take the view
+// (`cam`), the environment's uniforms (`e`), the G-buffer images they read (`normals`: world
+// normal, `depths`: view depth) and the search's results (`cones`, `nears`, `fars`: search.wgsl's
+// `out_cone`, `out_near`, `out_far`, one texel per 2×2 block). accumulate.wgsl upsamples on its
+// way in; upsample.wgsl writes full-resolution images where the bilateral blur comes first.
 // Derivations and sources: technique/horizon/mod.rs.
 
 // The upsample's tolerance: a tap counts half when its surface point lies this far (relative to
@@ -33,6 +33,8 @@ fn half_pixel(cam: View, texel: vec2<u32>) -> vec2<u32> {
 struct HalfTaps {
     base: vec2<i32>,
     weight: vec4<f32>,
+    // The searched pixels' unit normals (where their weight is not 0).
+    normal: array<vec3<f32>, 4>,
 }
 
 fn half_tap(h: HalfTaps, i: u32) -> vec2<i32> {
@@ -69,7 +71,8 @@ fn half_taps(normals: texture_2d<f32>, depths: texture_2d<f32>, cam: View, pixel
         let bx = select(1.0 - f.x, f.x, (i & 1u) == 1u);
         let by = select(1.0 - f.y, f.y, (i >> 1u) == 1u);
         let plane = dot(n, world_position(cam, s, ds) - x) / tol;
-        let c = max(dot(n, normalize(ns.xyz)), 0.0);
+        h.normal[i] = normalize(ns.xyz);
+        let c = max(dot(n, h.normal[i]), 0.0);
         let c2 = c * c;
         let c4 = c2 * c2;
         let w = (bx * by + 1e-3) * c4 * c4 / (1.0 + plane * plane);
@@ -92,13 +95,14 @@ struct HalfResults {
     far: vec4<f32>,
 }
 
-fn half_upsample(normals: texture_2d<f32>, depths: texture_2d<f32>, cones: texture_2d<f32>, nears: texture_2d<f32>, fars: texture_2d<f32>, cam: View, pixel: vec2<u32>, nw: vec4<f32>, depth: f32) -> HalfResults {
+fn half_upsample(normals: texture_2d<f32>, depths: texture_2d<f32>, cones: texture_2d<f32>, nears: texture_2d<f32>, fars: texture_2d<f32>, cam: View, e: EnvUniforms, pixel: vec2<u32>, nw: vec4<f32>, depth: f32) -> HalfResults {
     var r: HalfResults;
     r.cone = vec4<f32>(0.0, 0.0, 0.0, 1.0);
     if nw.w == 0.0 || depth <= 0.0 {
         return r;
     }
-    let h = half_taps(normals, depths, cam, pixel, world_position(cam, pixel, depth), normalize(nw.xyz), depth);
+    let n = normalize(nw.xyz);
+    let h = half_taps(normals, depths, cam, pixel, world_position(cam, pixel, depth), n, depth);
     if dot(h.weight, vec4<f32>(1.0)) == 0.0 {
         return r;
     }
@@ -114,7 +118,14 @@ fn half_upsample(normals: texture_2d<f32>, depths: texture_2d<f32>, cones: textu
             r.near += w * textureLoad(nears, t, 0).rgb;
         }
         if FAR {
-            r.far += w * textureLoad(fars, t, 0);
+            // The far field is a cosine-weighted integral at the searched pixel's normal: it is
+            // carried to this pixel's normal by the ratio of the open sky's irradiance at the two
+            // (what a normal map changes between neighbours), where the searched one's is not dark.
+            let e_s = env_irradiance_sh(e, h.normal[i]);
+            let e_p = env_irradiance_sh(e, n);
+            let ratio = select(vec3<f32>(1.0), e_p / max(e_s, vec3<f32>(1e-8)), e_s > 0.05 * max(e_p, vec3<f32>(1e-8)));
+            let f = textureLoad(fars, t, 0);
+            r.far += w * vec4<f32>(f.rgb * ratio, f.w);
         }
     }
     return r;

@@ -87,8 +87,13 @@
 //! (n·n_s)⁸ / (1 + (d/(0.01 depth))²), d the searched point's distance from the pixel's tangent
 //! plane: a tap on another surface (across a silhouette or a crease) hardly counts, and a pixel
 //! whose nearest taps all lie on other surfaces takes the likeliest of them. The bilinear weights
-//! carry a floor of 10⁻³ for that case. Accumulate upsamples on its way in; with the bilateral
-//! blur the `upsample` pass writes full-resolution images first, which the blur reads.
+//! carry a floor of 10⁻³ for that case. The far field (the environment through the visible arcs
+//! or sectors) is a cosine-weighted integral at the searched pixel's normal n_s; each tap's is
+//! carried to the pixel's normal n by E_sky(n)/E_sky(n_s), the open sky's SH irradiance at the two
+//! (per channel; not where E_sky(n_s) is below 5 % of E_sky(n)): the visibility is shared by
+//! neighbours, the normal is not where a normal map varies it. Accumulate upsamples on its way in;
+//! with the bilateral blur the `upsample` pass writes full-resolution images first, which the blur
+//! reads.
 
 pub mod accumulate;
 mod machine;
