@@ -58,13 +58,19 @@ declare_settings! {
     }
 }
 
-/// What the declarations cannot check alone: the sender rejection's edges in order.
-pub fn check_march(m: &MarchSettings) -> Result<(), String> {
+/// What the declarations cannot check or imply alone: the sender rejection's edges in order, and
+/// no 4×4 deinterleave at half resolution.
+pub fn settle_march(m: &mut MarchSettings) -> Result<(), String> {
     if m.reject_a >= m.reject_b {
         return Err(format!(
             "reject_a {} must be below reject_b {}",
             m.reject_a, m.reject_b
         ));
+    }
+    // Half resolution marches full-resolution pixels, one of each 2×2 block: the 4×4
+    // deinterleave does not apply.
+    if m.resolution == Resolution::Half {
+        m.interleaved = false;
     }
     Ok(())
 }

@@ -107,6 +107,11 @@ fn half_upsample(normals: texture_2d<f32>, depths: texture_2d<f32>, cones: textu
         return r;
     }
     r.cone = vec4<f32>(0.0);
+    // The open sky's irradiance at this pixel's normal (FAR below).
+    var e_p = vec3<f32>(0.0);
+    if FAR {
+        e_p = env_irradiance_sh(e, n);
+    }
     for (var i = 0u; i < 4u; i++) {
         let w = h.weight[i];
         if w == 0.0 {
@@ -122,7 +127,6 @@ fn half_upsample(normals: texture_2d<f32>, depths: texture_2d<f32>, cones: textu
             // carried to this pixel's normal by the ratio of the open sky's irradiance at the two
             // (what a normal map changes between neighbours), where the searched one's is not dark.
             let e_s = env_irradiance_sh(e, h.normal[i]);
-            let e_p = env_irradiance_sh(e, n);
             let ratio = select(vec3<f32>(1.0), e_p / max(e_s, vec3<f32>(1e-8)), e_s > 0.05 * max(e_p, vec3<f32>(1e-8)));
             let f = textureLoad(fars, t, 0);
             r.far += w * vec4<f32>(f.rgb * ratio, f.w);

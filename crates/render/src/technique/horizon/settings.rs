@@ -2,7 +2,7 @@
 
 use crate::settings::denoise::{Denoise, SvgfSettings};
 use crate::settings::march::MarchSettings;
-pub use crate::settings::march::{ReprojectMode, Resolution, Source, check_march};
+pub use crate::settings::march::{ReprojectMode, Resolution, Source, settle_march};
 use crate::settings::{Preset, TechniqueParams};
 use crate::{choice, declare_settings};
 
@@ -67,12 +67,7 @@ impl Settings {
     pub fn from_params(params: &TechniqueParams) -> Result<Self, String> {
         let mut s = Settings::default();
         crate::settings::apply(&mut s, params, &[("samples", "steps")])?;
-        check_march(&s.march)?;
-        // Half resolution searches full-resolution pixels, one of each 2×2 block: the 4×4
-        // deinterleave does not apply.
-        if s.march.resolution == Resolution::Half {
-            s.march.interleaved = false;
-        }
+        settle_march(&mut s.march)?;
         Ok(s)
     }
 }

@@ -70,12 +70,7 @@ impl Settings {
     pub fn from_params(params: &TechniqueParams) -> Result<Self, String> {
         let mut s = Settings::default();
         crate::settings::apply(&mut s, params, &[("samples", "steps")])?;
-        crate::settings::march::check_march(&s.march)?;
-        // Half resolution marches full-resolution pixels, one of each 2×2 block: the 4×4
-        // deinterleave does not apply (as for gtao and hbil).
-        if s.march.resolution == crate::settings::march::Resolution::Half {
-            s.march.interleaved = false;
-        }
+        crate::settings::march::settle_march(&mut s.march)?;
         Ok(s)
     }
 }
