@@ -785,3 +785,35 @@ fn half_resolution_carries_the_far_field_to_each_normal() {
         assert!(mean < bound, "{technique}: mean relative difference {mean}");
     }
 }
+
+#[test]
+fn half_resolution_leaves_no_surface_dark() {
+    // At 96×54 the city's roofs and corners are one pixel wide: on three frames of four no
+    // searched pixel of their 2×2 neighbourhood lies on them (a row or column the search skips,
+    // the sky beside), or only a wall at 90° does. The upsample takes such a pixel as open, or
+    // the wall's result, never as dark.
+    let Some(ctx) = common::context() else { return };
+    let scene = builtin::scene("city").unwrap();
+    let env = small_sky();
+    for technique in ["hbil", "vbgi"] {
+        let render = |method: &str| {
+            rendered(&ctx, &scene, &env, (96, 54), method, 1.0, 16).read_aov(Aov::EnvIrradiance)
+        };
+        let full = render(&format!("{technique}:interleaved=off"));
+        let half = render(&format!("{technique}:resolution=half"));
+        let luminance = |p: [f32; 4]| p[0] + p[1] + p[2];
+        let surface: Vec<usize> = (0..full.pixels.len())
+            .filter(|&k| full.pixels[k][3] != 0.0)
+            .collect();
+        let dark = surface
+            .iter()
+            .filter(|&&k| luminance(half.pixels[k]) < 0.5 * luminance(full.pixels[k]))
+            .count();
+        eprintln!(
+            "{technique}: {dark} of {} surface pixels below half their full-resolution value",
+            surface.len()
+        );
+        assert!(surface.len() > 3000, "{technique}: {}", surface.len());
+        assert_eq!(dark, 0, "{technique}: dark pixels at half resolution");
+    }
+}

@@ -151,6 +151,7 @@ const LIBRARIES: &[(&str, &[&str])] = &[
         &[
             "shaders/common.wgsl",
             "shaders/env.wgsl",
+            "shaders/far.wgsl",
             "technique/horizon/params.wgsl",
             "technique/horizon/half.wgsl",
         ],
@@ -160,6 +161,7 @@ const LIBRARIES: &[(&str, &[&str])] = &[
         &[
             "shaders/common.wgsl",
             "shaders/env.wgsl",
+            "shaders/far.wgsl",
             "technique/horizon/params.wgsl",
         ],
     ),

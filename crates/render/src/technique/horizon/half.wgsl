@@ -1,9 +1,10 @@
 // half.wgsl — `resolution=half` (gtao, hbil, vbgi): the pixel of each 2×2 block that the search
 // takes, and the edge-aware upsample that brings its results to every pixel. A library (after
-// common.wgsl, env.wgsl and params.wgsl): it declares no bindings; its functions take the view
-// (`cam`), the environment's uniforms (`e`), the G-buffer images they read (`normals`: world
-// normal, `depths`: view depth) and the search's results (`cones`, `nears`, `fars`: search.wgsl's
-// `out_cone`, `out_near`, `out_far`, one texel per 2×2 block). accumulate.wgsl upsamples on its
+// common.wgsl, env.wgsl, far.wgsl and params.wgsl): it declares no bindings; its functions take
+// the view (`cam`), the environment's uniforms (`e`), the G-buffer images they read (`normals`:
+// world normal, `depths`: view depth), the search's results (`cones`, `nears`, `fars`:
+// search.wgsl's `out_cone`, `out_near`, `out_far`, one texel per 2×2 block) and the far field's
+// probes (`probes`, `visibility`, `smp`: far.wgsl's). accumulate.wgsl upsamples on its
 // way in; upsample.wgsl writes full-resolution images where the bilateral blur comes first.
 // Derivations and sources: technique/horizon/mod.rs.
 
@@ -45,7 +46,9 @@ fn half_tap(h: HalfTaps, i: u32) -> vec2<i32> {
 // `depth`): the bilinear weights of the four searched pixels around it, each times
 // (n·n_s)⁸ / (1 + (d/(HALF_PLANE depth))²), d the searched point's distance from x's tangent
 // plane, so that a tap on another surface hardly counts. A small floor under the bilinear weight
-// lets a pixel whose nearest taps lie on other surfaces take the farther one on its own.
+// lets a pixel whose nearest taps lie on other surfaces take the farther one on its own; a tiny
+// one under the normals' term lets a pixel whose every tap faces 90° or more away (a roof's edge
+// over a wall) take them rather than nothing.
 fn half_taps(normals: texture_2d<f32>, depths: texture_2d<f32>, cam: View, pixel: vec2<u32>, x: vec3<f32>, n: vec3<f32>, depth: f32) -> HalfTaps {
     let off = half_offset(cam.frame_index);
     let rel = vec2<i32>(pixel) - vec2<i32>(off);
@@ -75,7 +78,7 @@ fn half_taps(normals: texture_2d<f32>, depths: texture_2d<f32>, cam: View, pixel
         let c = max(dot(n, h.normal[i]), 0.0);
         let c2 = c * c;
         let c4 = c2 * c2;
-        let w = (bx * by + 1e-3) * c4 * c4 / (1.0 + plane * plane);
+        let w = (bx * by + 1e-3) * (c4 * c4 + 1e-12) / (1.0 + plane * plane);
         h.weight[i] = w;
         sum += w;
     }
@@ -88,22 +91,35 @@ fn half_taps(normals: texture_2d<f32>, depths: texture_2d<f32>, cam: View, pixel
 // This frame's search results at full-resolution `pixel` (its G-buffer normal `nw`, w = 0
 // without a surface, and view depth `depth`, which the caller has read): bent cone, near field
 // (NEAR) and far field (FAR), the searched texels' weighted by half_taps. A pixel without a
-// surface, or whose taps all lack one, gets the open cone (0, 0, 0, 1) and no light.
+// surface gets the open cone (0, 0, 0, 1) and no light; one whose taps all lack a surface is
+// taken as open (below).
 struct HalfResults {
     cone: vec4<f32>,
     near: vec3<f32>,
     far: vec4<f32>,
 }
 
-fn half_upsample(normals: texture_2d<f32>, depths: texture_2d<f32>, cones: texture_2d<f32>, nears: texture_2d<f32>, fars: texture_2d<f32>, cam: View, e: EnvUniforms, pixel: vec2<u32>, nw: vec4<f32>, depth: f32) -> HalfResults {
+fn half_upsample(normals: texture_2d<f32>, depths: texture_2d<f32>, cones: texture_2d<f32>, nears: texture_2d<f32>, fars: texture_2d<f32>, probes: texture_2d<f32>, visibility: texture_2d<f32>, smp: sampler, cam: View, e: EnvUniforms, pixel: vec2<u32>, nw: vec4<f32>, depth: f32) -> HalfResults {
     var r: HalfResults;
     r.cone = vec4<f32>(0.0, 0.0, 0.0, 1.0);
     if nw.w == 0.0 || depth <= 0.0 {
         return r;
     }
     let n = normalize(nw.xyz);
-    let h = half_taps(normals, depths, cam, pixel, world_position(cam, pixel, depth), n, depth);
+    let x = world_position(cam, pixel, depth);
+    let h = half_taps(normals, depths, cam, pixel, x, n, depth);
     if dot(h.weight, vec4<f32>(1.0)) == 0.0 {
+        // Every searched pixel around is sky (a surface one pixel wide, whose row or column
+        // this frame's search skips): the pixel is taken as open, its far field as what an
+        // unoccluded hemisphere receives, the probe volume's irradiance or the sky's.
+        r.cone = vec4<f32>(n, 1.0);
+        if FAR {
+            var open = env_irradiance_sh(e, n);
+            if far_volume(probes) {
+                open = far_irradiance(far_sh_here(probes, visibility, smp, cam, x, n), n);
+            }
+            r.far = vec4<f32>(open, 1.0);
+        }
         return r;
     }
     r.cone = vec4<f32>(0.0);

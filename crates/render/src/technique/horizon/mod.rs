@@ -87,7 +87,12 @@
 //! (n·n_s)⁸ / (1 + (d/(0.01 depth))²), d the searched point's distance from the pixel's tangent
 //! plane: a tap on another surface (across a silhouette or a crease) hardly counts, and a pixel
 //! whose nearest taps all lie on other surfaces takes the likeliest of them. The bilinear weights
-//! carry a floor of 10⁻³ for that case. The far field (the environment through the visible arcs
+//! carry a floor of 10⁻³ for that case, the normals' term one of 10⁻¹² for a pixel whose every
+//! tap faces 90° or more away (a roof's edge over a wall, one pixel wide). A pixel none of whose
+//! taps sees a surface (a ledge one pixel wide against the sky, on the three frames of four whose
+//! searched rows or columns miss it) is taken as open: ao 1, its own normal as the bent normal,
+//! no near field, and the far field of an open hemisphere (the probe volume's irradiance, or the
+//! sky's). Left dark, such pixels read a quarter of their light in the running mean. The far field (the environment through the visible arcs
 //! or sectors) is a cosine-weighted integral at the searched pixel's normal n_s; each tap's is
 //! carried to the pixel's normal n by E_sky(n)/E_sky(n_s), the open sky's SH irradiance at the two
 //! (per channel; not where E_sky(n_s) is below 5 % of E_sky(n)): the visibility is shared by

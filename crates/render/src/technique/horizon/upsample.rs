@@ -10,6 +10,7 @@ pub fn source() -> String {
         util::COMMON_WGSL,
         util::ENV_WGSL,
         util::FRAME_BINDINGS_WGSL,
+        util::FAR_WGSL,
         include_str!("params.wgsl"),
         include_str!("half.wgsl"),
         include_str!("upsample.wgsl"),
