@@ -149,7 +149,7 @@ fn accumulate(@builtin(global_invocation_id) id: vec3<u32>) {
     if HALF {
         // resolution=half without the blur: this frame's values from the searched 2×2 blocks
         // around the pixel (half.wgsl), raw_* holding one texel per block.
-        let h = half_upsample(gb_normal, gb_view_depth, raw_cone, raw_near, raw_far, far_probes, far_visibility, env_sampler, view, env, pixel, nw, depth);
+        let h = half_upsample(gb_normal, gb_view_depth, raw_cone, raw_near, raw_far, far_probes, far_visibility, far_irradiance_atlas, env_sampler, view, env, pixel, nw, depth);
         resolve(pixel, nw, depth, h.cone, h.near, h.far);
         return;
     }

@@ -4,7 +4,7 @@
 // the view (`cam`), the environment's uniforms (`e`), the G-buffer images they read (`normals`:
 // world normal, `depths`: view depth), the search's results (`cones`, `nears`, `fars`:
 // search.wgsl's `out_cone`, `out_near`, `out_far`, one texel per 2×2 block) and the far field's
-// probes (`probes`, `visibility`, `smp`: far.wgsl's). accumulate.wgsl upsamples on its
+// probes (`probes`, `visibility`, `atlas`, `smp`: far.wgsl's far_irradiance_here). accumulate.wgsl upsamples on its
 // way in; upsample.wgsl writes full-resolution images where the bilateral blur comes first.
 // Derivations and sources: technique/horizon/mod.rs.
 
@@ -99,7 +99,7 @@ struct HalfResults {
     far: vec4<f32>,
 }
 
-fn half_upsample(normals: texture_2d<f32>, depths: texture_2d<f32>, cones: texture_2d<f32>, nears: texture_2d<f32>, fars: texture_2d<f32>, probes: texture_2d<f32>, visibility: texture_2d<f32>, smp: sampler, cam: View, e: EnvUniforms, pixel: vec2<u32>, nw: vec4<f32>, depth: f32) -> HalfResults {
+fn half_upsample(normals: texture_2d<f32>, depths: texture_2d<f32>, cones: texture_2d<f32>, nears: texture_2d<f32>, fars: texture_2d<f32>, probes: texture_2d<f32>, visibility: texture_2d<f32>, atlas: texture_2d<f32>, smp: sampler, cam: View, e: EnvUniforms, pixel: vec2<u32>, nw: vec4<f32>, depth: f32) -> HalfResults {
     var r: HalfResults;
     r.cone = vec4<f32>(0.0, 0.0, 0.0, 1.0);
     if nw.w == 0.0 || depth <= 0.0 {
@@ -116,7 +116,7 @@ fn half_upsample(normals: texture_2d<f32>, depths: texture_2d<f32>, cones: textu
         if FAR {
             var open = env_irradiance_sh(e, n);
             if far_volume(probes) {
-                open = far_irradiance(far_sh_here(probes, visibility, smp, cam, x, n), n);
+                open = far_irradiance_here(probes, visibility, atlas, smp, cam, x, n);
             }
             r.far = vec4<f32>(open, 1.0);
         }

@@ -21,7 +21,7 @@ fn upsample(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     let nw = textureLoad(gb_normal, pixel, 0);
     let depth = textureLoad(gb_view_depth, pixel, 0).r;
-    let h = half_upsample(gb_normal, gb_view_depth, half_cone, half_near, half_far, far_probes, far_visibility, env_sampler, view, env, pixel, nw, depth);
+    let h = half_upsample(gb_normal, gb_view_depth, half_cone, half_near, half_far, far_probes, far_visibility, far_irradiance_atlas, env_sampler, view, env, pixel, nw, depth);
     textureStore(out_cone, pixel, h.cone);
     if NEAR {
         textureStore(out_near, pixel, vec4<f32>(h.near, 1.0));
