@@ -7,23 +7,24 @@ export XDG_RUNTIME_DIR ?= $(shell d=$${TMPDIR:-/tmp}/nearfield-xdg-$$(id -u); mk
 setup:
 	@./scripts/setup.sh
 
-# Renders the built-in default scene (open-top Cornell box under the analytic sky) with the most
-# accurate technique at interactive cost (hbil, 16 temporal frames) to cornell.png, and the strip
-# none | ssao | ssdo | s3ho | hbil | vbgi | reference, each labelled with its relative error against
-# the path-traced reference, to cornell-compare.png (report in cornell-compare/).
+# Renders the built-in default scene (open-top Cornell box under the analytic sky, its probe volume
+# a probe per metre, R = 1 m) with the most accurate technique at interactive cost (hbil, 16
+# temporal frames) to cornell.png, and the strip none | ssao | ssdo | s3ho | hbil | vbgi |
+# reference of the box with a yellow box the volume's bake never saw (cornell-dynamic), each
+# labelled with its relative error against the path-traced reference, to cornell-compare.png
+# (report in cornell-compare/).
 NEARFIELD = target/release/nearfield
-DEMO_SCENE = builtin:cornell --radius 1
 demo: setup
 	$(CARGO) build --release -p nearfield-cli
-	$(NEARFIELD) render $(DEMO_SCENE) --method hbil --frames 16 -o cornell.png
-	$(NEARFIELD) compare $(DEMO_SCENE) --size 384x288 --aov lambertian --frames 16 --spp 256 \
-		--max-depth 8 --methods none,ssao,ssdo,s3ho,hbil,vbgi --out cornell-compare \
+	$(NEARFIELD) render builtin:cornell --method hbil --frames 16 -o cornell.png
+	$(NEARFIELD) compare builtin:cornell-dynamic --size 384x288 --aov lambertian --frames 16 \
+		--spp 256 --max-depth 8 --methods none,ssao,ssdo,s3ho,hbil,vbgi --out cornell-compare \
 		--strip cornell-compare.png
 	@echo
 	@echo "  $(CURDIR)/cornell.png           hbil, 16 frames, 1280x720"
 	@echo "  $(CURDIR)/cornell-compare.png   each technique beside the reference, with its error"
 	@echo "  $(CURDIR)/cornell-compare/report.html"
-	@echo "  the same scene in the viewer:  $(NEARFIELD) view $(DEMO_SCENE) --method hbil"
+	@echo "  the same scene in the viewer:  $(NEARFIELD) view builtin:cornell --method hbil"
 
 # The book (docs/, mdBook) into target/book/; installs mdbook with cargo when it is missing.
 docs:

@@ -124,14 +124,19 @@ pub fn run(args: BenchArgs) -> Result<()> {
     if let Some(p) = &args.json {
         crate::output::check_parent_dir(p)?;
     }
-    let params = args.technique.params()?;
+    let mut params = args.technique.params()?;
     let size = crate::options::parse_size(&args.scene.size)?;
     let settings = args.technique.settings(size)?;
     args.far.precheck()?;
     // The adapter first: a machine that cannot run the passes hears so before a bake.
     let ctx = GpuContext::new(args.scene.adapter.as_deref())?;
     let loaded = args.scene.load()?;
-    let volume = args.far.resolve(&args.scene, &loaded, None)?;
+    let plan = args.far.plan(&loaded, None)?;
+    crate::options::apply_auto_radius(&mut params, &plan);
+    for m in &methods {
+        nearfield_render::technique::check_spec(m, &params)?;
+    }
+    let volume = plan.volume(&args.scene, &loaded)?;
     let info = ctx.adapter_info();
     // Every method's renderer is made and warmed first; then the timed frames go round the
     // methods in turn, so that a slow drift of the machine (thermal, other load) touches all of

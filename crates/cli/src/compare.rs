@@ -64,6 +64,11 @@ pub struct CompareArgs {
     /// red: too bright, grey: excluded), labelled with its range.
     #[arg(long, requires = "strip")]
     pub strip_errors: bool,
+    /// Also measure each technique's footprint of the scene's dynamic objects (`--dynamic`,
+    /// `--add`, a *-dynamic built-in): the change they make to the ambient light around them,
+    /// against the path tracer's (the book, "Near and far").
+    #[arg(long)]
+    pub footprint: bool,
     /// Also measure an image made elsewhere, NAME=FILE.exr (repeatable; RGB of the AOV at the
     /// image size, e.g. another engine's AO from `peers/bevy_ssao`), with the same mask and
     /// metrics as the techniques, beside them in the report.
@@ -135,6 +140,30 @@ fn parse_region(s: &str, size: (u32, u32)) -> Result<[u32; 4]> {
     }
 }
 
+/// The one near-field radius of a comparison: `params.radius` (given, or auto from the far
+/// field), else the techniques' own defaults, which must agree (`none` has none); inf when no
+/// technique has a radius.
+fn common_radius(methods: &[String], params: &nearfield_render::TechniqueParams) -> Result<f32> {
+    if let Some(r) = params.radius {
+        return Ok(r);
+    }
+    let mut radius: Option<(f32, &str)> = None;
+    for m in methods {
+        if let Some(r) = nearfield_render::technique::radius_of(m, params)? {
+            match radius {
+                Some((r0, m0)) if r0 != r => {
+                    return Err(BadInput(format!(
+                        "{m0} and {m} have different radii ({r0} and {r} m): give one with --radius"
+                    ))
+                    .into());
+                }
+                _ => radius = Some((r, m)),
+            }
+        }
+    }
+    Ok(radius.map_or(f32::INFINITY, |(r, _)| r))
+}
+
 pub fn run(args: CompareArgs) -> Result<()> {
     // The reference's radiance is Lambertian: it is the truth for the GPU's `lambertian`.
     let ref_name = if args.aov == "lambertian" {
@@ -160,12 +189,7 @@ pub fn run(args: CompareArgs) -> Result<()> {
         .as_deref()
         .map(|r| parse_region(r, size))
         .transpose()?;
-    // One radius for both sides (default inf), and one seed.
     let mut params = args.technique.params()?;
-    let radius = *params.radius.get_or_insert(f32::INFINITY);
-    let ref_settings = args
-        .reference
-        .settings(ref_aov, size, radius, args.technique.seed)?;
     let settings = args.technique.settings(size)?;
     let reference_file = match &args.reference_file {
         Some(p) => {
@@ -199,10 +223,36 @@ pub fn run(args: CompareArgs) -> Result<()> {
     let first_camera = loaded.camera;
     // The reference sees what the last frame sees.
     loaded.camera = first_camera.orbit(args.orbit * (args.frames - 1) as f32);
+    // One radius for both sides and one seed: `--radius`, or auto (the volume's spacing; under
+    // the sky the techniques' own, which must then agree). Every technique's settings are
+    // checked against it before anything is baked or traced.
+    let plan = args.far.plan(&loaded, Some(args.aov.as_str()))?;
+    crate::options::apply_auto_radius(&mut params, &plan);
+    let radius = common_radius(&methods, &params)?;
+    params.radius = Some(radius);
+    for m in &methods {
+        nearfield_render::technique::check_spec(m, &params)?;
+    }
+    let ref_settings = args
+        .reference
+        .settings(ref_aov, size, radius, args.technique.seed)?;
     let ctx = GpuContext::new(args.scene.adapter.as_deref())?;
-    let volume = args
-        .far
-        .resolve(&args.scene, &loaded, Some(args.aov.as_str()))?;
+    let volume = plan.volume(&args.scene, &loaded)?;
+    // With --footprint: the truth's footprint, and the scene without its dynamic objects.
+    let footprint = args
+        .footprint
+        .then(|| {
+            crate::footprint::truth(
+                &args.scene,
+                &args.reference,
+                &loaded,
+                size,
+                radius,
+                args.technique.seed,
+            )
+            .map(|t| (t, crate::footprint::without_object(&loaded)))
+        })
+        .transpose()?;
     let (reference, ref_info): (ReferenceImage, ReferenceInfo) = match reference_file {
         Some((img, p)) => (
             img,
@@ -286,9 +336,10 @@ pub fn run(args: CompareArgs) -> Result<()> {
         }
         png(heatmap, args.out.join(&heat))?;
         progress.suspend(|| println!(
-            "{method:<10} pixels {:>8}  bias {:+.5}  MAE {:.5}  RMSE {:.5}  rel {:.4}  FLIP {:.4}",
+            "{method:<10} pixels {:>8}  bias {:+.5}  mean {:.3}x  MAE {:.5}  RMSE {:.5}  rel {:.4}  FLIP {:.4}",
             m.pixels,
             m.bias,
+            m.mean_ratio,
             m.mae,
             m.rmse,
             m.relative_error,
@@ -301,6 +352,7 @@ pub fn run(args: CompareArgs) -> Result<()> {
             image,
             heatmap: heat,
             convergence,
+            footprint: None,
         })
     };
     for method in &methods {
@@ -359,13 +411,37 @@ pub fn run(args: CompareArgs) -> Result<()> {
                 region,
             ),
         };
-        reports.push(measure(
-            method,
-            &value.pixels,
-            &mask,
-            convergence,
-            &mut panels,
-        )?);
+        let mut report = measure(method, &value.pixels, &mask, convergence, &mut panels)?;
+        if let Some((truth, without)) = &footprint {
+            // The same frames over the scene without its dynamic objects.
+            let with = crate::footprint::ambient_of(&mut r);
+            let mut r2 = Renderer::new(
+                &ctx,
+                &without.scene,
+                &loaded.env,
+                first_camera,
+                method,
+                &params,
+                settings,
+            )?;
+            r2.set_far_field(volume.as_ref())?;
+            for i in 0..args.frames {
+                crate::options::orbit_frame(&mut r2, i, args.orbit);
+            }
+            let without_ambient = crate::footprint::ambient_of(&mut r2);
+            let e = truth.error(&with, &without_ambient);
+            let (truth_map, map) = truth.heatmaps(&with, &without_ambient);
+            png(map, args.out.join(format!("{method}-footprint.png")))?;
+            png(truth_map, args.out.join("reference-footprint.png"))?;
+            progress.suspend(|| {
+                println!(
+                    "{method:<10} footprint {e:.4} over {} pixels",
+                    truth.pixels()
+                )
+            });
+            report.footprint = Some(e);
+        }
+        reports.push(report);
         last_mask = Some(mask);
     }
     progress.finish();
@@ -398,12 +474,17 @@ pub fn run(args: CompareArgs) -> Result<()> {
         panels.splice(0..0, first);
     }
     if let Some(path) = &args.strip {
+        // The reference's panel also names the far field the techniques had.
+        let far = match &volume {
+            Some(v) => format!("volume every {} m", v.grid.spacing.max_element()),
+            None => "sky".into(),
+        };
         panels.push(Panel {
             image: ref_srgb.clone(),
             title: "reference".into(),
             subtitle: match ref_info.spp {
-                Some(spp) => format!("ray traced, {spp} spp"),
-                None => "ray traced".into(),
+                Some(spp) => format!("ray traced, {spp} spp; {far}, R {radius} m"),
+                None => format!("ray traced; {far}, R {radius} m"),
             },
         });
         png(strip(&panels), path.clone())?;
@@ -414,11 +495,7 @@ pub fn run(args: CompareArgs) -> Result<()> {
         scene: args.scene.scene.clone(),
         aov: args.aov.clone(),
         size: [w, h],
-        radius: args
-            .technique
-            .radius
-            .clone()
-            .unwrap_or_else(|| "inf".into()),
+        radius: radius.to_string(),
         adapter: nearfield_render::context::describe(&ctx.adapter_info()),
         reference: ref_info,
         mask: mask_settings,

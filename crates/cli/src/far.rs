@@ -19,8 +19,8 @@ pub const BAKE_VERSION: u32 = 1;
 /// What lights the directions a technique finds unoccluded within R.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Far {
-    /// `volume`, except for the AOVs whose definitions see the open sky beyond R
-    /// (`env-irradiance`, `indirect-irradiance`), which get `sky`.
+    /// `volume`, except for the near-field AOVs whose definitions see the open sky beyond R
+    /// (`env-irradiance`, `indirect-irradiance` and their sum `diffuse`), which get `sky`.
     Auto,
     /// The environment, unoccluded beyond R.
     Sky,
@@ -41,15 +41,20 @@ impl Far {
     }
 
     /// Whether the frame uses the volume for `aov` (an AOV name, or `A1+A2` as `fit` takes
-    /// them; `None`: the image). `auto` gives the sky when any of them is `env-irradiance` or
-    /// `indirect-irradiance`.
+    /// them; `None`: the image). `auto` gives the sky when any of them is `env-irradiance`,
+    /// `indirect-irradiance` or `diffuse` (ρ × their sum with `light-irradiance`), so that every
+    /// near-field AOV keeps its definition (docs/src/aovs.md).
     pub fn volume_for(self, aov: Option<&str>) -> bool {
         match self {
             Far::Sky => false,
             Far::Volume => true,
             Far::Auto => !aov.is_some_and(|a| {
-                a.split('+')
-                    .any(|p| matches!(p.trim(), "env-irradiance" | "indirect-irradiance"))
+                a.split('+').any(|p| {
+                    matches!(
+                        p.trim(),
+                        "env-irradiance" | "indirect-irradiance" | "diffuse"
+                    )
+                })
             }),
         }
     }
@@ -60,21 +65,64 @@ impl Far {
 pub struct FarOpts {
     /// The far field, what the directions a technique finds unoccluded within R see: `sky` (the
     /// environment, unoccluded), `volume` (the scene's probe volume, baked on first use and
-    /// cached; `nearfield bake`), or `auto`: the volume, except for env-irradiance and
-    /// indirect-irradiance, whose definitions see the open sky.
+    /// cached; `nearfield bake`), or `auto`: the volume, except for env-irradiance,
+    /// indirect-irradiance and diffuse, whose definitions see the open sky.
     #[arg(long, default_value = "auto")]
     pub far: String,
     /// A probe volume written by `nearfield bake --out` instead of the cached default bake
     /// (implies `--far volume`).
     #[arg(long)]
     pub volume: Option<PathBuf>,
+    /// The bake's grid and rays when the volume is baked here (cached like any bake).
+    #[command(flatten)]
+    pub grid: GridOpts,
+}
+
+/// The far field a command will use, known before anything is baked: its grid sets the
+/// near-field radius `--radius auto`, and a technique's settings are checked against that
+/// radius before the bake and the reference run.
+pub enum FarPlan {
+    /// The open sky beyond R.
+    Sky,
+    /// A volume read from `--volume FILE`.
+    File(ProbeVolume),
+    /// The cached bake of these settings.
+    Bake(BakeSettings),
+}
+
+impl FarPlan {
+    /// The largest distance between neighbouring probes (m), `None` for the sky.
+    pub fn spacing(&self) -> Option<f32> {
+        match self {
+            FarPlan::Sky => None,
+            FarPlan::File(v) => Some(v.grid.spacing.max_element()),
+            FarPlan::Bake(s) => Some(s.grid.spacing.max_element()),
+        }
+    }
+
+    /// The volume itself: read, baked or taken from the cache; `None` for the sky.
+    pub fn volume(self, scene_opts: &SceneOpts, loaded: &Loaded) -> Result<Option<ProbeVolume>> {
+        match self {
+            FarPlan::Sky => Ok(None),
+            FarPlan::File(v) => Ok(Some(v)),
+            FarPlan::Bake(settings) => Ok(Some(baked(scene_opts, loaded, &settings, false)?.0)),
+        }
+    }
+}
+
+/// The near-field radius R of `--radius auto` (the default of every command that renders):
+/// with a probe volume the largest distance between its probes, so that the near field covers
+/// what the volume cannot resolve and no more (the book, "Near and far"); under the sky the
+/// technique's own default (`None`).
+pub fn auto_radius(plan: &FarPlan) -> Option<f32> {
+    plan.spacing()
 }
 
 /// The grid and tracing options of a bake.
 #[derive(Args, Clone, Debug)]
 pub struct GridOpts {
-    /// Largest distance between neighbouring probes (m, > 0). Default: about 4096 probes over
-    /// the scene's bounds.
+    /// Largest distance between neighbouring probes (m, > 0). Default: 1 m, coarser where the
+    /// scene's bounds would need more than 16384 probes.
     #[arg(long, conflicts_with = "probes")]
     pub spacing: Option<f32>,
     /// Probes per axis, X,Y,Z (each ≥ 1; at most 65536 in all).
@@ -102,9 +150,18 @@ impl Default for GridOpts {
 }
 
 impl GridOpts {
-    /// The bake's settings for `loaded`'s scene, checked.
+    /// The bake's settings for `loaded`'s scene (the part the bake sees: no dynamic meshes),
+    /// checked.
     pub fn settings(&self, loaded: &Loaded) -> Result<BakeSettings> {
-        self.settings_for(&loaded.scene)
+        self.settings_for(&loaded.scene.baked_part())
+    }
+
+    /// Whether every option is its default.
+    pub fn is_default(&self) -> bool {
+        self.spacing.is_none()
+            && self.probes.is_none()
+            && self.rays.is_none()
+            && self.bounces == bake::DEFAULT_BOUNCES
     }
 
     /// The bake's settings for `scene`, checked.
@@ -165,13 +222,28 @@ impl GridOpts {
 }
 
 impl FarOpts {
-    /// Checks `--far` and `--volume` before anything is loaded.
+    /// Checks `--far`, `--volume` and the grid's options before anything is loaded.
     pub fn precheck(&self) -> Result<Far> {
         let far = Far::parse(&self.far)?;
         if self.volume.is_some() && far == Far::Sky {
             return Err(
                 BadInput("--volume with --far sky: a volume file is the far field".into()).into(),
             );
+        }
+        self.grid.precheck()?;
+        if self.volume.is_some() && !self.grid.is_default() {
+            return Err(BadInput(
+                "--volume with --spacing, --probes, --rays or --bounces: the file's volume is baked already"
+                    .into(),
+            )
+            .into());
+        }
+        if far == Far::Sky && !self.grid.is_default() {
+            return Err(BadInput(
+                "--far sky with --spacing, --probes, --rays or --bounces: there is no volume to bake"
+                    .into(),
+            )
+            .into());
         }
         if let Some(p) = &self.volume
             && !p.is_file()
@@ -181,23 +253,28 @@ impl FarOpts {
         Ok(far)
     }
 
+    /// What far field the command's frames use for `aov` (`None`: the image), before anything is
+    /// baked: `--volume FILE`, the sky, or the bake of the grid options (cached).
+    pub fn plan(&self, loaded: &Loaded, aov: Option<&str>) -> Result<FarPlan> {
+        let far = self.precheck()?;
+        if let Some(p) = &self.volume {
+            return read_volume(p).map(FarPlan::File);
+        }
+        if !far.volume_for(aov) {
+            return Ok(FarPlan::Sky);
+        }
+        Ok(FarPlan::Bake(self.grid.settings(loaded)?))
+    }
+
     /// The probe volume the command's frames use for `aov` (`None`: the image), or `None` for the
-    /// sky: `--volume FILE`, else the cached default bake of the scene.
+    /// sky: [`Self::plan`], baked.
     pub fn resolve(
         &self,
         scene_opts: &SceneOpts,
         loaded: &Loaded,
         aov: Option<&str>,
     ) -> Result<Option<ProbeVolume>> {
-        let far = self.precheck()?;
-        if let Some(p) = &self.volume {
-            return read_volume(p).map(Some);
-        }
-        if !far.volume_for(aov) {
-            return Ok(None);
-        }
-        let settings = GridOpts::default().settings(loaded)?;
-        Ok(Some(baked(scene_opts, loaded, &settings, false)?.0))
+        self.plan(loaded, aov)?.volume(scene_opts, loaded)
     }
 }
 
@@ -256,9 +333,11 @@ pub fn baked(
     no_cache: bool,
 ) -> Result<(ProbeVolume, bool)> {
     let env_name = loaded.env_source.to_string();
+    // Dynamic meshes (`--dynamic`, `--add`, extras) are not baked.
+    let scene = loaded.scene.baked_part();
     let input = BakeInput {
         scene_name: &opts.scene,
-        scene: &loaded.scene,
+        scene: &scene,
         env_name: &env_name,
         env: &loaded.env,
     };

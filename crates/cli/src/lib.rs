@@ -13,6 +13,7 @@ pub mod compare;
 pub mod export;
 pub mod far;
 pub mod fit;
+pub mod footprint;
 pub mod measure;
 pub mod options;
 pub mod output;

@@ -46,6 +46,15 @@ pub struct SceneOpts {
     /// Use the GPU adapter whose name contains this text (case-insensitive).
     #[arg(long)]
     pub adapter: Option<String>,
+    /// Nodes that the far field's bake leaves out, NAME[,NAME…] (glTF node names; a built-in
+    /// scene's materials): objects added or moved after the bake, which the frame and the
+    /// reference draw (the book, "Near and far").
+    #[arg(long, value_delimiter = ',')]
+    pub dynamic: Vec<String>,
+    /// Adds a model, FILE@X,Y,Z or FILE@X,Y,Z,SCALE (repeatable): the centre of its base at
+    /// X,Y,Z (m), scaled by SCALE (default 1); dynamic (the bake leaves it out).
+    #[arg(long = "add", value_name = "FILE@X,Y,Z[,SCALE]")]
+    pub add: Vec<String>,
 }
 
 /// Everything loaded from [`SceneOpts`].
@@ -59,6 +68,17 @@ pub struct Loaded {
 }
 
 impl Loaded {
+    /// The same environment and camera over another scene.
+    pub fn with_scene(&self, scene: Scene) -> Loaded {
+        Loaded {
+            scene,
+            env: self.env.clone(),
+            env_source: self.env_source.clone(),
+            camera: self.camera,
+            sun_line: std::cell::Cell::new(None),
+        }
+    }
+
     /// Prints what `--sun auto` found (once, after the command's setup succeeded, so that a
     /// bad input still gets exactly one line).
     pub fn report_sun(&self) {
@@ -96,6 +116,42 @@ fn parse_vec3(flag: &str, s: &str) -> Result<Vec3> {
 }
 
 impl SceneOpts {
+    /// Places the `--add` models and marks the `--dynamic` nodes.
+    fn add_and_mark(&self, scene: &mut Scene) -> Result<()> {
+        for spec in &self.add {
+            let (file, place) = spec.rsplit_once('@').ok_or_else(|| {
+                BadInput(format!(
+                    "--add {spec}: expected FILE@X,Y,Z or FILE@X,Y,Z,SCALE"
+                ))
+            })?;
+            let placement = nearfield_scene::Placement::parse(spec, place)
+                .map_err(|e| BadInput(e.to_string()))?;
+            let model = SceneSource::parse(file).load()?;
+            let name = std::path::Path::new(file)
+                .file_stem()
+                .map(|s| s.to_string_lossy().into_owned())
+                .unwrap_or_else(|| file.to_string());
+            scene.add(model, &name, placement);
+            if scene.triangle_count() > nearfield_scene::limits::MAX_TRIANGLES {
+                return Err(BadInput(format!(
+                    "--add {spec}: the scene would have more than {} triangles, the limit",
+                    nearfield_scene::limits::MAX_TRIANGLES
+                ))
+                .into());
+            }
+        }
+        let names: Vec<String> = self
+            .dynamic
+            .iter()
+            .map(|n| n.trim().to_string())
+            .filter(|n| !n.is_empty())
+            .collect();
+        scene
+            .mark_dynamic(&names)
+            .map_err(|e| BadInput(e.to_string()))?;
+        Ok(())
+    }
+
     /// Parses and checks the cheap options first (so that a typo fails before a long load), then
     /// loads the scene and environment and resolves the camera.
     pub fn load(&self) -> Result<Loaded> {
@@ -128,7 +184,8 @@ impl SceneOpts {
         let env_source = self.env.as_deref().map(EnvSource::parse).transpose()?;
         let sun = SunMode::parse(&self.sun)?;
 
-        let scene = SceneSource::parse(&self.scene).load()?;
+        let mut scene = SceneSource::parse(&self.scene).load()?;
+        self.add_and_mark(&mut scene)?;
         let env_source = env_source.unwrap_or_else(|| scene.default_env.clone());
         let (mut env, found) = env_source.load_split(sun)?;
         env.intensity = self.env_intensity;
@@ -168,13 +225,25 @@ impl SceneOpts {
     }
 }
 
+/// `--radius auto` (the default, `None` in `params`): the far field's probe spacing with a
+/// volume (crate::far::auto_radius), the technique's own radius under the sky.
+pub fn apply_auto_radius(
+    params: &mut nearfield_render::TechniqueParams,
+    plan: &crate::far::FarPlan,
+) {
+    if params.radius.is_none() {
+        params.radius = crate::far::auto_radius(plan);
+    }
+}
+
 /// Technique options shared by render and bench.
 #[derive(Args, Clone, Debug)]
 pub struct TechniqueOpts {
     /// Samples per pixel for sampling techniques (1..=1024); default: the technique's.
     #[arg(long)]
     pub samples: Option<u32>,
-    /// Near-field radius in metres (> 0, or inf); default: the technique's.
+    /// Near-field radius in metres (> 0, or inf), or auto (the default): with a probe volume the
+    /// distance between its probes, under the sky the technique's own.
     #[arg(long, allow_hyphen_values = true)]
     pub radius: Option<String>,
     /// Technique setting KEY=VALUE (repeatable); see each technique's page in the book (make docs).
@@ -230,12 +299,12 @@ impl TechniqueOpts {
             return Err(BadInput(format!("--samples {s}: must be in 1..=1024")).into());
         }
         let radius = match self.radius.as_deref() {
-            None => None,
+            None | Some("auto") => None,
             Some("inf") => Some(f32::INFINITY),
             Some(r) => {
-                let v: f32 = r
-                    .parse()
-                    .map_err(|_| BadInput(format!("--radius {r}: expected a number or inf")))?;
+                let v: f32 = r.parse().map_err(|_| {
+                    BadInput(format!("--radius {r}: expected a number, inf or auto"))
+                })?;
                 if v.is_nan() || v <= 0.0 {
                     return Err(BadInput(format!("--radius {r}: must be > 0 (or inf)")).into());
                 }

@@ -152,7 +152,12 @@ fn describe(opts: &SceneOpts, loaded: &Loaded, s: &ReferenceSettings) -> String 
         s.size.0,
         s.size.1,
         s.aov.name(),
-        s.radius,
+        // One cache entry for every R where the image does not depend on it.
+        if s.aov.depends_on_radius() {
+            s.radius
+        } else {
+            f32::INFINITY
+        },
         s.spp,
         s.seed,
         s.max_depth,

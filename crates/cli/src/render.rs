@@ -53,11 +53,14 @@ pub fn run(args: RenderArgs) -> Result<()> {
         })
     });
     check_output(aov.unwrap_or(Aov::Radiance), &output)?;
-    let params = args.technique.params()?;
+    let mut params = args.technique.params()?;
     let size = crate::options::parse_size(&args.scene.size)?;
     let settings = args.technique.settings(size)?;
     args.far.precheck()?;
     let loaded = args.scene.load()?;
+    let far_aov = (aov != Some(Aov::Final)).then_some(args.aov.as_str());
+    let plan = args.far.plan(&loaded, far_aov)?;
+    crate::options::apply_auto_radius(&mut params, &plan);
     let ctx = GpuContext::new(args.scene.adapter.as_deref())?;
     let mut renderer = Renderer::new(
         &ctx,
@@ -80,8 +83,7 @@ pub fn run(args: RenderArgs) -> Result<()> {
         ))
         .into());
     }
-    let far_aov = (aov != Some(Aov::Final)).then_some(args.aov.as_str());
-    let volume = args.far.resolve(&args.scene, &loaded, far_aov)?;
+    let volume = plan.volume(&args.scene, &loaded)?;
     renderer.set_far_field(volume.as_ref())?;
     loaded.report_sun();
     let progress = nearfield_scene::progress::Progress::new(

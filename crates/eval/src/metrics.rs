@@ -115,6 +115,10 @@ pub struct Metrics {
     pub mae: f64,
     pub rmse: f64,
     pub relative_error: f64,
+    /// The image mean over the reference's, Σ test / Σ reference (mean of RGB) over the valid
+    /// pixels: 1 when the technique's light has the truth's total.
+    #[serde(default)]
+    pub mean_ratio: f64,
     /// Mean FLIP (0..1) over the valid pixels of the tonemapped images; None when not computed.
     pub flip: Option<f64>,
 }
@@ -140,6 +144,7 @@ pub fn signed_errors(test: &[[f32; 4]], reference: &[[f32; 4]], mask: &Mask) -> 
 
 pub fn metrics(test: &[[f32; 4]], reference: &[[f32; 4]], mask: &Mask) -> Metrics {
     let (mut n, mut sum, mut abs, mut sq, mut refsum) = (0usize, 0.0, 0.0, 0.0, 0.0);
+    let (mut test_sum, mut ref_signed) = (0.0, 0.0);
     for ((t, r), &v) in test.iter().zip(reference).zip(&mask.valid) {
         if !v {
             continue;
@@ -150,6 +155,8 @@ pub fn metrics(test: &[[f32; 4]], reference: &[[f32; 4]], mask: &Mask) -> Metric
         abs += e.abs();
         sq += e * e;
         refsum += mean_rgb(r).abs();
+        test_sum += mean_rgb(t);
+        ref_signed += mean_rgb(r);
     }
     let nf = n.max(1) as f64;
     Metrics {
@@ -158,6 +165,11 @@ pub fn metrics(test: &[[f32; 4]], reference: &[[f32; 4]], mask: &Mask) -> Metric
         mae: abs / nf,
         rmse: (sq / nf).sqrt(),
         relative_error: if refsum > 0.0 { abs / refsum } else { 0.0 },
+        mean_ratio: if ref_signed != 0.0 {
+            test_sum / ref_signed
+        } else {
+            1.0
+        },
         flip: None,
     }
 }

@@ -21,6 +21,10 @@ pub struct MethodReport {
     pub heatmap: String,
     /// Error after each rendered frame (still camera, more than one frame), else empty.
     pub convergence: Vec<ConvergencePoint>,
+    /// With `--footprint`: the relative error of the change the scene's dynamic objects make
+    /// to the ambient light around them, against the path tracer's (none adds nothing: 1).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub footprint: Option<f64>,
 }
 
 /// The error after `frames` frames.

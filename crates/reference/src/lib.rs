@@ -81,6 +81,19 @@ impl ReferenceAov {
         Self::ALL.into_iter().find(|a| a.name() == s)
     }
 
+    /// Whether its value depends on the near-field radius R (the path tracer's radiance, the
+    /// lights' irradiance and the G-buffer images do not).
+    pub fn depends_on_radius(self) -> bool {
+        matches!(
+            self,
+            ReferenceAov::Ao
+                | ReferenceAov::EnvIrradiance
+                | ReferenceAov::IndirectIrradiance
+                | ReferenceAov::Diffuse
+                | ReferenceAov::FarIrradiance
+        )
+    }
+
     pub fn names() -> Vec<&'static str> {
         Self::ALL.iter().map(|a| a.name()).collect()
     }

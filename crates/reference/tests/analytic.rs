@@ -139,6 +139,7 @@ fn lone_quad(normal: Vec3) -> Scene {
         uvs: vec![Vec2::ZERO; 4],
         indices: vec![[0, 1, 2], [0, 2, 3]],
         material: 0,
+        ..Default::default()
     };
     // Make sure the winding faces `normal`.
     let g = (c[1] - c[0]).cross(c[2] - c[0]);

@@ -9,8 +9,9 @@ use bytemuck::{Pod, Zeroable};
 use nearfield_scene::probes::{IRR_TILE, ProbeVolume, SH_COEFFS, VIS_TILE};
 use wgpu::util::DeviceExt;
 
-/// Texels per probe in the probe texture: (offset xyz, active) and the 9 SH coefficients.
-pub const PROBE_TEXELS: u32 = 1 + SH_COEFFS as u32;
+/// Texels per probe in the probe texture: (offset xyz, active), the 9 SH coefficients of the
+/// radiance, and its visibility within R as 9 scalar SH coefficients in 3 texels.
+pub const PROBE_TEXELS: u32 = 1 + SH_COEFFS as u32 + 3;
 /// Widest texture the far field makes (texels).
 const MAX_WIDTH: u32 = 8190;
 
@@ -41,9 +42,20 @@ pub enum FarMode {
     Volume,
 }
 
+/// What a volume's probe texture is made from, kept to recompute its visibility for another R.
+struct VolumeSource {
+    volume: std::sync::Arc<ProbeVolume>,
+    /// Probes per row of the probe texture.
+    row: u32,
+    /// The radius of the uploaded visibility (m).
+    radius: f32,
+}
+
 /// The far field's GPU resources.
 pub struct GpuFarField {
     pub mode: FarMode,
+    probes_texture: wgpu::Texture,
+    volume: Option<VolumeSource>,
     pub probes_view: wgpu::TextureView,
     pub visibility_view: wgpu::TextureView,
     pub irradiance_view: wgpu::TextureView,
@@ -77,25 +89,17 @@ impl GpuFarField {
         )
     }
 
-    /// Uploads a baked volume.
-    pub fn volume(device: &wgpu::Device, queue: &wgpu::Queue, v: &ProbeVolume) -> Self {
+    /// Uploads a baked volume, with its probes' visibility within `radius` (m; the technique's
+    /// R, [`Self::set_radius`]).
+    pub fn volume(
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        v: &ProbeVolume,
+        radius: f32,
+    ) -> Self {
         let n = v.probes.len() as u32;
         let row = n.clamp(1, MAX_WIDTH / VIS_TILE);
-        let rows = n.div_ceil(row);
-        let mut probes = vec![[0f32; 4]; (row * PROBE_TEXELS * rows) as usize];
-        for (i, p) in v.probes.iter().enumerate() {
-            let i = i as u32;
-            let start = ((i / row) * row * PROBE_TEXELS + (i % row) * PROBE_TEXELS) as usize;
-            probes[start] = [
-                p.offset.x,
-                p.offset.y,
-                p.offset.z,
-                if p.active { 1.0 } else { 0.0 },
-            ];
-            for (k, c) in p.sh.iter().enumerate() {
-                probes[start + 1 + k] = [c.x, c.y, c.z, 0.0];
-            }
-        }
+        let probes = probe_texels(v, row, radius);
         let vis_tile = (VIS_TILE * VIS_TILE) as usize;
         let (vis, (aw, ah)) = atlas::<2>(v.probes.len(), row, VIS_TILE, |i, tiles| {
             for (k, texel) in tiles.iter_mut().enumerate() {
@@ -120,7 +124,7 @@ impl GpuFarField {
             vis: [v.max_distance, 1.0 / aw as f32, 1.0 / ah as f32, 0.0],
             irr: [1.0 / iw as f32, 1.0 / ih as f32, 0.0, 0.0],
         };
-        Self::upload(
+        let mut far = Self::upload(
             device,
             queue,
             FarMode::Volume,
@@ -130,7 +134,52 @@ impl GpuFarField {
             (&vis, (aw, ah)),
             (&irr, (iw, ih)),
             v.probes.len(),
-        )
+        );
+        far.volume = Some(VolumeSource {
+            volume: std::sync::Arc::new(v.clone()),
+            row,
+            radius,
+        });
+        far
+    }
+
+    /// Recomputes the probes' visibility within `radius` (m) when it changed: what AO-only
+    /// techniques divide by (far.wgsl's far_ao_at). Nothing for the sky.
+    pub fn set_radius(&mut self, queue: &wgpu::Queue, radius: f32) {
+        let Some(src) = &mut self.volume else {
+            return;
+        };
+        if src.radius == radius || !radius.is_finite() {
+            return;
+        }
+        src.radius = radius;
+        let texels = probe_texels(&src.volume, src.row, radius);
+        let width = src.row * PROBE_TEXELS;
+        queue.write_texture(
+            wgpu::TexelCopyTextureInfo {
+                texture: &self.probes_texture,
+                mip_level: 0,
+                // Row 0 holds the grid; the probes start at row 1.
+                origin: wgpu::Origin3d { x: 0, y: 1, z: 0 },
+                aspect: wgpu::TextureAspect::All,
+            },
+            bytemuck::cast_slice(&texels),
+            wgpu::TexelCopyBufferLayout {
+                offset: 0,
+                bytes_per_row: Some(width * 16),
+                rows_per_image: None,
+            },
+            wgpu::Extent3d {
+                width,
+                height: texels.len() as u32 / width,
+                depth_or_array_layers: 1,
+            },
+        );
+    }
+
+    /// The radius the probes' visibility was computed for (None for the sky).
+    pub fn radius(&self) -> Option<f32> {
+        self.volume.as_ref().map(|s| s.radius)
     }
 
     #[allow(clippy::too_many_arguments)]
@@ -157,52 +206,80 @@ impl GpuFarField {
         texels.extend_from_slice(probes);
         let probes_size = (probes_width, texels.len() as u32 / probes_width);
         let texture = |label, size: (u32, u32), format, data: &[u8]| {
-            device
-                .create_texture_with_data(
-                    queue,
-                    &wgpu::TextureDescriptor {
-                        label: Some(label),
-                        size: wgpu::Extent3d {
-                            width: size.0,
-                            height: size.1,
-                            depth_or_array_layers: 1,
-                        },
-                        mip_level_count: 1,
-                        sample_count: 1,
-                        dimension: wgpu::TextureDimension::D2,
-                        format,
-                        usage: wgpu::TextureUsages::TEXTURE_BINDING,
-                        view_formats: &[],
+            device.create_texture_with_data(
+                queue,
+                &wgpu::TextureDescriptor {
+                    label: Some(label),
+                    size: wgpu::Extent3d {
+                        width: size.0,
+                        height: size.1,
+                        depth_or_array_layers: 1,
                     },
-                    wgpu::util::TextureDataOrder::LayerMajor,
-                    data,
-                )
-                .create_view(&Default::default())
+                    mip_level_count: 1,
+                    sample_count: 1,
+                    dimension: wgpu::TextureDimension::D2,
+                    format,
+                    usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+                    view_formats: &[],
+                },
+                wgpu::util::TextureDataOrder::LayerMajor,
+                data,
+            )
         };
         let bits = |h: &[half::f16]| -> Vec<u16> { h.iter().map(|h| h.to_bits()).collect() };
+        let probes_texture = texture(
+            "far probes",
+            probes_size,
+            wgpu::TextureFormat::Rgba32Float,
+            bytemuck::cast_slice(&texels),
+        );
+        let view = |t: wgpu::Texture| t.create_view(&Default::default());
         GpuFarField {
             mode,
-            probes_view: texture(
-                "far probes",
-                probes_size,
-                wgpu::TextureFormat::Rgba32Float,
-                bytemuck::cast_slice(&texels),
-            ),
-            visibility_view: texture(
+            probes_view: probes_texture.create_view(&Default::default()),
+            probes_texture,
+            volume: None,
+            visibility_view: view(texture(
                 "far visibility",
                 vis_size,
                 wgpu::TextureFormat::Rg16Float,
                 bytemuck::cast_slice(&bits(vis)),
-            ),
-            irradiance_view: texture(
+            )),
+            irradiance_view: view(texture(
                 "far irradiance",
                 irr_size,
                 wgpu::TextureFormat::Rgba16Float,
                 bytemuck::cast_slice(&bits(irr)),
-            ),
+            )),
             probes: count,
         }
     }
+}
+
+/// The probe texture's rows after row 0: per probe (offset, active), its 9 SH coefficients and
+/// its visibility within `radius` as 9 scalar SH coefficients in 3 texels, `row` probes a row.
+fn probe_texels(v: &ProbeVolume, row: u32, radius: f32) -> Vec<[f32; 4]> {
+    let n = v.probes.len() as u32;
+    let rows = n.div_ceil(row);
+    let mut probes = vec![[0f32; 4]; (row * PROBE_TEXELS * rows) as usize];
+    let vis_sh = v.visibility_sh(radius);
+    for (i, (p, a)) in v.probes.iter().zip(&vis_sh).enumerate() {
+        let i = i as u32;
+        let start = ((i / row) * row * PROBE_TEXELS + (i % row) * PROBE_TEXELS) as usize;
+        probes[start] = [
+            p.offset.x,
+            p.offset.y,
+            p.offset.z,
+            if p.active { 1.0 } else { 0.0 },
+        ];
+        for (k, c) in p.sh.iter().enumerate() {
+            probes[start + 1 + k] = [c.x, c.y, c.z, 0.0];
+        }
+        for k in 0..3 {
+            probes[start + 1 + SH_COEFFS + k] = [a[3 * k], a[3 * k + 1], a[3 * k + 2], 0.0];
+        }
+    }
+    probes
 }
 
 /// An f16 atlas of `count` square tiles of `tile` texels a side, `row` tiles per row (texel

@@ -230,7 +230,19 @@ impl Renderer {
         }
         self.technique_spec = spec.to_string();
         self.technique_params = params.clone();
+        let radius = self.technique_radius();
+        self.far.set_radius(&self.queue, radius);
         Ok(())
+    }
+
+    /// The technique's near-field radius R (m), what the far field's own visibility is
+    /// computed within; 1 m for a technique without one (its value is then not read).
+    fn technique_radius(&self) -> f32 {
+        technique::radius_of(&self.technique_spec, &self.technique_params)
+            .ok()
+            .flatten()
+            .filter(|r| r.is_finite() && *r > 0.0)
+            .unwrap_or(1.0)
     }
 
     /// Why the device was lost, if it was: what was rendered or read since is not valid.
@@ -325,8 +337,9 @@ impl Renderer {
     ) -> Result<(), RenderError> {
         self.check_device()?;
         let scopes = ErrorScopes::push(&self.device);
+        let radius = self.technique_radius();
         let far = match volume {
-            Some(v) => GpuFarField::volume(&self.device, &self.queue, v),
+            Some(v) => GpuFarField::volume(&self.device, &self.queue, v, radius),
             None => GpuFarField::sky(&self.device, &self.queue),
         };
         scopes.pop()?;

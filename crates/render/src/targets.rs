@@ -56,6 +56,10 @@ pub struct FrameTargets {
     /// Ping-pong pair: frame i writes `direct_radiance[i % 2]` and can read last frame's from
     /// the other one.
     pub direct_radiance: [Target; 2],
+    /// The far field at each surface point (rgba16float): rgb its unoccluded E(n)/π, a its own
+    /// visibility within R (1 for the sky), what composite and aov count the techniques' near
+    /// field against (passes/irradiance_terms.wgsl).
+    pub far_field: Target,
     // Near-field technique outputs.
     pub ao: Target,
     pub env_irradiance: Target,
@@ -176,6 +180,7 @@ impl FrameTargets {
                 t("direct radiance 0", HDR_FORMAT, storage),
                 t("direct radiance 1", HDR_FORMAT, storage),
             ],
+            far_field: t("far field", HDR_FORMAT, storage),
             ao: t("ao", AO_FORMAT, storage),
             env_irradiance: t("env irradiance", HDR_FORMAT, storage),
             indirect_irradiance: t("indirect irradiance", HDR_FORMAT, storage),

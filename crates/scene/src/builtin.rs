@@ -9,10 +9,12 @@
 //! | `plane` | one 400 m × 400 m plane: nothing occludes anything |
 //! | `wall` | a 400 m floor meeting a 200 m wall at 90° along the line y = 0, z = 0 |
 //! | `closed-box` | a closed 4 × 3 × 4 m room with a point light; the camera is inside |
-//! | `gap` | a thin floating slab (6 cm) 0.25 m above a floor under the sky, seen from above: points of the gap under it lie behind it from the camera (SSDO Fig. 5) |
+//! | `gap` | three thin posts (4 × 4 cm, 1.5 m tall) 0.3 m in front of a wall under the sky: the gap behind a post lies behind it from the camera (SSDO Fig. 5) |
 //! | `columns` | a white column hiding a pink column behind it from the camera, on a floor under the sky and a sun from the right (SSDO Fig. 7) |
 //! | `contact` | a 4 cm cube and a 2 cm rod on a 6 m plane under a low sun: the shadow map's bias loses their contact shadows (SSDO Fig. 9) |
 //! | `two-rooms` | two 3 × 2.5 × 3 m rooms side by side, a 20 cm wall between them; the left one is open to the sky, the right one closed (no light reaches it): the far field's leak test |
+//! | `cornell-dynamic` | `cornell` with a yellow 0.4 m box on the floor, front left, that the far field's bake leaves out (dynamic) |
+//! | `two-rooms-dynamic` | `two-rooms` with a 0.6 m box on the open room's floor, dynamic |
 
 use crate::{Camera, EnvSource, Light, LightKind, Material, Mesh, Scene, SceneError};
 use glam::{Quat, Vec2, Vec3};
@@ -29,6 +31,8 @@ pub const NAMES: &[&str] = &[
     "columns",
     "contact",
     "two-rooms",
+    "cornell-dynamic",
+    "two-rooms-dynamic",
 ];
 
 /// Builds the named built-in scene.
@@ -44,6 +48,8 @@ pub fn scene(name: &str) -> Result<Scene, SceneError> {
         "columns" => columns(),
         "contact" => contact(),
         "two-rooms" => two_rooms(),
+        "cornell-dynamic" => cornell_dynamic(),
+        "two-rooms-dynamic" => two_rooms_dynamic(),
         _ => {
             return Err(SceneError::UnknownBuiltin {
                 name: name.into(),
@@ -70,13 +76,22 @@ impl Builder {
     }
 
     fn material(&mut self, m: Material) -> u32 {
+        let name = m.name.clone();
         self.scene.materials.push(m);
         self.scene.meshes.push(Mesh {
-            name: self.scene.materials.last().unwrap().name.clone(),
+            name: name.clone(),
             material: (self.scene.materials.len() - 1) as u32,
+            nodes: vec![name],
             ..Default::default()
         });
         (self.scene.materials.len() - 1) as u32
+    }
+
+    /// A material whose mesh is dynamic: an object the far field's bake leaves out.
+    fn dynamic_material(&mut self, m: Material) -> u32 {
+        let i = self.material(m);
+        self.scene.meshes[i as usize].dynamic = true;
+        i
     }
 
     /// A planar quad with corners in counter-clockwise order seen from the front.
@@ -377,6 +392,28 @@ fn closed_box() -> Scene {
         Camera::new(Vec3::new(-1.0, 1.6, 1.8), Vec3::new(0.3, 0.8, -1.5), 70.0),
         EnvSource::Sky,
     )
+}
+
+/// `cornell` with a yellow 0.4 m box on the floor, front left, left out of the far field's bake:
+/// its contact shadow and bounce are what only the near field can add.
+fn cornell_dynamic() -> Scene {
+    let mut s = cornell();
+    let mut b = Builder { scene: s };
+    let m = b.dynamic_material(Material::diffuse("dynamic box", Vec3::new(0.75, 0.6, 0.2)));
+    b.block(m, Vec2::new(-0.5, 0.45), Vec3::splat(0.4), 0.0, 30.0);
+    s = b.scene;
+    s.name = "builtin:cornell-dynamic".into();
+    s
+}
+
+/// `two-rooms` with a 0.6 m box on the open room's floor, left out of the far field's bake.
+fn two_rooms_dynamic() -> Scene {
+    let mut b = Builder { scene: two_rooms() };
+    let m = b.dynamic_material(Material::diffuse("dynamic box", Vec3::splat(0.75)));
+    b.block(m, Vec2::new(-1.6, -0.4), Vec3::splat(0.6), 0.0, 20.0);
+    let mut s = b.scene;
+    s.name = "builtin:two-rooms-dynamic".into();
+    s
 }
 
 /// Two rooms side by side along x, sharing a 20 cm wall (x = ±0.1): the left one

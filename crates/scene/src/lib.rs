@@ -13,6 +13,7 @@
 pub mod atomic;
 pub mod builtin;
 pub mod camera;
+pub mod dynamic;
 pub mod env_source;
 pub mod environment;
 pub mod error;
@@ -29,6 +30,7 @@ pub mod sky;
 pub mod sun;
 
 pub use camera::{Camera, CameraFile};
+pub use dynamic::{DynamicError, Placement};
 pub use env_source::EnvSource;
 pub use environment::Environment;
 pub use error::{SceneError, one_line};

@@ -17,6 +17,13 @@ pub struct Mesh {
     pub indices: Vec<[u32; 3]>,
     /// Index into [`crate::Scene::materials`].
     pub material: u32,
+    /// Names of the scene nodes it hangs from, root first (glTF node names; a built-in scene's
+    /// object; empty where the format names none): what `--dynamic NAME` matches.
+    pub nodes: Vec<String>,
+    /// Not in the far field's bake: an object added or moved after it (glTF extras
+    /// `"nearfield": {"dynamic": true}`, `--dynamic NAME`, `--add FILE`). The frame and the
+    /// reference draw it; `nearfield bake` leaves it out (the book, "Near and far").
+    pub dynamic: bool,
 }
 
 impl Mesh {

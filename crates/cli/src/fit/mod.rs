@@ -353,6 +353,8 @@ pub fn run(args: FitArgs) -> Result<()> {
                 fov: None,
                 sun: args.sun.clone(),
                 adapter: args.adapter.clone(),
+                dynamic: Vec::new(),
+                add: Vec::new(),
             };
             let loaded = opts.load().with_context(|| format!("scene {name}"))?;
             let mut truths = Vec::new();

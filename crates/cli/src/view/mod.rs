@@ -77,28 +77,47 @@ pub fn run(args: ViewArgs) -> Result<()> {
         }
         None => Vec::new(),
     };
-    let params = args.technique.params()?;
+    let mut params = args.technique.params()?;
+    // Both techniques are checked before anything loads; they are made again below with the
+    // far field's radius.
+    technique_state::TechniqueState::from_command_line(&args.method, &params)
+        .map_err(|e| BadInput(format!("--method {}: {e}", args.method)))?;
+    if let Some(m) = args.split_with.as_deref() {
+        technique_state::TechniqueState::from_command_line(m, &Default::default())
+            .map_err(|e| BadInput(format!("--split-with {m}: {e}")))?;
+    }
+    let size = crate::options::parse_size(&args.scene.size)?;
+    let settings = args.technique.settings(size)?;
+    args.far.precheck()?;
+    // A machine that cannot run the passes hears so before the scene loads.
+    nearfield_render::GpuContext::check_adapter(args.scene.adapter.as_deref())?;
+    let loaded = args.scene.load()?;
+    loaded.report_sun();
+    // The frame's far field as `render` has it for the image shown. A bake is not waited for:
+    // the window opens with the sky, and the volume comes in when the background bake (or the
+    // cache) has it.
+    let shown = (args.aov != "final").then_some(args.aov.as_str());
+    let plan = args.far.plan(&loaded, shown)?;
+    crate::options::apply_auto_radius(&mut params, &plan);
     let a = technique_state::TechniqueState::from_command_line(&args.method, &params)
         .map_err(|e| BadInput(format!("--method {}: {e}", args.method)))?;
+    let b_params = nearfield_render::TechniqueParams {
+        radius: params.radius,
+        ..Default::default()
+    };
     let b = args
         .split_with
         .as_deref()
         .map(|m| {
-            technique_state::TechniqueState::from_command_line(m, &Default::default())
+            technique_state::TechniqueState::from_command_line(m, &b_params)
                 .map_err(|e| BadInput(format!("--split-with {m}: {e}")))
         })
         .transpose()?;
-    let size = crate::options::parse_size(&args.scene.size)?;
-    let settings = args.technique.settings(size)?;
-    args.far.precheck()?;
-    // A machine that cannot run the passes hears so before the scene loads or a volume bakes.
-    nearfield_render::GpuContext::check_adapter(args.scene.adapter.as_deref())?;
-    let loaded = args.scene.load()?;
-    loaded.report_sun();
-    // The frame's far field as `render` has it for the image shown (baked or cached before the
-    // window opens; later changes rebake in the background).
-    let shown = (args.aov != "final").then_some(args.aov.as_str());
-    let volume = args.far.resolve(&args.scene, &loaded, shown)?;
+    let far = match plan {
+        crate::far::FarPlan::Sky => session::StartFar::Sky,
+        crate::far::FarPlan::File(v) => session::StartFar::Volume(v),
+        crate::far::FarPlan::Bake(_) => session::StartFar::Bake,
+    };
     let env_name = args
         .scene
         .env
@@ -120,7 +139,8 @@ pub fn run(args: ViewArgs) -> Result<()> {
             b,
             aov: args.aov.clone(),
             sun: nearfield_scene::SunMode::parse(&args.scene.sun)?,
-            volume,
+            far,
+            grid: args.far.grid.clone(),
         },
         adapter: args.scene.adapter.clone(),
         vsync: !args.no_vsync,

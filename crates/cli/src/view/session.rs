@@ -117,6 +117,8 @@ pub struct Session {
     pub far_volume: bool,
     /// The volume the renderers use, and what it was baked for ([`Self::far_key`]).
     volume: Option<(String, Arc<ProbeVolume>)>,
+    /// The grid of the session's bakes.
+    grid: crate::far::GridOpts,
     bake: Option<Bake>,
 }
 
@@ -133,9 +135,21 @@ pub struct Start {
     pub aov: String,
     /// `--sun`: environments loaded later are split the same way.
     pub sun: SunMode,
-    /// The far field is the probe volume, and the volume to start with (baked for the scene and
-    /// environment as started, or `--volume`'s file); `None` with the sky.
-    pub volume: Option<ProbeVolume>,
+    /// The far field to start with.
+    pub far: StartFar,
+    /// The grid of the bakes the session makes (`--spacing`, `--probes`, `--rays`, `--bounces`).
+    pub grid: crate::far::GridOpts,
+}
+
+/// The far field a session starts with.
+pub enum StartFar {
+    /// The open sky.
+    Sky,
+    /// `--volume`'s file.
+    Volume(ProbeVolume),
+    /// The scene's bake, taken from the cache or baked in the background: the first frames
+    /// show the sky, and the volume comes in when it is ready.
+    Bake,
 }
 
 impl Session {
@@ -172,18 +186,23 @@ impl Session {
             renderer_b: None,
             display,
             timings: Default::default(),
-            far_volume: start.volume.is_some(),
+            far_volume: !matches!(start.far, StartFar::Sky),
             volume: None,
             bake: None,
+            grid: start.grid,
             scene: start.scene,
             ctx,
         };
-        if let Some(v) = start.volume {
-            let key = s.far_key();
-            s.renderer_a
-                .set_far_field(Some(&v))
-                .map_err(anyhow::Error::from)?;
-            s.volume = Some((key, Arc::new(v)));
+        match start.far {
+            StartFar::Sky => {}
+            StartFar::Volume(v) => {
+                let key = s.far_key();
+                s.renderer_a
+                    .set_far_field(Some(&v))
+                    .map_err(anyhow::Error::from)?;
+                s.volume = Some((key, Arc::new(v)));
+            }
+            StartFar::Bake => s.refresh_far().map_err(crate::BadInput)?,
         }
         if start.b.is_some() {
             s.apply(Change::Split(Some(0.5))).map_err(crate::BadInput)?;

@@ -47,7 +47,10 @@ impl TechniqueState {
         if let Some(n) = expanded.samples {
             state.set(state.samples_key(), &n.to_string())?;
         }
-        if let Some(r) = expanded.radius {
+        // A technique without a radius (`none`) has nothing for `--radius` to set.
+        if let Some(r) = expanded.radius
+            && state.setting("radius").is_some()
+        {
             state.set("radius", &r.to_string())?;
         }
         for (k, v) in &expanded.set {

@@ -80,14 +80,17 @@ fn detail(scene: &Scene) -> f32 {
         .clamp(1.0, 8.0)
 }
 
-/// The default grid of a scene: its bounds in cells of about equal sides (a flat axis gets one
-/// layer), `probes::DEFAULT_PROBES` × the scene's detail of them, within the probe budget.
+/// The default grid of a scene: a probe every [`probes::DEFAULT_SPACING`] metres over its
+/// bounds, coarser where that would take more than [`probes::DEFAULT_PROBES`] probes (cells of
+/// about equal sides, a flat axis one layer). What an application keeps: measured in the book's
+/// "Near and far", where the near field's radius follows the spacing (`--radius auto`).
 pub fn default_grid(scene: &Scene) -> Result<ProbeGrid, probes::GridError> {
     let bounds = scene.bounds();
     if bounds.is_empty() {
         return Err(probes::GridError::Empty);
     }
-    let spacing = ProbeGrid::default_spacing(bounds, probes::DEFAULT_PROBES * detail(scene));
+    let spacing =
+        ProbeGrid::default_spacing(bounds, probes::DEFAULT_PROBES).max(probes::DEFAULT_SPACING);
     ProbeGrid::with_spacing(bounds, spacing)
 }
 

@@ -144,6 +144,39 @@ pub struct TechniqueDesc {
     /// The outputs it writes (`NearFieldOutputs`), and no other. Each must be handed in, except
     /// the bent normal, which is written where it is given.
     pub writes: &'static [Output],
+    /// How its light is counted against a probe volume, once (the book, "Near and far").
+    pub far_rule: FarRule,
+}
+
+/// How nearfield's frame counts a technique's near field against the probe volume's irradiance,
+/// which already holds the occlusion its probes see and the light of those occluders
+/// (passes/irradiance_terms.wgsl). Nothing changes under the open sky.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FarRule {
+    /// Scalar occlusion (ssao, gtao, ssdo): of the volume's irradiance, the share its visibility
+    /// v keeps beyond the volume's own visibility within R, each with its occluders'
+    /// multi-bounce light: E_far · min(1, F(v) / F(ao_far)).
+    Occlusion,
+    /// Directional occlusion (s3ho, ssbn): the share h of the occlusion the technique finds that
+    /// the volume holds takes the volume's light — env' = mix(env, E_far, h), indirect' =
+    /// (1 − h) · indirect, h = min(1, (1 − ao_far) / (1 − ao)).
+    Directional,
+    /// Near-field light that replaces the volume's in the directions the technique finds
+    /// occluded (hbil, vbgi, instant-radiosity): as written.
+    Replace,
+    /// Its own environment (ssdo-vpl, `none`): as written.
+    Own,
+}
+
+impl FarRule {
+    /// The value of irradiance_terms.wgsl's `FAR_RULE`.
+    pub fn constant(self) -> f64 {
+        match self {
+            FarRule::Own | FarRule::Replace => 0.0,
+            FarRule::Occlusion => 1.0,
+            FarRule::Directional => 2.0,
+        }
+    }
 }
 
 /// Parses a technique's denoiser choice and svgf configuration from its settings.

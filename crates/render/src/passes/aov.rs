@@ -13,6 +13,7 @@ pub fn source() -> String {
         util::COMMON_WGSL,
         util::ENV_WGSL,
         util::FRAME_BINDINGS_WGSL,
+        util::FAR_WGSL,
         util::IRRADIANCE_TERMS_WGSL,
         SHADER,
     ])
@@ -47,6 +48,8 @@ crate::bind_group! {
         gb_emissive: view = kind::TEXTURE,
         /// The extracted AOV (rgba32float).
         out_aov: view = kind::write(AOV_FORMAT),
+        /// The far field at the point (rgba16float: rgb E_far(n)/π, a its visibility within R).
+        far_field: view = kind::TEXTURE,
     }
 }
 
@@ -66,6 +69,7 @@ pub fn new(
     frame: &FrameGroup,
     targets: &FrameTargets,
     ao_scales_far: bool,
+    far_rule: crate::technique::FarRule,
 ) -> ScreenPass {
     let layout = AovBindings::layout(device);
     let module = crate::pipeline_cache::shader_module(device, "aov", &source());
@@ -84,6 +88,7 @@ pub fn new(
             direct_radiance: &targets.direct_radiance[side].view,
             gb_emissive: &targets.emissive.view,
             out_aov: &targets.aov.view,
+            far_field: &targets.far_field.view,
         }
         .bind_group(device, &layout)
     });
@@ -95,7 +100,7 @@ pub fn new(
             "main",
             frame,
             &layout,
-            &super::irradiance_terms_constants(ao_scales_far),
+            &super::irradiance_terms_constants(ao_scales_far, far_rule, frame),
         ),
         own,
     }

@@ -22,6 +22,7 @@
 @group(1) @binding(10) var direct_radiance: texture_2d<f32>;
 @group(1) @binding(11) var gb_emissive: texture_2d<f32>;
 @group(1) @binding(12) var out_aov: texture_storage_2d<rgba32float, write>;
+@group(1) @binding(13) var far_field: texture_2d<f32>;
 
 // Whether the technique wrote only ao (gtao): its env- and indirect-irradiance are then formed
 // here (irradiance_terms.wgsl).
@@ -52,18 +53,18 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
             v = vec3<f32>(textureLoad(ao, pixel, 0).r);
         }
         case 6u, 14u: {
-            v = technique_env(env_irradiance, ao, AO_SCALES_FAR, pixel);
+            v = technique_env(env_irradiance, ao, far_field, AO_SCALES_FAR, far_volume(far_probes), pixel, textureLoad(gb_albedo, pixel, 0).rgb);
         }
         case 7u: {
             v = textureLoad(light_irradiance, pixel, 0).rgb;
         }
         case 8u: {
-            v = technique_indirect(indirect_irradiance, AO_SCALES_FAR, pixel);
+            v = technique_indirect(indirect_irradiance, ao, far_field, AO_SCALES_FAR, far_volume(far_probes), pixel);
         }
         case 9u: {
-            v = textureLoad(gb_albedo, pixel, 0).rgb * (technique_env(env_irradiance, ao, AO_SCALES_FAR, pixel)
+            v = textureLoad(gb_albedo, pixel, 0).rgb * (technique_env(env_irradiance, ao, far_field, AO_SCALES_FAR, far_volume(far_probes), pixel, textureLoad(gb_albedo, pixel, 0).rgb)
                 + textureLoad(light_irradiance, pixel, 0).rgb
-                + technique_indirect(indirect_irradiance, AO_SCALES_FAR, pixel));
+                + technique_indirect(indirect_irradiance, ao, far_field, AO_SCALES_FAR, far_volume(far_probes), pixel));
         }
         case 10u: {
             v = vec3<f32>(textureLoad(gb_motion, pixel, 0).rg, 0.0);
@@ -76,9 +77,9 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         }
         case 13u: {
             v = textureLoad(gb_emissive, pixel, 0).rgb
-                + textureLoad(gb_albedo, pixel, 0).rgb * (technique_env(env_irradiance, ao, AO_SCALES_FAR, pixel)
+                + textureLoad(gb_albedo, pixel, 0).rgb * (technique_env(env_irradiance, ao, far_field, AO_SCALES_FAR, far_volume(far_probes), pixel, textureLoad(gb_albedo, pixel, 0).rgb)
                 + textureLoad(light_irradiance, pixel, 0).rgb
-                + technique_indirect(indirect_irradiance, AO_SCALES_FAR, pixel));
+                + technique_indirect(indirect_irradiance, ao, far_field, AO_SCALES_FAR, far_volume(far_probes), pixel));
         }
         default: {
         }

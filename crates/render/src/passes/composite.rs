@@ -13,6 +13,7 @@ pub fn source() -> String {
         util::COMMON_WGSL,
         util::ENV_WGSL,
         util::FRAME_BINDINGS_WGSL,
+        util::FAR_WGSL,
         util::IRRADIANCE_TERMS_WGSL,
         SHADER,
     ])
@@ -39,8 +40,10 @@ crate::bind_group! {
         indirect_irradiance: view = kind::TEXTURE,
         /// The linear HDR frame (rgba16float).
         out_radiance: view = kind::write(HDR_FORMAT),
-        /// The technique's `ao` (r32float), read when it writes only ao (`AO_SCALES_FAR`).
+        /// The technique's `ao` (r32float).
         ao: view = kind::TEXTURE_UNFILTERABLE,
+        /// The far field at the point (rgba16float: rgb E_far(n)/π, a its visibility within R).
+        far_field: view = kind::TEXTURE,
     }
 }
 
@@ -61,6 +64,7 @@ pub fn new(
     frame: &FrameGroup,
     targets: &FrameTargets,
     ao_scales_far: bool,
+    far_rule: crate::technique::FarRule,
 ) -> ScreenPass {
     let layout = CompositeBindings::layout(device);
     let module = crate::pipeline_cache::shader_module(device, "composite", &source());
@@ -75,6 +79,7 @@ pub fn new(
         indirect_irradiance: &targets.indirect_irradiance.view,
         out_radiance: &targets.radiance.view,
         ao: &targets.ao.view,
+        far_field: &targets.far_field.view,
     }
     .bind_group(device, &layout);
     ScreenPass::single(
@@ -85,7 +90,7 @@ pub fn new(
             "main",
             frame,
             &layout,
-            &super::irradiance_terms_constants(ao_scales_far),
+            &super::irradiance_terms_constants(ao_scales_far, far_rule, frame),
         ),
         own,
     )

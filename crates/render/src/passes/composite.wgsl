@@ -18,6 +18,7 @@
 @group(1) @binding(7) var indirect_irradiance: texture_2d<f32>;
 @group(1) @binding(8) var out_radiance: texture_storage_2d<rgba16float, write>;
 @group(1) @binding(9) var ao: texture_2d<f32>;
+@group(1) @binding(10) var far_field: texture_2d<f32>;
 
 // Whether the technique wrote only ao (irradiance_terms.wgsl).
 override AO_SCALES_FAR: bool = false;
@@ -37,9 +38,9 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     let albedo = textureLoad(gb_albedo, pixel, 0).rgb;
     let metallic = textureLoad(gb_material, pixel, 0).r;
-    let irradiance = technique_env(env_irradiance, ao, AO_SCALES_FAR, pixel)
+    let irradiance = technique_env(env_irradiance, ao, far_field, AO_SCALES_FAR, far_volume(far_probes), pixel, textureLoad(gb_albedo, pixel, 0).rgb)
         + textureLoad(light_irradiance, pixel, 0).rgb
-        + technique_indirect(indirect_irradiance, AO_SCALES_FAR, pixel);
+        + technique_indirect(indirect_irradiance, ao, far_field, AO_SCALES_FAR, far_volume(far_probes), pixel);
     let radiance = textureLoad(gb_emissive, pixel, 0).rgb
         + (1.0 - metallic) * albedo * irradiance
         + textureLoad(specular, pixel, 0).rgb;

@@ -54,6 +54,9 @@ crate::bind_group! {
         /// The shadow maps as unfilterable floats, for the disc search's loads (GL cannot load
         /// from a depth texture).
         shadow_depths: view = kind::TEXTURE_ARRAY_UNFILTERABLE,
+        /// The far field at the point (rgba16float): rgb its E(n)/π, a its own visibility within
+        /// R (far.wgsl's far_ao_at; 1 for the sky).
+        out_far_field: view = kind::write(HDR_FORMAT),
     }
 }
 
@@ -93,6 +96,7 @@ pub fn new(
             out_specular: &targets.specular.view,
             out_direct_radiance: &targets.direct_radiance[side].view,
             out_env_irradiance: &targets.env_irradiance.view,
+            out_far_field: &targets.far_field.view,
         }
         .bind_group(device, &layout)
     });

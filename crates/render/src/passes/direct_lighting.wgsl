@@ -37,6 +37,8 @@
 @group(1) @binding(11) var out_direct_radiance: texture_storage_2d<rgba16float, write>;
 @group(1) @binding(12) var out_env_irradiance: texture_storage_2d<rgba16float, write>;
 @group(1) @binding(13) var shadow_depths: texture_2d_array<f32>;
+// The far field at the point: rgb its E(n)/π, a its own visibility within R (1 for the sky).
+@group(1) @binding(14) var out_far_field: texture_storage_2d<rgba16float, write>;
 
 // lights.wgsl's shadow_visibility of light l at world p with normal n, from this pass's shadow
 // maps: the layer that sees p, its matrix, the frame's normal offset.
@@ -84,6 +86,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         textureStore(out_specular, pixel, vec4<f32>(0.0));
         textureStore(out_direct_radiance, pixel, vec4<f32>(0.0));
         textureStore(out_env_irradiance, pixel, vec4<f32>(0.0));
+        textureStore(out_far_field, pixel, vec4<f32>(0.0, 0.0, 0.0, 1.0));
         return;
     }
     let n = normalize(nw.xyz);
@@ -121,8 +124,10 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     specular += env_specular_at(env_specular, env_sampler, env, r, roughness) * (f0 * ab.x + ab.y);
     // The senders' light: the far field, the open sky's SH irradiance or the probe volume's.
     var far_e = vec3<f32>(0.0);
+    var far_ao = 1.0;
     if far_volume(far_probes) {
         far_e = far_irradiance_here(far_probes, far_visibility, far_irradiance_atlas, env_sampler, view, p, n);
+        far_ao = far_ao_here(far_probes, far_visibility, env_sampler, view, p, n);
     } else {
         far_e = env_irradiance_sh(env, n);
     }
@@ -131,4 +136,5 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     textureStore(out_specular, pixel, vec4<f32>(specular, 1.0));
     textureStore(out_direct_radiance, pixel, vec4<f32>(direct, 1.0));
     textureStore(out_env_irradiance, pixel, vec4<f32>(far_e, 1.0));
+    textureStore(out_far_field, pixel, vec4<f32>(far_e, far_ao));
 }

@@ -1,23 +1,80 @@
 // irradiance_terms.wgsl — a library for the passes that read the technique's irradiance images
-// (composite, aov). It declares no bindings. After a technique that writes only ao (gtao:
-// `ao_only`, the passes' AO_SCALES_FAR), nearfield's frame forms its two other images where
-// they are read, by the technique's own rule (Jimenez et al. 2016: ao scales the unoccluded
-// light): env-irradiance = ao · E_far(n)/π, from the far field that the direct pass left in the
-// env-irradiance image, and indirect-irradiance = 0.
+// (composite, aov). It declares no bindings. After a technique that writes only
+// ao (gtao: `ao_only`, the passes' AO_SCALES_FAR), nearfield's frame forms its two other images
+// where they are read, by the technique's own rule (Jimenez et al. 2016: ao scales the
+// unoccluded light): env-irradiance = ao · E_far(n)/π, from the far field the direct pass left
+// (`far_field`: rgb E_far(n)/π, a the far field's own visibility within R), and
+// indirect-irradiance = 0.
+//
+// Near and far counted once, with a probe volume (FAR_RULE, the technique's FarRule): the
+// volume's irradiance E_far already holds the occlusion its probes see within R (its own
+// visibility ao_far, far_field's alpha) and the light of those occluders. A technique changes
+// the image only by what the volume does not hold (the book, "Near and far"):
+//   1 occlusion    (ssao, gtao, ssdo): v = env / E_far, the technique's visibility;
+//                  env' = E_far · min(1, F(v) / F(ao_far)), F GTAO's multi-bounce fit with the
+//                  receiver's albedo (Jimenez et al. 2016, Eq. 10)
+//   2 directional  (s3ho, ssbn): h = min(1, (1 − ao_far) / (1 − ao)) of the occlusion found is
+//                  the volume's too: env' = mix(env, E_far, h), indirect' = (1 − h) indirect
+//   0              (hbil, vbgi, instant-radiosity: near light that replaces the volume's; `none`,
+//                  ssdo-vpl: their own): as written.
+override FAR_RULE: u32 = 0u;
+
+// GTAO's multi-bounce fit (Jimenez et al. 2016, Eq. 10): visibility a with the light its
+// occluders reflect (their albedo taken as the receiver's).
+fn multibounce(a: f32, albedo: vec3<f32>) -> vec3<f32> {
+    let ca = 2.0404 * albedo - 0.3324;
+    let cb = -4.7951 * albedo + 0.6417;
+    let cc = 2.7552 * albedo + 0.6903;
+    return max(vec3<f32>(a), ((a * ca + cb) * a + cc) * a);
+}
+
+// The share of the occlusion a technique finds (ao) that the far field already holds (its own
+// visibility within R, far_ao): 1 where the technique finds none.
+fn held_share(ao: f32, far_ao: f32) -> f32 {
+    if ao >= 0.999 {
+        return 1.0;
+    }
+    return clamp((1.0 - far_ao) / (1.0 - ao), 0.0, 1.0);
+}
+
+// Whether the frame counts the technique's light against a probe volume (`volume`: the frame has
+// one, far.wgsl's far_volume), by `rule`.
+fn counts(rule: u32, volume: bool) -> bool {
+    return FAR_RULE == rule && volume;
+}
+
+fn luminance_of(c: vec3<f32>) -> f32 {
+    return dot(c, vec3<f32>(0.2126, 0.7152, 0.0722));
+}
 
 // The technique's env-irradiance at `pixel`.
-fn technique_env(env_irradiance: texture_2d<f32>, ao: texture_2d<f32>, ao_only: bool, pixel: vec2<u32>) -> vec3<f32> {
-    let e = textureLoad(env_irradiance, pixel, 0).rgb;
+fn technique_env(env_irradiance: texture_2d<f32>, ao: texture_2d<f32>, far_field: texture_2d<f32>, ao_only: bool, volume: bool, pixel: vec2<u32>, albedo: vec3<f32>) -> vec3<f32> {
+    let far = textureLoad(far_field, pixel, 0);
+    let a = textureLoad(ao, pixel, 0).r;
+    var e: vec3<f32>;
     if ao_only {
-        return textureLoad(ao, pixel, 0).r * e;
+        e = a * far.rgb;
+    } else {
+        e = textureLoad(env_irradiance, pixel, 0).rgb;
+    }
+    if counts(1u, volume) {
+        let v = clamp(luminance_of(e) / max(luminance_of(far.rgb), 1e-12), 0.0, 1.0);
+        return far.rgb * min(vec3<f32>(1.0), multibounce(v, albedo) / max(multibounce(far.a, albedo), vec3<f32>(1e-3)));
+    }
+    if counts(2u, volume) {
+        return mix(e, far.rgb, held_share(a, far.a));
     }
     return e;
 }
 
 // The technique's indirect-irradiance at `pixel`.
-fn technique_indirect(indirect_irradiance: texture_2d<f32>, ao_only: bool, pixel: vec2<u32>) -> vec3<f32> {
+fn technique_indirect(indirect_irradiance: texture_2d<f32>, ao: texture_2d<f32>, far_field: texture_2d<f32>, ao_only: bool, volume: bool, pixel: vec2<u32>) -> vec3<f32> {
     if ao_only {
         return vec3<f32>(0.0);
     }
-    return textureLoad(indirect_irradiance, pixel, 0).rgb;
+    let indirect = textureLoad(indirect_irradiance, pixel, 0).rgb;
+    if counts(2u, volume) {
+        return (1.0 - held_share(textureLoad(ao, pixel, 0).r, textureLoad(far_field, pixel, 0).a)) * indirect;
+    }
+    return indirect;
 }

@@ -23,8 +23,18 @@ pub use crate::contract::frame::FrameGroup;
 
 /// The pipeline constant of the passes that read the technique's irradiance images (composite,
 /// aov; passes/irradiance_terms.wgsl): `AO_SCALES_FAR`, whether the technique writes only ao.
-pub fn irradiance_terms_constants(ao_scales_far: bool) -> [(&'static str, f64); 1] {
-    [("AO_SCALES_FAR", f64::from(u8::from(ao_scales_far)))]
+/// `FAR_RULE`: how the technique's near field is counted against a probe volume
+/// ([`crate::technique::FarRule`]); and far.wgsl's `FAR_FIELD` of the frame.
+pub fn irradiance_terms_constants(
+    ao_scales_far: bool,
+    far_rule: crate::technique::FarRule,
+    frame: &FrameGroup,
+) -> [(&'static str, f64); 3] {
+    [
+        ("AO_SCALES_FAR", f64::from(u8::from(ao_scales_far))),
+        ("FAR_RULE", far_rule.constant()),
+        frame.far_field_constant(),
+    ]
 }
 
 /// Two of a thing a pass keeps across frames: this frame writes one side and reads the other.

@@ -54,12 +54,19 @@ impl Passes {
         // A technique that writes only ao (gtao): composite and aov form its env- and
         // indirect-irradiance.
         let ao_scales_far = !desc.writes.contains(&Output::EnvIrradiance);
+        let far_rule = desc.far_rule;
         Ok(Passes {
             direct,
             technique,
-            composite: passes::composite::new(device, frame_group, targets, ao_scales_far),
+            composite: passes::composite::new(
+                device,
+                frame_group,
+                targets,
+                ao_scales_far,
+                far_rule,
+            ),
             tonemap: passes::tonemap::new(device, frame_group, targets),
-            aov: passes::aov::new(device, frame_group, targets, ao_scales_far),
+            aov: passes::aov::new(device, frame_group, targets, ao_scales_far, far_rule),
         })
     }
 }

@@ -42,7 +42,7 @@ fn far_grid(probes: texture_2d<f32>) -> FarGrid {
     return g;
 }
 
-const FAR_TEXELS: u32 = 10u;
+const FAR_TEXELS: u32 = 13u;
 const FAR_VIS_RES: f32 = 16.0;
 const FAR_TILE: u32 = 18u;
 const FAR_IRR_RES: f32 = 12.0;
@@ -193,6 +193,38 @@ fn far_sh_at(probes: texture_2d<f32>, visibility: texture_2d<f32>, smp: sampler,
         }
     }
     return out;
+}
+
+// The far field's own visibility within R about unit normal `n` at world `p` (seen from unit
+// `v`): the cosine-weighted share of the hemisphere in which the probes around p meet nothing
+// within R (each probe's visibility SH, ProbeVolume::visibility_sh, with the lookup's weights),
+// in [0, 1]. 1 where the probes see nothing within R.
+fn far_ao_at(probes: texture_2d<f32>, visibility: texture_2d<f32>, smp: sampler, p: vec3<f32>, n: vec3<f32>, v: vec3<f32>) -> f32 {
+    let cell = far_cell(probes, p, n, v);
+    let b = sh_basis(n);
+    var a = 0.0;
+    var total = 0.0;
+    for (var c = 0u; c < 8u; c++) {
+        let corner = far_corner(probes, visibility, smp, cell, c);
+        if corner.w <= 0.0 {
+            continue;
+        }
+        let t0 = far_texel(probes, cell.grid, corner.index, 10u);
+        let t1 = far_texel(probes, cell.grid, corner.index, 11u);
+        let t2 = far_texel(probes, cell.grid, corner.index, 12u);
+        let band1 = t0.y * b[1] + t0.z * b[2] + t1.x * b[3];
+        let band2 = t1.y * b[4] + t1.z * b[5] + t2.x * b[6] + t2.y * b[7] + t2.z * b[8];
+        a += corner.w * (t0.x * b[0] + (2.0 / 3.0) * band1 + 0.25 * band2);
+        total += corner.w;
+    }
+    if total <= 0.0 {
+        return 1.0;
+    }
+    return clamp(a / total, 0.0, 1.0);
+}
+
+fn far_ao_here(probes: texture_2d<f32>, visibility: texture_2d<f32>, smp: sampler, cam: View, p: vec3<f32>, n: vec3<f32>) -> f32 {
+    return far_ao_at(probes, visibility, smp, p, n, normalize(cam.camera_position.xyz - p));
 }
 
 // E(n)/π of the far field at world `p` with unit normal `n` seen from unit `v`: the same weights

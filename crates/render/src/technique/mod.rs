@@ -15,8 +15,8 @@ pub mod vbgi;
 
 use crate::RenderError;
 pub use crate::contract::technique::{
-    CheckFn, CreateFn, DenoiseFn, FrameInfo, Output, Technique, TechniqueContext, TechniqueDesc,
-    layered_texture, reject_unknown_keys, screen_texture,
+    CheckFn, CreateFn, DenoiseFn, FarRule, FrameInfo, Output, Technique, TechniqueContext,
+    TechniqueDesc, layered_texture, reject_unknown_keys, screen_texture,
 };
 use crate::passes::denoise;
 pub use crate::settings::{
@@ -121,6 +121,28 @@ pub fn resolve_params(
     params.set.extend(split_spec(spec).1);
     let params = expand_presets(desc, &params)?;
     Ok((desc, params))
+}
+
+/// The near-field radius R (m) a spec resolves to: its `radius` setting (`--radius`, `--set
+/// radius=`, a preset, the spec), else the technique's default; `None` for a technique without
+/// one (`none`).
+pub fn radius_of(spec: &str, params: &TechniqueParams) -> Result<Option<f32>, RenderError> {
+    let (desc, resolved) = resolve_params(spec, params)?;
+    let Some(setting) = desc.settings.iter().find(|s| s.key == "radius") else {
+        return Ok(None);
+    };
+    let typed = resolved
+        .set
+        .iter()
+        .rev()
+        .find(|(k, _)| k == "radius")
+        .map(|(_, v)| v.as_str());
+    let value = match (typed, resolved.radius) {
+        (Some(v), _) => v.parse().ok(),
+        (None, Some(r)) => Some(r),
+        (None, None) => setting.default.parse().ok(),
+    };
+    Ok(value)
 }
 
 /// Resolves a spec against the command line's parameters and parses its settings without a

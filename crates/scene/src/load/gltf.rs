@@ -170,17 +170,25 @@ pub fn load(path: &Path) -> Result<Scene, SceneError> {
         .or_else(|| doc.scenes().next())
         .ok_or_else(|| err("the file has no scene".into()))?;
     let mut cameras: Vec<(usize, Camera)> = Vec::new();
-    let mut stack: Vec<(::gltf::Node, Mat4)> =
-        gscene.nodes().map(|n| (n, Mat4::IDENTITY)).collect();
+    // Each node with its parent's world transform, the names of its ancestors and whether an
+    // ancestor is dynamic (its extras' "nearfield": {"dynamic": true}).
+    let mut stack: Vec<(::gltf::Node, Mat4, Vec<String>, bool)> = gscene
+        .nodes()
+        .map(|n| (n, Mat4::IDENTITY, Vec::new(), false))
+        .collect();
     let mut warned_mode = false;
     let (mut triangles, mut vertices) = (0usize, 0usize);
-    while let Some((node, parent)) = stack.pop() {
+    while let Some((node, parent, mut nodes, parent_dynamic)) = stack.pop() {
         let local = Mat4::from_cols_array_2d(&node.transform().matrix());
         let world = parent * local;
         let carries = node.mesh().is_some() || node.camera().is_some() || node.light().is_some();
         check::transform(&node, &local, &world, carries).map_err(err)?;
+        let dynamic = parent_dynamic || check::dynamic_extra(&node).map_err(err)?;
+        if let Some(name) = node.name().filter(|n| !n.is_empty()) {
+            nodes.push(name.to_string());
+        }
         for child in node.children() {
-            stack.push((child, world));
+            stack.push((child, world, nodes.clone(), dynamic));
         }
         if let Some(mesh) = node.mesh() {
             for prim in mesh.primitives() {
@@ -232,6 +240,8 @@ pub fn load(path: &Path) -> Result<Scene, SceneError> {
                         .index()
                         .map(|i| i as u32)
                         .unwrap_or(default_material),
+                    nodes: nodes.clone(),
+                    dynamic,
                 };
                 let n = m.positions.len() as u32;
                 if let Some(bad) = m.indices.iter().flatten().find(|&&i| i >= n) {

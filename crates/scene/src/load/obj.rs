@@ -101,6 +101,7 @@ pub fn load(path: &Path) -> Result<Scene, SceneError> {
                 .map(|t| [t[0], t[1], t[2]])
                 .collect(),
             material: m.material_id.map(|i| i as u32 + 1).unwrap_or(0),
+            ..Default::default()
         };
         if mesh.indices.iter().flatten().any(|&i| i as usize >= n) {
             return Err(SceneError::Obj {

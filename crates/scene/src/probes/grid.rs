@@ -13,8 +13,12 @@ use glam::Vec3;
 
 /// Probes in one volume, at most (the documented probe budget).
 pub const MAX_PROBES: usize = 65_536;
-/// Probes the default spacing aims at.
-pub const DEFAULT_PROBES: f32 = 4096.0;
+/// Most probes of the default grid (its spacing grows beyond [`DEFAULT_SPACING`] to stay
+/// within): about 50 MB of volume on the GPU.
+pub const DEFAULT_PROBES: f32 = 16384.0;
+/// The default distance between probes (m): one probe per metre, the scale at which engines
+/// keep irradiance volumes for interiors.
+pub const DEFAULT_SPACING: f32 = 1.0;
 
 /// A regular grid of probes: probe (i, j, k) stands at `origin + (i, j, k) · spacing`.
 #[derive(Clone, Copy, Debug, PartialEq)]

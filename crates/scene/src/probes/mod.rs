@@ -25,7 +25,7 @@ mod file;
 mod grid;
 
 pub use file::{ProbeFileError, VERSION};
-pub use grid::{DEFAULT_PROBES, GridError, MAX_PROBES, ProbeGrid};
+pub use grid::{DEFAULT_PROBES, DEFAULT_SPACING, GridError, MAX_PROBES, ProbeGrid};
 
 use crate::sh;
 use glam::{Vec2, Vec3};
@@ -109,6 +109,30 @@ fn sign_not_zero(v: Vec2) -> Vec2 {
         if v.x >= 0.0 { 1.0 } else { -1.0 },
         if v.y >= 0.0 { 1.0 } else { -1.0 },
     )
+}
+
+/// Solid angle (sr) of texel (x, y) of a `res`² octahedral map: its two spherical triangles.
+pub fn oct_texel_solid_angle(x: u32, y: u32, res: u32) -> f32 {
+    let r = res as f32;
+    let corner = |i: u32, j: u32| {
+        oct_decode(Vec2::new(
+            i as f32 / r * 2.0 - 1.0,
+            j as f32 / r * 2.0 - 1.0,
+        ))
+    };
+    let (a, b, c, d) = (
+        corner(x, y),
+        corner(x + 1, y),
+        corner(x + 1, y + 1),
+        corner(x, y + 1),
+    );
+    let triangle = |a: Vec3, b: Vec3, c: Vec3| {
+        2.0 * a
+            .dot(b.cross(c))
+            .abs()
+            .atan2(1.0 + a.dot(b) + b.dot(c) + c.dot(a))
+    };
+    triangle(a, b, c) + triangle(a, c, d)
 }
 
 /// Direction of texel (x, y) of a [`VIS_RES`]² octahedral map (texel centres).
@@ -195,6 +219,51 @@ impl ProbeVolume {
         let top = at(t0.x, t0.y).lerp(at(t0.x + 1.0, t0.y), f.x);
         let bottom = at(t0.x, t0.y + 1.0).lerp(at(t0.x + 1.0, t0.y + 1.0), f.x);
         top.lerp(bottom, f.y)
+    }
+
+    /// Each probe's visibility within `radius` metres as order-2 SH (9 coefficients of the
+    /// scalar function V(ω) = 1 where its rays meet nothing closer than `radius`): from the
+    /// visibility map's distance moments per texel, Chebyshev's bound where the texel's mean
+    /// distance is below the radius (as the lookup's weights), 1 where its rays went past the
+    /// recorded maximum. What a technique's own visibility within R is measured against (the
+    /// book, "Near and far").
+    pub fn visibility_sh(&self, radius: f32) -> Vec<[f32; SH_COEFFS]> {
+        let res = VIS_RES;
+        let maxd = self.max_distance;
+        // Per interior texel: its direction's SH basis times its solid angle.
+        let texels: Vec<([f32; SH_COEFFS], f32)> = (0..res * res)
+            .map(|i| {
+                let (x, y) = (i % res, i / res);
+                let solid = oct_texel_solid_angle(x, y, res);
+                let b = sh::basis16(texel_direction(x, y));
+                (std::array::from_fn(|k| b[k]), solid)
+            })
+            .collect();
+        let tile = (VIS_TILE * VIS_TILE) as usize;
+        (0..self.probes.len())
+            .map(|p| {
+                let mut c = [0f32; SH_COEFFS];
+                if !self.probes[p].active {
+                    return c;
+                }
+                let t = &self.visibility[p * tile..(p + 1) * tile];
+                for (i, (b, solid)) in texels.iter().enumerate() {
+                    let (x, y) = (i as u32 % res, i as u32 / res);
+                    let m = t[((y + 1) * VIS_TILE + x + 1) as usize];
+                    let mean = m[0] * maxd;
+                    let v = if mean >= 0.999 * maxd || radius <= mean {
+                        1.0
+                    } else {
+                        let var = (m[1] - m[0] * m[0]).abs().max(1e-6) * maxd * maxd;
+                        var / (var + (radius - mean) * (radius - mean))
+                    };
+                    for (ck, bk) in c.iter_mut().zip(b) {
+                        *ck += v * bk * solid;
+                    }
+                }
+                c
+            })
+            .collect()
     }
 
     /// The probes and weights a point `p` with unit normal `n`, seen from unit direction `v`
@@ -451,6 +520,55 @@ mod tests {
                 assert!(a.dot(b) > 0.99, "({x},{y}) → ({sx},{sy}): {a} vs {b}");
             }
         }
+    }
+
+    #[test]
+    fn octahedral_texels_cover_the_sphere() {
+        let total: f32 = (0..VIS_RES * VIS_RES)
+            .map(|i| oct_texel_solid_angle(i % VIS_RES, i / VIS_RES, VIS_RES))
+            .sum();
+        assert!((total - 4.0 * std::f32::consts::PI).abs() < 1e-3, "{total}");
+    }
+
+    /// The cosine-weighted visibility of the SH, as far.wgsl's far_ao_at reads it.
+    fn ao_of(c: &[f32; SH_COEFFS], n: Vec3) -> f32 {
+        let coeffs: Vec<Vec3> = c.iter().map(|&x| Vec3::splat(x)).collect();
+        sh::irradiance_over_pi(&coeffs, n).x
+    }
+
+    #[test]
+    fn a_probe_sees_its_open_space_and_its_wall_within_r() {
+        // Open space up to the recorded maximum: visible in every direction at any radius.
+        let mut v = constant_volume(Vec3::ONE, [2, 2, 2]);
+        let open = v.visibility_sh(0.5)[0];
+        for n in [Vec3::X, Vec3::NEG_Y, Vec3::new(0.3, 0.4, -0.87).normalize()] {
+            assert!((ao_of(&open, n) - 1.0).abs() < 0.01, "{}", ao_of(&open, n));
+        }
+        // A wall 0.4 m below probe 0 (−Y half space at 0.4 / cos θ): hidden within R = 1
+        // below, open above.
+        let tile = (VIS_TILE * VIS_TILE) as usize;
+        let mut interior = Vec::new();
+        for y in 0..VIS_RES {
+            for x in 0..VIS_RES {
+                let d = texel_direction(x, y);
+                let t = if d.y < -0.05 {
+                    (0.4 / -d.y).min(v.max_distance)
+                } else {
+                    v.max_distance
+                } / v.max_distance;
+                interior.push([t, t * t]);
+            }
+        }
+        v.visibility[..tile].copy_from_slice(&bordered_tile(&interior));
+        let wall = v.visibility_sh(1.0)[0];
+        let down = ao_of(&wall, Vec3::NEG_Y);
+        let up = ao_of(&wall, Vec3::Y);
+        // Facing the wall only the directions within acos(0.4) of its plane reach past 1 m:
+        // their cosine-weighted share is 0.4² = 0.16 (order-2 SH rings a little).
+        assert!((down - 0.16).abs() < 0.03, "facing the wall: {down}");
+        assert!(up > 0.95, "facing away: {up}");
+        // Within 0.3 m the wall is out of reach.
+        assert!(ao_of(&v.visibility_sh(0.3)[0], Vec3::NEG_Y) > 0.95);
     }
 
     #[test]

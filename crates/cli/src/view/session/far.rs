@@ -65,7 +65,8 @@ impl Session {
         // What the bake sees: the scene's lights that are on, the sun if it is on.
         let lights = self.renderer_a.lights().len();
         let scene_lights = self.scene.lights.len();
-        let mut scene = self.scene.clone();
+        // The bake leaves dynamic meshes out (`--dynamic`, `--add`).
+        let mut scene = self.scene.baked_part();
         scene.lights = (0..scene_lights)
             .filter(|&i| self.renderer_a.light_enabled(i))
             .map(|i| self.scene.lights[i])
@@ -74,9 +75,7 @@ impl Session {
         if lights > scene_lights && !self.renderer_a.light_enabled(lights - 1) {
             env.sun = None;
         }
-        let settings = crate::far::GridOpts::default()
-            .settings_for(&scene)
-            .map_err(|e| e.to_string())?;
+        let settings = self.grid.settings_for(&scene).map_err(|e| e.to_string())?;
         let monitor = Arc::new(Monitor::default());
         let (scene_name, env_name) = (self.scene_name.clone(), self.env_name.clone());
         let m = monitor.clone();
@@ -121,6 +120,11 @@ impl Session {
             .thread
             .join()
             .map_err(|_| "the background bake failed".to_string())??;
+        eprintln!(
+            "nearfield: baked the probe volume in the background ({} probes, {} active)",
+            v.probes.len(),
+            v.active_count()
+        );
         let v = Arc::new(v);
         self.set_far_field(Some(&v))?;
         self.volume = Some((b.key, v));

@@ -109,6 +109,7 @@ pub mod settings;
 pub mod split;
 pub mod upsample;
 
+use crate::contract::technique::FarRule;
 use crate::contract::technique::{Output, TechniqueDesc, TechniqueParams};
 use crate::passes::denoise::{Denoise, SvgfConfig};
 use crate::settings::Declared;
@@ -153,6 +154,7 @@ pub const GTAO: TechniqueDesc = TechniqueDesc {
     denoise: Some(config),
     pass_layouts,
     writes: &[Output::Ao, Output::BentNormal],
+    far_rule: FarRule::Occlusion,
 };
 
 pub const HBIL: TechniqueDesc = TechniqueDesc {
@@ -171,6 +173,7 @@ pub const HBIL: TechniqueDesc = TechniqueDesc {
         Output::EnvIrradiance,
         Output::IndirectIrradiance,
     ],
+    far_rule: FarRule::Replace,
 };
 
 /// The settings parsed without a device (`TechniqueDesc::check`).

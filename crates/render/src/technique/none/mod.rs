@@ -4,6 +4,7 @@
 
 use crate::RenderError;
 use crate::bindings::{PassLayout, kind};
+use crate::contract::technique::FarRule;
 use crate::contract::technique::{
     Output, Technique, TechniqueContext, TechniqueDesc, TechniqueParams,
 };
@@ -63,6 +64,7 @@ pub const DESC: TechniqueDesc = TechniqueDesc {
         Output::EnvIrradiance,
         Output::IndirectIrradiance,
     ],
+    far_rule: FarRule::Own,
 };
 
 struct NoneTechnique {

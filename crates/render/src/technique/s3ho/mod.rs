@@ -50,6 +50,7 @@ pub mod settings;
 pub mod shade;
 
 use crate::RenderError;
+use crate::contract::technique::FarRule;
 use crate::contract::technique::{
     Output, Technique, TechniqueContext, TechniqueDesc, TechniqueParams,
 };
@@ -95,6 +96,7 @@ pub const S3HO: TechniqueDesc = TechniqueDesc {
         Output::IndirectIrradiance,
         Output::LightIrradiance,
     ],
+    far_rule: FarRule::Directional,
 };
 
 pub const SSBN: TechniqueDesc = TechniqueDesc {
@@ -113,6 +115,7 @@ pub const SSBN: TechniqueDesc = TechniqueDesc {
         Output::IndirectIrradiance,
         Output::LightIrradiance,
     ],
+    far_rule: FarRule::Directional,
 };
 
 struct S3ho {

@@ -43,6 +43,7 @@ pub mod settings;
 pub mod vpls;
 
 use crate::RenderError;
+use crate::contract::technique::FarRule;
 use crate::contract::technique::{
     Output, Technique, TechniqueContext, TechniqueDesc, TechniqueParams,
 };
@@ -89,6 +90,7 @@ pub const SSAO: TechniqueDesc = TechniqueDesc {
         Output::IndirectIrradiance,
         Output::LightIrradiance,
     ],
+    far_rule: FarRule::Occlusion,
 };
 
 pub const SSDO: TechniqueDesc = TechniqueDesc {
@@ -107,6 +109,7 @@ pub const SSDO: TechniqueDesc = TechniqueDesc {
         Output::IndirectIrradiance,
         Output::LightIrradiance,
     ],
+    far_rule: FarRule::Occlusion,
 };
 
 pub const SSDO_VPL: TechniqueDesc = TechniqueDesc {
@@ -125,6 +128,7 @@ pub const SSDO_VPL: TechniqueDesc = TechniqueDesc {
         Output::IndirectIrradiance,
         Output::LightIrradiance,
     ],
+    far_rule: FarRule::Own,
 };
 
 pub const INSTANT_RADIOSITY: TechniqueDesc = TechniqueDesc {
@@ -143,6 +147,7 @@ pub const INSTANT_RADIOSITY: TechniqueDesc = TechniqueDesc {
         Output::IndirectIrradiance,
         Output::LightIrradiance,
     ],
+    far_rule: FarRule::Replace,
 };
 
 /// Which technique of this file.

@@ -62,6 +62,7 @@ pub mod bitmask;
 pub mod march;
 pub mod settings;
 
+use crate::contract::technique::FarRule;
 use crate::contract::technique::{Output, TechniqueDesc, TechniqueParams};
 use crate::passes::denoise::{Denoise, SvgfConfig};
 use crate::settings::Declared;
@@ -89,6 +90,7 @@ pub const VBGI: TechniqueDesc = TechniqueDesc {
         Output::EnvIrradiance,
         Output::IndirectIrradiance,
     ],
+    far_rule: FarRule::Replace,
 };
 
 /// `VbgiParams` in bitmask.wgsl.

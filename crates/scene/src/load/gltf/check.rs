@@ -16,6 +16,38 @@ pub fn node_name(node: &::gltf::Node) -> String {
     }
 }
 
+/// Whether a node's extras mark it dynamic: `"nearfield": {"dynamic": true}` (its subtree is
+/// then left out of the far field's bake). Other extras are the file's own business; a
+/// `nearfield` entry of the wrong shape is an error.
+pub fn dynamic_extra(node: &::gltf::Node) -> Result<bool, String> {
+    let Some(raw) = node.extras() else {
+        return Ok(false);
+    };
+    let bad = |what: &str| format!("{}: extras \"nearfield\" {what}", node_name(node));
+    let value: serde_json::Value =
+        serde_json::from_str(raw.get()).map_err(|e| bad(&format!("unreadable: {e}")))?;
+    let Some(nf) = value.get("nearfield") else {
+        return Ok(false);
+    };
+    let Some(obj) = nf.as_object() else {
+        return Err(bad("must be an object, e.g. {\"dynamic\": true}"));
+    };
+    for key in obj.keys() {
+        if key != "dynamic" {
+            return Err(bad(&format!(
+                "has an unknown key \"{key}\" (known: dynamic)"
+            )));
+        }
+    }
+    match obj.get("dynamic") {
+        None => Ok(false),
+        Some(serde_json::Value::Bool(b)) => Ok(*b),
+        Some(other) => Err(bad(&format!(
+            "\"dynamic\" must be true or false, not {other}"
+        ))),
+    }
+}
+
 /// A GLB's declared length covers at least its header and lies within the file (the `gltf`
 /// crate subtracts before it checks).
 pub fn glb_header(bytes: &[u8]) -> Result<(), String> {
