@@ -153,11 +153,11 @@ pub struct TechniqueDesc {
 /// (passes/irradiance_terms.wgsl). Nothing changes under the open sky.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum FarRule {
-    /// Scalar occlusion (ssao, gtao, ssdo): of the volume's irradiance, the share its visibility
+    /// Scalar occlusion (ssao, gtao, ssdo, ssbn): of the volume's irradiance, the share its visibility
     /// v keeps beyond the volume's own visibility within R, each with its occluders'
     /// multi-bounce light: E_far · min(1, F(v) / F(ao_far)).
     Occlusion,
-    /// Directional occlusion (s3ho, ssbn): the share h of the occlusion the technique finds that
+    /// Directional occlusion with its own near light (s3ho): the share h of the occlusion the technique finds that
     /// the volume holds takes the volume's light — env' = mix(env, E_far, h), indirect' =
     /// (1 − h) · indirect, h = min(1, (1 − ao_far) / (1 − ao)).
     Directional,

@@ -10,10 +10,10 @@
 // volume's irradiance E_far already holds the occlusion its probes see within R (its own
 // visibility ao_far, far_field's alpha) and the light of those occluders. A technique changes
 // the image only by what the volume does not hold (the book, "Near and far"):
-//   1 occlusion    (ssao, gtao, ssdo): v = env / E_far, the technique's visibility;
+//   1 occlusion    (ssao, gtao, ssdo, ssbn): v = env / E_far, the technique's visibility;
 //                  env' = E_far · min(1, F(v) / F(ao_far)), F GTAO's multi-bounce fit with the
 //                  receiver's albedo (Jimenez et al. 2016, Eq. 10)
-//   2 directional  (s3ho, ssbn): h = min(1, (1 − ao_far) / (1 − ao)) of the occlusion found is
+//   2 directional  (s3ho): h = min(1, (1 − ao_far) / (1 − ao)) of the occlusion found is
 //                  the volume's too: env' = mix(env, E_far, h), indirect' = (1 − h) indirect
 //   0              (hbil, vbgi, instant-radiosity: near light that replaces the volume's; `none`,
 //                  ssdo-vpl: their own): as written.

@@ -115,7 +115,7 @@ pub const SSBN: TechniqueDesc = TechniqueDesc {
         Output::IndirectIrradiance,
         Output::LightIrradiance,
     ],
-    far_rule: FarRule::Directional,
+    far_rule: FarRule::Occlusion,
 };
 
 struct S3ho {
