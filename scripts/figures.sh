@@ -4,7 +4,8 @@
 # strip → docs/src/generated/results.json and docs/src/img/), then renders the generated pages
 # and the README's headline table from the measurements (examples/book_reference.rs).
 # Tens of minutes on lavapipe; FIGURES_QUICK=1 tries the pipeline at a small size;
-# FIGURES_ONLY=bench measures only the frame times again (minutes), dated in results.json.
+# FIGURES_ONLY=bench measures only the frame times again (minutes), dated in results.json;
+# FIGURES_ONLY=lambertian only the `lambertian` runs (the image at the far field's defaults).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 CARGO=${CARGO:-$(command -v cargo || echo "$HOME/.cargo/bin/cargo")}

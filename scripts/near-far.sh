@@ -74,7 +74,7 @@ if [ "${NEAR_FAR_ONLY:-footprint}" = footprint ]; then
     done
     if [ -f "$ASSETS/scenes/crytek_sponza/Sponza.gltf" ]; then
         # shellcheck disable=SC2086
-        compare sponza-chair 1 $SPONZA --size 160x90 --spp 4608 --max-depth 32 --footprint \
-            --add "$ASSETS/scenes/sheen_chair/SheenChair.gltf@6.5,-0.95,0.3,1.5"
+        compare sponza-helmet 1 $SPONZA --size 160x90 --spp 4608 --max-depth 32 --footprint \
+            --add "$ASSETS/scenes/damaged_helmet/DamagedHelmet.gltf@4.2,-0.02,0.6,0.6"
     fi
 fi

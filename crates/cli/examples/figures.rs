@@ -8,11 +8,14 @@
 //! - the demo strip (docs/src/img/cornell-compare.png, the same command as `make demo`);
 //! - the vbgi page's crops (docs/src/img/crops-wall.png, crops-box.png, vbgi-denoisers-wall.png);
 //! - the far field's Sponza strip (docs/src/img/sponza-far.png);
+//! - the near and far page's Sponza strip with an added object (docs/src/img/sponza-helmet.png);
 //!
 //! into docs/src/generated/results.json, then the pages rendered from it (book_reference).
 //! Scratch output goes to target/figures/. `FIGURES_QUICK=1` runs smaller images and fewer
 //! samples (to try the pipeline, not to publish). `FIGURES_ONLY=bench` measures only the frame
-//! times again (dated, the runs kept); `crops` and `far` remake only those pictures.
+//! times again (dated, the runs kept), `lambertian` only the `lambertian` runs (the AOV the far
+//! field's defaults change); `crops`, `far`, `near-far` and `demo` remake only those
+//! pictures.
 
 use nearfield_cli::measure::schema::{Bench, Failure, MethodError, MetricsFile, Results, Run};
 use std::path::{Path, PathBuf};
@@ -121,50 +124,33 @@ fn main() {
     match std::env::var("FIGURES_ONLY").as_deref() {
         Ok("crops") => return crops(),
         Ok("far") => return far_strip(&assets),
+        Ok("near-far") => return near_far_strip(&assets),
+        Ok("demo") => return demo_strip(),
         Ok("bench") => return bench_only(),
+        Ok("lambertian") => return lambertian_only(&assets),
         _ => {}
     }
-    let (size, spp, path_spp) = if quick() {
-        ("96x54", 16, 32)
-    } else {
-        ("192x108", 128, 256)
-    };
-    let common = format!("--size {size} --radius 1");
-    // Failure pictures are looked at: larger.
-    let failure_size = if quick() { "192x108" } else { "384x216" };
     let mut runs = Vec::new();
     let mut adapter = String::new();
     for scene in scenes(&assets) {
-        for (aov, methods, frames, spp, extra) in [
-            ("ao", TECHNIQUES, 16, spp, ""),
-            ("env-irradiance", TECHNIQUES, 16, spp, ""),
-            ("indirect-irradiance", INDIRECT, 1, spp, ""),
-            ("diffuse", TECHNIQUES, 16, spp, ""),
-            ("lambertian", TECHNIQUES, 16, path_spp, "--max-depth 8"),
-        ] {
+        for aov in AOVS {
             // `lambertian` is compared with the full path tracer, which has no near-field
             // radius: on a scene far larger than R it measures the far field, not the technique.
             // Sponza's one-bounce indirect light is left out with it (see the results page).
             if scene.name == "sponza" && matches!(aov, "lambertian" | "indirect-irradiance") {
                 continue;
             }
-            let id = format!("{}-{aov}", scene.name);
-            let rest = format!(
-                "{common} --aov {aov} --frames {frames} --spp {spp} {extra} --methods {methods}"
-            );
-            let (command, methods, a) = compare(&id, &scene, &rest);
+            let (run, a) = measure(&scene, aov, &assets);
             adapter = a;
-            runs.push(Run {
-                scene: scene.name.into(),
-                aov: aov.into(),
-                metric: if aov == "ao" { "MAE" } else { "relative error" }.into(),
-                command: command.replace(&assets.display().to_string(), "../shared/assets"),
-                methods,
-            });
+            runs.push(run);
         }
     }
 
     let bench = bench(None);
+
+    let (_, spp, path_spp) = samples();
+    // Failure pictures are looked at: larger.
+    let failure_size = if quick() { "192x108" } else { "384x216" };
 
     // Failure strips: what each technique gets wrong, where it shows.
     std::fs::create_dir_all("docs/src/img/failures").expect("docs/src/img/failures");
@@ -272,15 +258,11 @@ fn main() {
         });
     }
 
-    // The demo strip, as `make demo` makes it.
-    nearfield(&words(
-        "compare builtin:cornell --radius 1 --size 384x288 --aov lambertian --frames 16 --spp 256 \
-         --max-depth 8 --methods none,ssao,ssdo,s3ho,hbil,vbgi --out target/figures/demo \
-         --strip docs/src/img/cornell-compare.png",
-    ));
+    demo_strip();
 
     crops();
     far_strip(&assets);
+    near_far_strip(&assets);
 
     let results = Results {
         adapter,
@@ -307,6 +289,65 @@ fn write_results(results: &Results) {
     nearfield_scene::atomic::write_bytes(Path::new(RESULTS), text.as_bytes())
         .unwrap_or_else(|e| panic!("write {RESULTS}: {e}"));
     eprintln!("figures: wrote {RESULTS}");
+}
+
+/// The runs' image size, samples per pixel of the one-bounce references and of the path tracer.
+fn samples() -> (&'static str, u32, u32) {
+    if quick() {
+        ("96x54", 16, 32)
+    } else {
+        ("192x108", 128, 256)
+    }
+}
+
+const AOVS: [&str; 5] = [
+    "ao",
+    "env-irradiance",
+    "indirect-irradiance",
+    "diffuse",
+    "lambertian",
+];
+
+/// One run of the results: every technique's error on `scene` for `aov` at R = 1 m.
+fn measure(scene: &Scene, aov: &str, assets: &Path) -> (Run, String) {
+    let (size, spp, path_spp) = samples();
+    let (methods, frames, spp, extra) = match aov {
+        "indirect-irradiance" => (INDIRECT, 1, spp, ""),
+        "lambertian" => (TECHNIQUES, 16, path_spp, "--max-depth 8"),
+        _ => (TECHNIQUES, 16, spp, ""),
+    };
+    let id = format!("{}-{aov}", scene.name);
+    let rest = format!(
+        "--size {size} --radius 1 --aov {aov} --frames {frames} --spp {spp} {extra} --methods {methods}"
+    );
+    let (command, methods, adapter) = compare(&id, scene, &rest);
+    let run = Run {
+        scene: scene.name.into(),
+        aov: aov.into(),
+        metric: if aov == "ao" { "MAE" } else { "relative error" }.into(),
+        command: command.replace(&assets.display().to_string(), "../shared/assets"),
+        methods,
+    };
+    (run, adapter)
+}
+
+/// `FIGURES_ONLY=lambertian`: the `lambertian` runs (the image against the path tracer, the AOV
+/// the far field's defaults change) measured again, every other run kept.
+fn lambertian_only(assets: &Path) {
+    let mut results: Results = serde_json::from_value(json(Path::new(RESULTS)))
+        .unwrap_or_else(|e| panic!("{RESULTS}: {e}"));
+    for scene in scenes(assets).iter().filter(|s| s.name != "sponza") {
+        let (run, _) = measure(scene, "lambertian", assets);
+        match results
+            .runs
+            .iter_mut()
+            .find(|r| r.scene == run.scene && r.aov == run.aov)
+        {
+            Some(old) => *old = run,
+            None => results.runs.push(run),
+        }
+    }
+    write_results(&results);
 }
 
 /// `FIGURES_ONLY=bench`: the frame times measured again, the runs and failures kept.
@@ -382,6 +423,36 @@ fn far_strip(assets: &Path) {
         "compare {view} --methods vbgi --frames 16 --far volume --spp 4608 --max-depth 32 \
          --exposure 8{images} --strip docs/src/img/sponza-far.png --out {}",
         dir.join("compare").display()
+    )));
+}
+
+/// The demo strip, as `make demo` makes it (docs/src/img/cornell-compare.png): the Cornell box
+/// with a box its volume's bake never saw.
+fn demo_strip() {
+    nearfield(&words(
+        "compare builtin:cornell-dynamic --size 384x288 --aov lambertian --frames 16 --spp 256 \
+         --max-depth 8 --methods none,ssao,ssdo,s3ho,hbil,vbgi --out target/figures/demo \
+         --strip docs/src/img/cornell-compare.png",
+    ));
+}
+
+/// The near and far page's strip (docs/src/img/sponza-helmet.png): Sponza with the damaged
+/// helmet added after the bake (dynamic), `lambertian` of `none`, `hbil` and `vbgi` with the
+/// default volume and R = auto, and the path tracer, at one exposure (+8 EV).
+fn near_far_strip(assets: &Path) {
+    let Some(sponza) = scenes(assets).into_iter().find(|s| s.name == "sponza") else {
+        return;
+    };
+    let helmet = assets.join("scenes/damaged_helmet/DamagedHelmet.gltf");
+    let dir = Path::new("target/figures/near-far");
+    std::fs::create_dir_all(dir).expect("target/figures/near-far");
+    nearfield(&words(&format!(
+        "compare {} --add {}@4.2,-0.02,0.6,0.6 --size 160x90 --aov lambertian --methods \
+         none,hbil,vbgi --frames 16 --spp 4608 --max-depth 32 --exposure 8 --footprint \
+         --strip docs/src/img/sponza-helmet.png --out {}",
+        sponza.args,
+        helmet.display(),
+        dir.display()
     )));
 }
 

@@ -226,6 +226,9 @@ pub fn run(args: CompareArgs) -> Result<()> {
     // One radius for both sides and one seed: `--radius`, or auto (the volume's spacing; under
     // the sky the techniques' own, which must then agree). Every technique's settings are
     // checked against it before anything is baked or traced.
+    if args.footprint {
+        crate::footprint::check(&args.scene, &loaded)?;
+    }
     let plan = args.far.plan(&loaded, Some(args.aov.as_str()))?;
     crate::options::apply_auto_radius(&mut params, &plan);
     let radius = common_radius(&methods, &params)?;
@@ -474,11 +477,17 @@ pub fn run(args: CompareArgs) -> Result<()> {
         panels.splice(0..0, first);
     }
     if let Some(path) = &args.strip {
-        // The reference's panel also names the far field the techniques had.
+        // The reference's panel also names the far field the techniques had (lengths to the
+        // centimetre).
+        let cm = |x: f32| {
+            let s = format!("{x:.2}");
+            s.trim_end_matches('0').trim_end_matches('.').to_string()
+        };
         let far = match &volume {
-            Some(v) => format!("volume every {} m", v.grid.spacing.max_element()),
+            Some(v) => format!("volume every {} m", cm(v.grid.spacing.max_element())),
             None => "sky".into(),
         };
+        let radius = cm(radius);
         panels.push(Panel {
             image: ref_srgb.clone(),
             title: "reference".into(),

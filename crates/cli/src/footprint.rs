@@ -87,6 +87,18 @@ fn region(with: &[f32], without: &[f32], w: usize, h: usize) -> Vec<bool> {
         .collect()
 }
 
+/// Refuses `--footprint` on a scene without dynamic meshes, before anything is baked or traced.
+pub fn check(opts: &SceneOpts, loaded: &Loaded) -> Result<()> {
+    if !loaded.scene.has_dynamic() {
+        return Err(BadInput(format!(
+            "--footprint: {} has no dynamic node (mark one with --dynamic NAME, add one with --add FILE@X,Y,Z, or use a *-dynamic built-in)",
+            opts.scene
+        ))
+        .into());
+    }
+    Ok(())
+}
+
 /// The scene without its dynamic meshes, lit and seen as `loaded`.
 pub fn without_object(loaded: &Loaded) -> Loaded {
     loaded.with_scene(loaded.scene.baked_part())
@@ -102,13 +114,6 @@ pub fn truth(
     radius: f32,
     seed: u32,
 ) -> Result<Truth> {
-    if !loaded.scene.has_dynamic() {
-        return Err(BadInput(format!(
-            "--footprint: {} has no dynamic node (mark one with --dynamic NAME, add one with --add FILE@X,Y,Z, or use a *-dynamic built-in)",
-            opts.scene
-        ))
-        .into());
-    }
     let without = without_object(loaded);
     let side = |l: &Loaded| -> Result<(Vec<f32>, Vec<f32>)> {
         let image = |aov: ReferenceAov| -> Result<nearfield_reference::ReferenceImage> {

@@ -121,6 +121,27 @@ fn every_bad_input_exits_2_with_one_line() {
         (vec!["render".into(), "--size".into(), "100000x100000".into()], "largest side"),
         (vec!["render".into(), "--size".into(), "big".into()], "WIDTHxHEIGHT"),
         (vec!["render".into(), "--method".into(), "magic".into()], "unknown technique"),
+        (vec!["render".into(), "--dynamic".into(), "chair".into()], "no node of builtin:cornell"),
+        (vec!["render".into(), write(&d, "plain.obj", b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"), "--dynamic".into(), "box".into()], "names no nodes"),
+        (
+            vec![
+                "render".into(),
+                write(&d, "extras.gltf", gltf(&uri, "").replace(r#""nodes":[{"mesh":0}]"#, r#""nodes":[{"mesh":0,"extras":{"nearfield":3}}]"#).as_bytes()),
+            ],
+            "must be an object",
+        ),
+        (
+            vec![
+                "render".into(),
+                write(&d, "extras2.gltf", gltf(&uri, "").replace(r#""nodes":[{"mesh":0}]"#, r#""nodes":[{"mesh":0,"extras":{"nearfield":{"dynamic":"yes"}}}]"#).as_bytes()),
+            ],
+            "must be true or false",
+        ),
+        (vec!["render".into(), "--add".into(), format!("{good_gltf}@1,2")], "--add"),
+        (vec!["render".into(), "--add".into(), format!("{good_gltf}@1,2,3,-1")], "scale"),
+        (vec!["compare".into(), "--methods".into(), "hbil".into(), "--footprint".into()], "no dynamic node"),
+        (vec!["render".into(), "--far".into(), "sky".into(), "--spacing".into(), "2".into()], "no volume to bake"),
+        (vec!["render".into(), "--radius".into(), "sometimes".into()], "auto"),
         (vec!["render".into(), "--method".into(), "ssdo:layers=3".into()], "layers=3"),
         (vec!["render".into(), "--method".into(), "ssdo:cameras=9".into()], "cameras=9"),
         (vec!["render".into(), "--method".into(), "instant-radiosity:vpl_clamp=2".into(), "--size".into(), "64x36".into()], "vpl_clamp 2 > radius"),

@@ -396,7 +396,16 @@ impl Variant {
     /// The settings of `tp`, checked (instant-radiosity's clamp against R too).
     fn settings(self, tp: &TechniqueParams) -> Result<Settings, RenderError> {
         let error = RenderError::setting(self.name());
-        let settings = Settings::from_params(tp).map_err(&error)?;
+        let mut settings = Settings::from_params(tp).map_err(&error)?;
+        // The default clamp follows a smaller R (`--radius auto` from a fine volume); a clamp
+        // set by hand is the user's, and checked.
+        let clamp_given = tp
+            .set
+            .iter()
+            .any(|(k, _)| k == "vpl_clamp" || k == "quality");
+        if !clamp_given {
+            settings.vpl_clamp = settings.vpl_clamp.min(settings.radius);
+        }
         if self == Variant::InstantRadiosity
             && settings.bounce
             && settings.vpl_clamp > settings.radius
