@@ -84,6 +84,9 @@ pub struct Renderer {
     cut: bool,
     frames_since_cut: u32,
     frame_index: u32,
+    /// What the last rendered frame was recorded with (its index and whether it had history):
+    /// the one definition AOV readback uses too.
+    last_frame: technique::FrameInfo,
     settings: RenderSettings,
     /// Rebuilds by [`Self::set_technique`].
     rebuilds: u32,
@@ -183,6 +186,10 @@ impl Renderer {
             frames_since_cut: 0,
             left_out: None,
             frame_index: 0,
+            last_frame: technique::FrameInfo {
+                index: 0,
+                history: false,
+            },
             settings,
             rebuilds: 0,
             lost: ctx.lost_flag(),
@@ -565,15 +572,12 @@ impl Renderer {
                 .direct
                 .encode(&mut encoder, p, size, self.frame_index);
         }
+        let info = technique::FrameInfo {
+            index: self.frame_index,
+            history,
+        };
         if run(FramePass::Technique) {
-            self.passes.technique.encode(
-                &mut encoder,
-                p,
-                technique::FrameInfo {
-                    index: self.frame_index,
-                    history,
-                },
-            );
+            self.passes.technique.encode(&mut encoder, p, info);
         }
         if run(FramePass::Composite) {
             self.passes.composite.encode(&mut encoder, p, size, 0);
@@ -588,6 +592,7 @@ impl Renderer {
         self.cut = false;
         self.frames_since_cut += 1;
         self.frame_index += 1;
+        self.last_frame = info;
     }
 
     /// Per-pass GPU milliseconds of the last frame (waits for it).

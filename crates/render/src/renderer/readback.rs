@@ -9,7 +9,7 @@ impl Renderer {
     /// Writes one float AOV of the last rendered frame into `targets.aov` (rgba32float; see
     /// aov.wgsl) and submits the work; nothing is read back.
     pub fn extract_aov(&mut self, aov: Aov) {
-        let last = self.frame_index.saturating_sub(1);
+        let last = self.last_frame.index;
         let current = self.previous.unwrap_or_else(|| {
             CameraMatrices::new(&self.camera, self.settings.size, self.scene.bounds)
         });
@@ -92,10 +92,7 @@ impl Renderer {
     }
 
     fn last_frame_info(&self) -> technique::FrameInfo {
-        technique::FrameInfo {
-            index: self.frame_index.saturating_sub(1),
-            history: self.frames_since_cut > 1,
-        }
+        self.last_frame
     }
 
     /// Reads the tonemapped sRGB image of the last rendered frame.
