@@ -4,10 +4,12 @@
 //! CPU only.
 
 use nearfield_render::TechniqueParams;
-use nearfield_render::technique::{self, SettingKind, TechniqueDesc, horizon, s3ho, ssdo};
+use nearfield_render::technique::{self, SettingKind, TechniqueDesc, horizon, s3ho, ssdo, vbgi};
 
 type Parse = fn(&TechniqueParams) -> Result<String, String>;
 
+/// The families' typed parsers, for the defaults' comparison with `Default` (the ranges are
+/// checked for every registered technique through the registry's `check`).
 fn parsers() -> Vec<(&'static TechniqueDesc, Parse, String)> {
     vec![
         (
@@ -24,6 +26,11 @@ fn parsers() -> Vec<(&'static TechniqueDesc, Parse, String)> {
             &horizon::HBIL,
             |p| horizon::Settings::from_params(p).map(|s| format!("{s:?}")),
             format!("{:?}", horizon::Settings::default()),
+        ),
+        (
+            &vbgi::VBGI,
+            |p| vbgi::Settings::from_params(p).map(|s| format!("{s:?}")),
+            format!("{:?}", vbgi::Settings::default()),
         ),
     ]
 }
@@ -48,21 +55,33 @@ fn every_technique_with_settings_has_a_table() {
     }
 }
 
+/// Every default of `desc`'s table, set explicitly.
+fn all_defaults(desc: &TechniqueDesc) -> TechniqueParams {
+    TechniqueParams {
+        set: desc
+            .settings
+            .iter()
+            .map(|s| (s.key.to_string(), s.default.to_string()))
+            .collect(),
+        ..Default::default()
+    }
+}
+
 #[test]
 fn defaults_in_the_table_parse_to_the_default_settings() {
-    for (desc, parse, default) in parsers() {
-        let all = TechniqueParams {
-            set: desc
-                .settings
-                .iter()
-                .map(|s| (s.key.to_string(), s.default.to_string()))
-                .collect(),
-            ..Default::default()
-        };
-        assert_eq!(parse(&all).unwrap(), default, "{}", desc.name);
+    for desc in technique::REGISTRY {
+        (desc.check)(&all_defaults(desc)).unwrap_or_else(|e| panic!("{}: {e}", desc.name));
         for s in desc.settings {
             s.check(s.default).unwrap();
         }
+    }
+    for (desc, parse, default) in parsers() {
+        assert_eq!(
+            parse(&all_defaults(desc)).unwrap(),
+            default,
+            "{}",
+            desc.name
+        );
     }
 }
 
@@ -70,7 +89,9 @@ fn defaults_in_the_table_parse_to_the_default_settings() {
 fn parser_accepts_exactly_the_documented_range() {
     // reject_a < reject_b is a constraint between two settings, not a range.
     let paired = |key: &str| key == "reject_a" || key == "reject_b";
-    for (desc, parse, _) in parsers() {
+    // Every registered technique, through the check its commands run before anything loads
+    // (the registry's `check`: the settings parsed as `create` parses them).
+    for desc in technique::REGISTRY {
         for s in desc.settings {
             let values: Vec<String> = match s.kind {
                 SettingKind::Number {
@@ -98,7 +119,13 @@ fn parser_accepts_exactly_the_documented_range() {
             };
             for v in values {
                 let spec_ok = s.check(&v).is_ok();
-                let parsed = parse(&with(s.key, &v));
+                let mut params = with(s.key, &v);
+                // instant-radiosity's clamp is bound by R only while its screen-space bounce
+                // adds back what the clamp removes: a constraint between two settings.
+                if s.key == "vpl_clamp" {
+                    params.set.push(("bounce".into(), "off".into()));
+                }
+                let parsed = (desc.check)(&params);
                 if paired(s.key) && spec_ok {
                     continue;
                 }
