@@ -358,11 +358,11 @@ pub fn run(args: CompareArgs) -> Result<()> {
             footprint: None,
         })
     };
-    for method in &methods {
-        progress.set_message(method);
+    // One renderer of `method` over `scene`, with the far field every method shares.
+    let renderer = |scene: &nearfield_scene::Scene, method: &str| -> Result<Renderer> {
         let mut r = Renderer::new(
             &ctx,
-            &loaded.scene,
+            scene,
             &loaded.env,
             first_camera,
             method,
@@ -370,6 +370,11 @@ pub fn run(args: CompareArgs) -> Result<()> {
             settings,
         )?;
         r.set_far_field(volume.as_ref())?;
+        Ok(r)
+    };
+    for method in &methods {
+        progress.set_message(method);
+        let mut r = renderer(&loaded.scene, method)?;
         loaded.report_sun();
         let still = args.orbit == 0.0 && args.frames > 1;
         let mut convergence = Vec::new();
@@ -418,16 +423,7 @@ pub fn run(args: CompareArgs) -> Result<()> {
         if let Some((truth, without)) = &footprint {
             // The same frames over the scene without its dynamic objects.
             let with = crate::footprint::ambient_of(&mut r);
-            let mut r2 = Renderer::new(
-                &ctx,
-                &without.scene,
-                &loaded.env,
-                first_camera,
-                method,
-                &params,
-                settings,
-            )?;
-            r2.set_far_field(volume.as_ref())?;
+            let mut r2 = renderer(&without.scene, method)?;
             for i in 0..args.frames {
                 crate::options::orbit_frame(&mut r2, i, args.orbit);
             }
