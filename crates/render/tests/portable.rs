@@ -213,7 +213,7 @@ const LIBRARIES: &[(&str, &[&str])] = &[
         &["shaders/common.wgsl", "shaders/env.wgsl"],
     ),
     ("passes/denoise/params.wgsl", &["shaders/common.wgsl"]),
-    ("passes/irradiance_terms.wgsl", &[]),
+    ("passes/irradiance_terms.wgsl", &["shaders/common.wgsl"]),
 ];
 
 /// nearfield's own glue for group 0: the one shared file that declares bindings.

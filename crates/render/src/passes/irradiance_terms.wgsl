@@ -1,5 +1,5 @@
 // irradiance_terms.wgsl — a library for the passes that read the technique's irradiance images
-// (composite, aov). It declares no bindings. After a technique that writes only
+// (composite, aov), after common.wgsl. It declares no bindings. After a technique that writes only
 // ao (gtao: `ao_only`, the passes' AO_SCALES_FAR), nearfield's frame forms its two other images
 // where they are read, by the technique's own rule (Jimenez et al. 2016: ao scales the
 // unoccluded light): env-irradiance = ao · E_far(n)/π, from the far field the direct pass left
@@ -43,10 +43,6 @@ fn counts(rule: u32, volume: bool) -> bool {
     return FAR_RULE == rule && volume;
 }
 
-fn luminance_of(c: vec3<f32>) -> f32 {
-    return dot(c, vec3<f32>(0.2126, 0.7152, 0.0722));
-}
-
 // The technique's env-irradiance at `pixel`.
 fn technique_env(env_irradiance: texture_2d<f32>, ao: texture_2d<f32>, far_field: texture_2d<f32>, ao_only: bool, volume: bool, pixel: vec2<u32>, albedo: vec3<f32>) -> vec3<f32> {
     let far = textureLoad(far_field, pixel, 0);
@@ -58,7 +54,7 @@ fn technique_env(env_irradiance: texture_2d<f32>, ao: texture_2d<f32>, far_field
         e = textureLoad(env_irradiance, pixel, 0).rgb;
     }
     if counts(1u, volume) {
-        let v = clamp(luminance_of(e) / max(luminance_of(far.rgb), 1e-12), 0.0, 1.0);
+        let v = clamp(luminance(e) / max(luminance(far.rgb), 1e-12), 0.0, 1.0);
         return far.rgb * min(vec3<f32>(1.0), multibounce(v, albedo) / max(multibounce(far.a, albedo), vec3<f32>(1e-3)));
     }
     if counts(2u, volume) {

@@ -191,3 +191,8 @@ fn history_taps(cam: View, prev_geometry: texture_2d<f32>, prev: vec2<f32>, x: v
     }
     return t;
 }
+
+// Rec. 709 luminance of a linear RGB colour.
+fn luminance(c: vec3<f32>) -> f32 {
+    return dot(c, vec3<f32>(0.2126, 0.7152, 0.0722));
+}

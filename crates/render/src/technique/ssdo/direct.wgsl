@@ -24,10 +24,6 @@
 @group(1) @binding(15) var out_light_irradiance: texture_storage_2d<rgba16float, write>;
 @group(1) @binding(16) var shadow_depths: texture_2d_array<f32>;
 
-fn luminance(c: vec3<f32>) -> f32 {
-    return dot(c, vec3<f32>(0.2126, 0.7152, 0.0722));
-}
-
 // lights.wgsl's shadow_visibility of light l at world p with normal n, from this pass's shadow
 // maps: the layer that sees p, its matrix, the frame's normal offset.
 fn shadow_map_visibility(l: GpuLight, p: vec3<f32>, n: vec3<f32>) -> f32 {
