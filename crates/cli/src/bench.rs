@@ -172,12 +172,11 @@ pub fn run(args: BenchArgs) -> Result<()> {
             &ctx,
             &loaded.scene,
             &loaded.env,
+            volume.as_ref(),
             loaded.camera,
-            method,
-            &params,
+            &nearfield_render::technique::Spec::resolve(method, &params)?,
             settings,
         )?;
-        r.set_far_field(volume.as_ref())?;
         loaded.report_sun();
         for i in 0..args.warmup {
             crate::options::orbit_frame(&mut r, i, args.orbit);
@@ -304,12 +303,11 @@ fn ablate(
         ctx,
         &loaded.scene,
         &loaded.env,
+        volume,
         loaded.camera,
-        method,
-        params,
+        &nearfield_render::technique::Spec::resolve(method, params)?,
         settings,
     )?;
-    r.set_far_field(volume)?;
     let configs: Vec<Option<FramePass>> = std::iter::once(None)
         .chain(FramePass::ALL.into_iter().map(Some))
         .collect();

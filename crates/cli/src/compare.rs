@@ -360,17 +360,15 @@ pub fn run(args: CompareArgs) -> Result<()> {
     };
     // One renderer of `method` over `scene`, with the far field every method shares.
     let renderer = |scene: &nearfield_scene::Scene, method: &str| -> Result<Renderer> {
-        let mut r = Renderer::new(
+        Ok(Renderer::new(
             &ctx,
             scene,
             &loaded.env,
+            volume.as_ref(),
             first_camera,
-            method,
-            &params,
+            &nearfield_render::technique::Spec::resolve(method, &params)?,
             settings,
-        )?;
-        r.set_far_field(volume.as_ref())?;
-        Ok(r)
+        )?)
     };
     for method in &methods {
         progress.set_message(method);

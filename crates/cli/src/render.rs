@@ -61,30 +61,41 @@ pub fn run(args: RenderArgs) -> Result<()> {
     let far_aov = (aov != Some(Aov::Final)).then_some(args.aov.as_str());
     let plan = args.far.plan(&loaded, far_aov)?;
     crate::options::apply_auto_radius(&mut params, &plan);
+    let technique = nearfield_render::technique::Spec::resolve(&args.method, &params)?;
     let ctx = GpuContext::new(args.scene.adapter.as_deref())?;
-    let mut renderer = Renderer::new(
-        &ctx,
-        &loaded.scene,
-        &loaded.env,
-        loaded.camera,
-        &args.method,
-        &params,
-        settings,
-    )?;
-    // Before the far field: a bake takes seconds, a bad name answers at once.
-    if aov.is_none() && !renderer.extra_names().contains(&args.aov.as_str()) {
-        let mut known = Aov::names();
-        known.extend(renderer.extra_names());
-        return Err(BadInput(format!(
-            "--aov {}: unknown AOV for {} (known: {})",
-            args.aov,
-            args.method,
-            known.join(", ")
-        ))
-        .into());
-    }
-    let volume = plan.volume(&args.scene, &loaded)?;
-    renderer.set_far_field(volume.as_ref())?;
+    let new = |volume: Option<&nearfield_scene::probes::ProbeVolume>| {
+        Renderer::new(
+            &ctx,
+            &loaded.scene,
+            &loaded.env,
+            volume,
+            loaded.camera,
+            &technique,
+            settings,
+        )
+    };
+    let mut renderer = if aov.is_some() {
+        new(plan.volume(&args.scene, &loaded)?.as_ref())?
+    } else {
+        // A technique's own images are known once it is built: a name that is none of them
+        // answers before the far field (a bake takes seconds), which then comes in as a change.
+        let mut renderer = new(None)?;
+        if !renderer.extra_names().contains(&args.aov.as_str()) {
+            let mut known = Aov::names();
+            known.extend(renderer.extra_names());
+            return Err(BadInput(format!(
+                "--aov {}: unknown AOV for {} (known: {})",
+                args.aov,
+                args.method,
+                known.join(", ")
+            ))
+            .into());
+        }
+        if let Some(volume) = plan.volume(&args.scene, &loaded)? {
+            renderer.set_far_field(Some(&volume))?;
+        }
+        renderer
+    };
     loaded.report_sun();
     let progress = nearfield_scene::progress::Progress::new(
         &format!("render {}", args.method),

@@ -53,9 +53,9 @@ fn finds_the_strength_an_image_was_rendered_with() {
         &ctx,
         &scene,
         &env,
+        None,
         camera,
-        "ssdo:strength=3.7",
-        &params,
+        &nearfield_render::technique::Spec::resolve("ssdo:strength=3.7", &params).unwrap(),
         settings,
     )
     .unwrap();
@@ -69,7 +69,16 @@ fn finds_the_strength_an_image_was_rendered_with() {
         .collect();
     let total: f64 = reference.pixels.iter().map(|p| f64::from(p[0])).sum();
     assert!(total > 1.0, "the Cornell box has indirect light: {total}");
-    let renderer = Renderer::new(&ctx, &scene, &env, camera, "ssdo", &params, settings).unwrap();
+    let renderer = Renderer::new(
+        &ctx,
+        &scene,
+        &env,
+        None,
+        camera,
+        &nearfield_render::technique::Spec::resolve("ssdo", &params).unwrap(),
+        settings,
+    )
+    .unwrap();
     let mut target = Target {
         name: "cornell".into(),
         renderer,

@@ -67,9 +67,10 @@ fn none_differs_from_the_reference_by_sh_truncation_only() {
             &ctx,
             &scene,
             &env,
+            None,
             camera,
-            "none",
-            &TechniqueParams::default(),
+            &nearfield_render::technique::Spec::resolve("none", &TechniqueParams::default())
+                .unwrap(),
             RenderSettings {
                 size,
                 ..Default::default()

@@ -55,13 +55,17 @@ impl Setup {
             ctx,
             &self.scene,
             &self.env,
+            None,
             self.camera,
-            name,
-            &TechniqueParams {
-                samples: None,
-                radius: Some(radius),
-                set,
-            },
+            &nearfield_render::technique::Spec::resolve(
+                name,
+                &TechniqueParams {
+                    samples: None,
+                    radius: Some(radius),
+                    set,
+                },
+            )
+            .unwrap(),
             RenderSettings {
                 size: self.size,
                 ..Default::default()

@@ -58,13 +58,17 @@ fn two_layers_never_raise_the_ao_error() {
                         &ctx,
                         &scene,
                         &env,
+                        None,
                         camera,
-                        method,
-                        &TechniqueParams {
-                            radius: Some(radius),
-                            set: vec![("layers".into(), layers.to_string())],
-                            ..Default::default()
-                        },
+                        &nearfield_render::technique::Spec::resolve(
+                            method,
+                            &TechniqueParams {
+                                radius: Some(radius),
+                                set: vec![("layers".into(), layers.to_string())],
+                                ..Default::default()
+                            },
+                        )
+                        .unwrap(),
                         RenderSettings {
                             size,
                             ..Default::default()

@@ -71,9 +71,9 @@ fn corner_faces_keep_their_colours() {
             &ctx,
             &scene,
             &env,
+            None,
             camera,
-            method,
-            &params,
+            &nearfield_render::technique::Spec::resolve(method, &params).unwrap(),
             RenderSettings {
                 size,
                 ..Default::default()

@@ -60,9 +60,9 @@ fn render_in(
         ctx,
         scene,
         env,
+        None,
         scene.default_camera(),
-        name,
-        &params,
+        &nearfield_render::technique::Spec::resolve(name, &params).unwrap(),
         RenderSettings {
             size,
             shadows: ShadowSettings {

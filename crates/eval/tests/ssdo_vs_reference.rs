@@ -33,9 +33,9 @@ fn ssdo_beats_ssao_and_the_bounce_helps() {
                 &ctx,
                 &scene,
                 &env,
+                None,
                 camera,
-                name,
-                &params,
+                &nearfield_render::technique::Spec::resolve(name, &params).unwrap(),
                 RenderSettings {
                     size,
                     ..Default::default()

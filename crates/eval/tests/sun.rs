@@ -26,12 +26,16 @@ fn renderer(
         ctx,
         scene,
         env,
+        None,
         camera,
-        method,
-        &TechniqueParams {
-            radius: (method != "none").then_some(radius),
-            ..Default::default()
-        },
+        &nearfield_render::technique::Spec::resolve(
+            method,
+            &TechniqueParams {
+                radius: (method != "none").then_some(radius),
+                ..Default::default()
+            },
+        )
+        .unwrap(),
         RenderSettings {
             size,
             ..Default::default()

@@ -34,9 +34,9 @@ fn render(
         ctx,
         scene,
         &env,
+        None,
         scene.default_camera(),
-        name,
-        &params,
+        &nearfield_render::technique::Spec::resolve(name, &params).unwrap(),
         RenderSettings {
             size,
             ..Default::default()

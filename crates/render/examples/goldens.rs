@@ -32,13 +32,15 @@ fn images(ctx: &GpuContext, scene_name: &str, method: &str) -> Vec<(String, Vec<
         size: SIZE,
         ..Default::default()
     };
+    let technique = nearfield_render::technique::Spec::resolve(method, &TechniqueParams::default())
+        .unwrap_or_else(|e| panic!("{scene_name} {method}: {e}"));
     let mut r = Renderer::new(
         ctx,
         &scene,
         &env,
+        None,
         scene.default_camera(),
-        method,
-        &TechniqueParams::default(),
+        &technique,
         settings,
     )
     .unwrap_or_else(|e| panic!("{scene_name} {method}: {e}"));

@@ -261,7 +261,7 @@ crate::bind_group! {
         /// The probes' octahedral E(n)/π (rgba16float atlas).
         far_irradiance_atlas: view = kind::TEXTURE,
         /// `Frame` (common.wgsl, [`crate::frame::FrameUniforms`]): exposure, tone mapping,
-        /// light count, the AOV shown. A read-only storage buffer: a third uniform buffer in
+        /// light count. A read-only storage buffer: a third uniform buffer in
         /// group 0 crashes lavapipe (Mesa 22.3) in every technique.
         frame: buffer = kind::STORAGE_READ,
     }

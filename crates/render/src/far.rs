@@ -64,6 +64,19 @@ pub struct GpuFarField {
 }
 
 impl GpuFarField {
+    /// A probe volume's far field (its visibility within `radius`), or the sky's for `None`.
+    pub fn new(
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        volume: Option<&ProbeVolume>,
+        radius: f32,
+    ) -> Self {
+        match volume {
+            Some(v) => Self::volume(device, queue, v, radius),
+            None => Self::sky(device, queue),
+        }
+    }
+
     /// The open sky: one dummy probe, `far_volume()` false.
     pub fn sky(device: &wgpu::Device, queue: &wgpu::Queue) -> Self {
         let uniforms = FarGridUniforms {

@@ -74,7 +74,7 @@ crate::gpu_struct! {
 
 crate::gpu_struct! {
     /// `Frame` in shaders/common.wgsl, field for field: the rest of nearfield's own frame — post
-    /// settings, the light count and the AOV shown. Read by nearfield's own passes and by the
+    /// settings and the light count. Read by nearfield's own passes and by the
     /// techniques that shade with the light table (ssdo, s3ho); a host that runs gtao, hbil or
     /// vbgi never writes it ([`crate::passes::FrameGroup::new`] with `None`).
     pub struct FrameUniforms {
@@ -82,12 +82,8 @@ crate::gpu_struct! {
         pub exposure: f32,
         pub tonemap: u32,
         pub shadow_normal_offset: f32,
-        /// Light count, selected AOV.
+        /// Lights in the light table.
         pub light_count: u32,
-        pub aov: u32,
-        pub _pad0: u32,
-        pub _pad1: u32,
-        pub _pad2: u32,
     }
 }
 
@@ -174,16 +170,12 @@ impl ViewUniforms {
 }
 
 impl FrameUniforms {
-    pub fn new(post: PostUniforms, light_count: u32, aov: u32) -> Self {
+    pub fn new(post: PostUniforms, light_count: u32) -> Self {
         FrameUniforms {
             exposure: post.exposure,
             tonemap: post.tonemap.index(),
             shadow_normal_offset: post.shadow_normal_offset,
             light_count,
-            aov,
-            _pad0: 0,
-            _pad1: 0,
-            _pad2: 0,
         }
     }
 }

@@ -3,7 +3,6 @@
 
 use crate::bindings::{PassLayout, kind};
 use crate::util;
-use bytemuck::{Pod, Zeroable};
 use glam::Vec3;
 use nearfield_scene::{Environment, sh};
 use wgpu::util::DeviceExt;
@@ -47,14 +46,14 @@ pub fn pass_layouts() -> Vec<PassLayout> {
     )
 }
 
-/// `PrefilterParams` in env_prefilter.wgsl.
-#[repr(C)]
-#[derive(Clone, Copy, Debug, Pod, Zeroable)]
-pub struct PrefilterParams {
-    pub roughness: f32,
-    pub source_width: f32,
-    pub source_height: f32,
-    pub source_mips: f32,
+crate::gpu_struct! {
+    /// `PrefilterParams` in env_prefilter.wgsl.
+    pub struct PrefilterParams {
+        pub roughness: f32,
+        pub source_width: f32,
+        pub source_height: f32,
+        pub source_mips: f32,
+    }
 }
 
 crate::gpu_struct! {

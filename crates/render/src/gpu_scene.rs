@@ -30,49 +30,49 @@ impl Vertex {
     }
 }
 
-/// `GpuMaterial` in gbuffer.wgsl.
-#[repr(C)]
-#[derive(Clone, Copy, Debug, Pod, Zeroable)]
-pub struct GpuMaterial {
-    pub base_color: [f32; 4],
-    /// Emissive factor (strength applied).
-    pub emissive: [f32; 3],
-    /// Alpha cutoff (< 0: opaque).
-    pub alpha_cutoff: f32,
-    pub metallic: f32,
-    pub roughness: f32,
-    pub _pad0: f32,
-    pub _pad1: f32,
-    /// Layers of the base colour (sRGB array), metallic-roughness (linear array) and emissive
-    /// (sRGB array) textures; [`NO_TEXTURE`] = none.
-    pub base_color_texture: u32,
-    pub metallic_roughness_texture: u32,
-    pub emissive_texture: u32,
-    pub _pad2: u32,
+crate::gpu_struct! {
+    /// `GpuMaterial` in gbuffer.wgsl.
+    pub struct GpuMaterial {
+        pub base_color: [f32; 4],
+        /// Emissive factor (strength applied).
+        pub emissive: [f32; 3],
+        /// Alpha cutoff (< 0: opaque).
+        pub alpha_cutoff: f32,
+        pub metallic: f32,
+        pub roughness: f32,
+        pub _pad0: f32,
+        pub _pad1: f32,
+        /// Layers of the base colour (sRGB array), metallic-roughness (linear array) and emissive
+        /// (sRGB array) textures; [`NO_TEXTURE`] = none.
+        pub base_color_texture: u32,
+        pub metallic_roughness_texture: u32,
+        pub emissive_texture: u32,
+        pub _pad2: u32,
+    }
 }
 
-/// `GpuLight` in direct_lighting.wgsl.
-#[repr(C)]
-#[derive(Clone, Copy, Debug, Pod, Zeroable)]
-pub struct GpuLight {
-    /// Position, or direction of travel (directional).
-    pub position: [f32; 3],
-    /// 0 directional, 1 point, 2 spot.
-    pub kind: f32,
-    /// Spot axis.
-    pub direction: [f32; 3],
-    /// Range (m), 0 = unlimited.
-    pub range: f32,
-    /// Colour × intensity.
-    pub color: [f32; 3],
-    /// tan of a directional disc light's angular radius (0: punctual): sizes its PCF.
-    pub tan_radius: f32,
-    /// cos of a spot's inner and outer cone angle.
-    pub cos_inner: f32,
-    pub cos_outer: f32,
-    /// First shadow layer (−1: none) and the shadow texel size factor.
-    pub shadow_layer: f32,
-    pub shadow_texel: f32,
+crate::gpu_struct! {
+    /// `GpuLight` in direct_lighting.wgsl.
+    pub struct GpuLight {
+        /// Position, or direction of travel (directional).
+        pub position: [f32; 3],
+        /// 0 directional, 1 point, 2 spot.
+        pub kind: f32,
+        /// Spot axis.
+        pub direction: [f32; 3],
+        /// Range (m), 0 = unlimited.
+        pub range: f32,
+        /// Colour × intensity.
+        pub color: [f32; 3],
+        /// tan of a directional disc light's angular radius (0: punctual): sizes its PCF.
+        pub tan_radius: f32,
+        /// cos of a spot's inner and outer cone angle.
+        pub cos_inner: f32,
+        pub cos_outer: f32,
+        /// First shadow layer (−1: none) and the shadow texel size factor.
+        pub shadow_layer: f32,
+        pub shadow_texel: f32,
+    }
 }
 
 pub const NO_TEXTURE: u32 = u32::MAX;

@@ -3,7 +3,6 @@
 //! technique → composite → tonemap. Reads AOVs back for output.
 
 use crate::RenderError;
-use crate::aov::Aov;
 use crate::context::GpuContext;
 use crate::far::{FarMode, GpuFarField};
 use crate::frame::{
@@ -19,7 +18,7 @@ use crate::passes::{
 use crate::profiler::GpuProfiler;
 use crate::targets::{self, FrameTargets};
 use crate::technique::{self, TechniqueParams};
-use nearfield_scene::{Camera, Environment, Scene};
+use nearfield_scene::{Camera, Environment, Scene, probes::ProbeVolume};
 use passes_of_frame::{ErrorScopes, Passes};
 
 mod ablation;
@@ -67,10 +66,8 @@ pub struct Renderer {
     gbuffer: GBufferPass,
     shadows: ShadowPass,
     passes: Passes,
-    /// The technique as named (`name` or `name:key=value+…`) and its parameters, kept to rebuild
-    /// it after a resize or an environment change.
-    technique_spec: String,
-    technique_params: TechniqueParams,
+    /// The technique, resolved once: what a resize or an environment change rebuilds.
+    technique: technique::Spec,
     pack_half: bool,
     /// Lights switched off ([`Self::set_light_enabled`]), by index into the scene's lights.
     lights_off: Vec<bool>,
@@ -98,18 +95,28 @@ pub struct Renderer {
     left_out: Option<FramePass>,
 }
 
+/// The technique's near-field radius R (m), what the far field's own visibility is computed
+/// within; 1 m for a technique without one (its value is then not read).
+fn technique_radius(technique: &technique::Spec) -> f32 {
+    technique
+        .radius()
+        .filter(|r| r.is_finite() && *r > 0.0)
+        .unwrap_or(1.0)
+}
+
 impl Renderer {
-    /// Uploads the scene and environment and builds every pass for `technique`.
+    /// Uploads the scene, the environment and the far field (a probe volume baked for this scene
+    /// and environment by `nearfield bake`, or `None` for the open sky) and builds every pass for
+    /// `technique`.
     pub fn new(
         ctx: &GpuContext,
         scene: &Scene,
         env: &Environment,
+        far: Option<&ProbeVolume>,
         camera: Camera,
-        technique_name: &str,
-        params: &TechniqueParams,
+        technique: &technique::Spec,
         settings: RenderSettings,
     ) -> Result<Self, RenderError> {
-        technique::find(technique_name)?;
         targets::check_size(settings.size, ctx.device.limits().max_texture_dimension_2d)?;
         targets::check_memory(settings.size, ctx.adapter_info().device_type)?;
         camera.validate().map_err(RenderError::Scene)?;
@@ -140,7 +147,7 @@ impl Renderer {
         });
         let shadows = ShadowPass::new(&device, &gpu_scene, settings.shadows);
         gpu_scene.write_lights(&queue, &shadows.light_layers);
-        let far = GpuFarField::sky(&device, &queue);
+        let far = GpuFarField::new(&device, &queue, far, technique_radius(technique));
         let frame_group =
             FrameGroup::new(&device, &view_buffer, Some(&frame_buffer), &gpu_env, &far);
         let gbuffer = GBufferPass::new(&device, &frame_group, &gpu_scene);
@@ -153,8 +160,7 @@ impl Renderer {
             &gpu_env,
             &shadows,
             ctx.pack_half,
-            technique_name,
-            params,
+            technique,
         );
         let profiler = GpuProfiler::new(&device, &queue, ctx.timestamps);
         scopes.pop()?;
@@ -173,8 +179,7 @@ impl Renderer {
             gbuffer,
             shadows,
             passes,
-            technique_spec: technique_name.to_string(),
-            technique_params: params.clone(),
+            technique: technique.clone(),
             pack_half: ctx.pack_half,
             lights_off,
             profiler,
@@ -198,7 +203,7 @@ impl Renderer {
     }
 
     /// Rebuilds the screen passes and the technique for the current targets and environment.
-    fn rebuild_passes(&mut self, spec: &str, params: &TechniqueParams) -> Result<(), RenderError> {
+    fn rebuild_passes(&mut self, technique: &technique::Spec) -> Result<(), RenderError> {
         let scopes = ErrorScopes::push(&self.device);
         let passes = Passes::new(
             &self.device,
@@ -209,8 +214,7 @@ impl Renderer {
             &self.env,
             &self.shadows,
             self.pack_half,
-            spec,
-            params,
+            technique,
         );
         scopes.pop()?;
         self.passes = passes?;
@@ -226,30 +230,22 @@ impl Renderer {
         params: &TechniqueParams,
     ) -> Result<(), RenderError> {
         self.check_device()?;
-        let (desc, resolved) = technique::resolve_params(spec, params)?;
-        let in_place = desc.name == self.passes.technique.name()
-            && self.passes.technique.update(&self.queue, &resolved)?;
+        let technique = technique::Spec::resolve(spec, params)?;
+        let in_place = technique.desc.name == self.passes.technique.name()
+            && self
+                .passes
+                .technique
+                .update(&self.queue, &technique.params)?;
         if in_place {
             self.cut = true;
         } else {
-            self.rebuild_passes(spec, params)?;
+            self.rebuild_passes(&technique)?;
             self.rebuilds += 1;
         }
-        self.technique_spec = spec.to_string();
-        self.technique_params = params.clone();
-        let radius = self.technique_radius();
-        self.far.set_radius(&self.queue, radius);
+        self.far
+            .set_radius(&self.queue, technique_radius(&technique));
+        self.technique = technique;
         Ok(())
-    }
-
-    /// The technique's near-field radius R (m), what the far field's own visibility is
-    /// computed within; 1 m for a technique without one (its value is then not read).
-    fn technique_radius(&self) -> f32 {
-        technique::radius_of(&self.technique_spec, &self.technique_params)
-            .ok()
-            .flatten()
-            .filter(|r| r.is_finite() && *r > 0.0)
-            .unwrap_or(1.0)
     }
 
     /// Why the device was lost, if it was: what was rendered or read since is not valid.
@@ -283,8 +279,8 @@ impl Renderer {
         targets::check_size(size, self.device.limits().max_texture_dimension_2d)?;
         targets::check_memory(size, self.device_type)?;
         let old = std::mem::replace(&mut self.targets, FrameTargets::new(&self.device, size));
-        let (spec, params) = (self.technique_spec.clone(), self.technique_params.clone());
-        if let Err(e) = self.rebuild_passes(&spec, &params) {
+        let technique = self.technique.clone();
+        if let Err(e) = self.rebuild_passes(&technique) {
             self.targets = old;
             return Err(e);
         }
@@ -320,8 +316,8 @@ impl Renderer {
         );
         let group = self.new_frame_group();
         let old_group = std::mem::replace(&mut self.frame_group, group);
-        let (spec, params) = (self.technique_spec.clone(), self.technique_params.clone());
-        if let Err(e) = self.rebuild_passes(&spec, &params) {
+        let technique = self.technique.clone();
+        if let Err(e) = self.rebuild_passes(&technique) {
             self.env = old;
             self.frame_group = old_group;
             self.scene.scene_lights = old_lights;
@@ -338,23 +334,17 @@ impl Renderer {
     /// Sets the far field of the next frames: a probe volume (baked for this scene and
     /// environment by `nearfield bake`), or `None` for the open sky. Passes are rebuilt; the
     /// history is discarded.
-    pub fn set_far_field(
-        &mut self,
-        volume: Option<&nearfield_scene::probes::ProbeVolume>,
-    ) -> Result<(), RenderError> {
+    pub fn set_far_field(&mut self, volume: Option<&ProbeVolume>) -> Result<(), RenderError> {
         self.check_device()?;
         let scopes = ErrorScopes::push(&self.device);
-        let radius = self.technique_radius();
-        let far = match volume {
-            Some(v) => GpuFarField::volume(&self.device, &self.queue, v, radius),
-            None => GpuFarField::sky(&self.device, &self.queue),
-        };
+        let radius = technique_radius(&self.technique);
+        let far = GpuFarField::new(&self.device, &self.queue, volume, radius);
         scopes.pop()?;
         let old_far = std::mem::replace(&mut self.far, far);
         let group = self.new_frame_group();
         let old_group = std::mem::replace(&mut self.frame_group, group);
-        let (spec, params) = (self.technique_spec.clone(), self.technique_params.clone());
-        if let Err(e) = self.rebuild_passes(&spec, &params) {
+        let technique = self.technique.clone();
+        if let Err(e) = self.rebuild_passes(&technique) {
             self.far = old_far;
             self.frame_group = old_group;
             return Err(e);
@@ -403,7 +393,7 @@ impl Renderer {
 
     /// The technique spec and parameters in use.
     pub fn technique(&self) -> (&str, &TechniqueParams) {
-        (&self.technique_spec, &self.technique_params)
+        (&self.technique.spec, &self.technique.given)
     }
 
     /// Switches light `index` of the scene on or off (an off light contributes nothing; its
@@ -477,7 +467,7 @@ impl Renderer {
         self.frame_index
     }
 
-    fn uniforms(&self, current: CameraMatrices, aov: Aov) -> (ViewUniforms, FrameUniforms) {
+    fn uniforms(&self, current: CameraMatrices) -> (ViewUniforms, FrameUniforms) {
         let s = &self.settings;
         let previous_camera = self.previous_camera.as_ref().unwrap_or(&self.camera);
         let view = ViewUniforms::new(&FrameInputs {
@@ -497,7 +487,6 @@ impl Renderer {
                 shadow_normal_offset: s.shadows.normal_offset_texels,
             },
             self.scene.light_count,
-            aov.shader_id(),
         );
         (view, frame)
     }
@@ -543,7 +532,7 @@ impl Renderer {
         }
         let history = self.history_valid();
         let current = CameraMatrices::new(&self.camera, self.settings.size, self.scene.bounds);
-        self.write_uniforms(self.uniforms(current, Aov::Final));
+        self.write_uniforms(self.uniforms(current));
         self.passes.technique.prepare(&self.queue, &self.camera);
         if self
             .shadows

@@ -40,12 +40,16 @@ fn two_hundred_frames_of_every_technique_keep_the_live_object_counts() {
             &ctx,
             &scene,
             &env,
+            None,
             scene.default_camera(),
-            name,
-            &TechniqueParams {
-                set,
-                ..Default::default()
-            },
+            &nearfield_render::technique::Spec::resolve(
+                name,
+                &TechniqueParams {
+                    set,
+                    ..Default::default()
+                },
+            )
+            .unwrap(),
             settings,
         )
         .unwrap();

@@ -27,12 +27,16 @@ fn run(ctx: &nearfield_render::GpuContext, name: &str, seed: u32) -> Vec<Vec<u32
         ctx,
         &scene,
         &env,
+        None,
         scene.default_camera(),
-        name,
-        &TechniqueParams {
-            set,
-            ..Default::default()
-        },
+        &nearfield_render::technique::Spec::resolve(
+            name,
+            &TechniqueParams {
+                set,
+                ..Default::default()
+            },
+        )
+        .unwrap(),
         settings,
     )
     .unwrap();

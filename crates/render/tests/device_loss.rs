@@ -15,9 +15,9 @@ fn a_lost_device_is_reported_not_a_panic() {
         &ctx,
         &scene,
         &env,
+        None,
         scene.default_camera(),
-        "hbil",
-        &TechniqueParams::default(),
+        &nearfield_render::technique::Spec::resolve("hbil", &TechniqueParams::default()).unwrap(),
         RenderSettings {
             size: (32, 18),
             ..Default::default()

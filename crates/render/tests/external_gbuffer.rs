@@ -29,9 +29,10 @@ fn a_technique_on_an_engines_own_gbuffer_matches_the_renderer() {
             &ctx,
             &scene,
             &env,
+            None,
             scene.default_camera(),
-            method,
-            &TechniqueParams::default(),
+            &nearfield_render::technique::Spec::resolve(method, &TechniqueParams::default())
+                .unwrap(),
             RenderSettings {
                 size: external::SIZE,
                 ..Default::default()

@@ -21,13 +21,17 @@ fn make(
         ctx,
         scene,
         env,
+        None,
         camera,
-        name,
-        &TechniqueParams {
-            samples: None,
-            radius: Some(radius),
-            set,
-        },
+        &nearfield_render::technique::Spec::resolve(
+            name,
+            &TechniqueParams {
+                samples: None,
+                radius: Some(radius),
+                set,
+            },
+        )
+        .unwrap(),
         RenderSettings {
             size,
             ..Default::default()

@@ -30,9 +30,9 @@ fn uniform_settings_apply_in_place_and_match_a_rebuilt_technique() {
             &ctx,
             &scene,
             &env,
+            None,
             scene.default_camera(),
-            method,
-            p,
+            &nearfield_render::technique::Spec::resolve(method, p).unwrap(),
             settings,
         )
         .unwrap()

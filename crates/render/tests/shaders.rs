@@ -6,7 +6,7 @@ use nearfield_render::{
     gpu_env::PrefilterParams,
     gpu_scene::{GpuLight, GpuMaterial},
 };
-use std::mem::{offset_of, size_of};
+use std::mem::size_of;
 
 fn module(source: &str) -> naga::Module {
     naga::front::wgsl::parse_str(source).unwrap_or_else(|e| panic!("{}", e.emit_to_string(source)))
@@ -60,9 +60,6 @@ fn check(source: &str, name: &str, size: usize, offsets: &[(&str, usize)]) {
 #[test]
 fn host_and_shader_structs_agree() {
     let common = nearfield_render::util::COMMON_WGSL;
-    macro_rules! offsets {
-        ($t:ty: $($f:ident),*) => { [$((stringify!($f), offset_of!($t, $f))),*] };
-    }
     check(
         common,
         "View",
@@ -94,52 +91,60 @@ fn host_and_shader_structs_agree() {
         &nearfield_render::passes::reproject::source(),
         "ReprojectParams",
         size_of::<ReprojectParams>(),
-        &[
-            ("reject_depth", offset_of!(ReprojectParams, reject_depth)),
-            ("reject_normal", offset_of!(ReprojectParams, reject_normal)),
-            ("_pad0", offset_of!(ReprojectParams, _pad0)),
-            ("_pad1", offset_of!(ReprojectParams, _pad1)),
-        ],
+        ReprojectParams::FIELDS,
+    );
+    use nearfield_render::passes::denoise::SvgfParams;
+    check(
+        &nearfield_render::passes::denoise::atrous::source(),
+        "SvgfParams",
+        size_of::<SvgfParams>(),
+        SvgfParams::FIELDS,
+    );
+    use nearfield_render::technique::vbgi::VbgiParams;
+    check(
+        &nearfield_render::technique::vbgi::bitmask::source(),
+        "VbgiParams",
+        size_of::<VbgiParams>(),
+        VbgiParams::FIELDS,
+    );
+    use nearfield_render::passes::aov::AovSelection;
+    check(
+        &nearfield_render::passes::aov::source(),
+        "AovSelection",
+        size_of::<AovSelection>(),
+        AovSelection::FIELDS,
     );
     use nearfield_render::passes::display::DisplayParams;
     check(
         &nearfield_render::passes::display::source(),
         "DisplayParams",
         size_of::<DisplayParams>(),
-        &offsets!(DisplayParams: width, height, split, divider, mode_a, mode_b, tonemap,
-            coverage, exposure, lo, hi, _pad0),
+        DisplayParams::FIELDS,
     );
-    let material = offsets!(GpuMaterial: base_color, emissive, alpha_cutoff, metallic, roughness,
-        _pad0, _pad1, base_color_texture, metallic_roughness_texture, emissive_texture, _pad2);
+    let material = GpuMaterial::FIELDS;
     check(
         &nearfield_render::passes::gbuffer::source(),
         "GpuMaterial",
         size_of::<GpuMaterial>(),
-        &material,
+        material,
     );
     check(
         &nearfield_render::passes::shadow::source(),
         "GpuMaterial",
         size_of::<GpuMaterial>(),
-        &material,
+        material,
     );
     check(
         &nearfield_render::passes::direct_lighting::source(),
         "GpuLight",
         size_of::<GpuLight>(),
-        &offsets!(GpuLight: position, kind, direction, range, color, tan_radius, cos_inner, cos_outer,
-            shadow_layer, shadow_texel),
+        GpuLight::FIELDS,
     );
     check(
         include_str!("../src/passes/env_prefilter.wgsl"),
         "PrefilterParams",
         size_of::<PrefilterParams>(),
-        &[
-            ("roughness", offset_of!(PrefilterParams, roughness)),
-            ("source_width", offset_of!(PrefilterParams, source_width)),
-            ("source_height", offset_of!(PrefilterParams, source_height)),
-            ("source_mips", offset_of!(PrefilterParams, source_mips)),
-        ],
+        PrefilterParams::FIELDS,
     );
     // The structs of the passes' own parameters.
     use nearfield_render::passes::bilateral_blur::BlurParams;
@@ -155,41 +160,37 @@ fn host_and_shader_structs_agree() {
             &source,
             "SsdoParams",
             size_of::<SsdoParams>(),
-            &offsets!(SsdoParams: radius, sample_light, mode, technique, lod, contrast, scale, fade,
-                strength, distance_clamp, pattern, light_samples, layers, cameras, light_segment,
-                vpl_mode, vpl_count, vpl_clamp, near, normalise),
+            SsdoParams::FIELDS,
         );
     }
     check(
         &nearfield_render::technique::s3ho::sample::source(),
         "S3hoParams",
         size_of::<S3hoParams>(),
-        &offsets!(S3hoParams: radius, _pad0, pattern, fade, _pad1, lambda, technique, indirect,
-            strength, distance_clamp, layers, cameras),
+        S3hoParams::FIELDS,
     );
     check(
         &nearfield_render::passes::bilateral_blur::source(),
         "BlurParams",
         size_of::<BlurParams>(),
-        &offsets!(BlurParams: direction, radius, enabled, depth_sigma, normal_power, _pad0, _pad1),
+        BlurParams::FIELDS,
     );
     check(
         common,
         "LayerView",
         size_of::<LayerView>(),
-        &offsets!(LayerView: clip_from_world, view_from_world, world_from_view, size, inv_size,
-            near, far, aspect, tan_half_fov, peel, exit, _pad0, _pad1, _pad2),
+        LayerView::FIELDS,
     );
     check(
         &nearfield_render::passes::layers::source(),
         "ShadeParams",
         size_of::<ShadeParams>(),
-        &offsets!(ShadeParams: first_view, count, _pad0, _pad1),
+        ShadeParams::FIELDS,
     );
     check(
         &nearfield_render::passes::rsm::source(),
         "RsmView",
         size_of::<RsmView>(),
-        &offsets!(RsmView: clip_from_world, to_light),
+        RsmView::FIELDS,
     );
 }

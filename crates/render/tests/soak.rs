@@ -78,9 +78,10 @@ fn soak(frames: usize) {
                 &ctx,
                 scene,
                 &envs[0],
+                None,
                 scene.default_camera(),
-                "none",
-                &TechniqueParams::default(),
+                &nearfield_render::technique::Spec::resolve("none", &TechniqueParams::default())
+                    .unwrap(),
                 settings,
             )
             .unwrap();

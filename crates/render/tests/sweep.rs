@@ -159,9 +159,10 @@ fn random_valid_settings_render_finite_aovs_and_invalid_ones_are_refused() {
             &ctx,
             &scene,
             &env,
+            None,
             camera,
-            desc.name,
-            &TechniqueParams::default(),
+            &nearfield_render::technique::Spec::resolve(desc.name, &TechniqueParams::default())
+                .unwrap(),
             settings,
         )
         .unwrap();

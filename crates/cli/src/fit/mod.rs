@@ -372,17 +372,16 @@ pub fn run(args: FitArgs) -> Result<()> {
                 );
                 continue;
             }
-            let mut renderer = Renderer::new(
+            let volume = args.far.resolve(&opts, &loaded, Some(args.aov.as_str()))?;
+            let renderer = Renderer::new(
                 &ctx,
                 &loaded.scene,
                 &loaded.env,
+                volume.as_ref(),
                 loaded.camera,
-                &start_spec,
-                &params,
+                &nearfield_render::technique::Spec::resolve(&start_spec, &params)?,
                 settings,
             )?;
-            let volume = args.far.resolve(&opts, &loaded, Some(args.aov.as_str()))?;
-            renderer.set_far_field(volume.as_ref())?;
             targets.push(Target {
                 name: name.clone(),
                 renderer,

@@ -200,12 +200,11 @@ pub fn run(args: ParetoArgs) -> Result<()> {
             &ctx,
             &loaded.scene,
             &loaded.env,
+            volume.as_ref(),
             loaded.camera,
-            "none",
-            &params,
+            &nearfield_render::technique::Spec::resolve("none", &params)?,
             settings,
         )?;
-        r.set_far_field(volume.as_ref())?;
         time_frames(&mut r, args.warmup, args.timed, gpu)?
     };
     progress.inc(1);
@@ -213,16 +212,15 @@ pub fn run(args: ParetoArgs) -> Result<()> {
     let mut fronts = Vec::new();
     let mut truth = Some(truth);
     for (method, configs) in &sweeps {
-        let mut renderer = Renderer::new(
+        let renderer = Renderer::new(
             &ctx,
             &loaded.scene,
             &loaded.env,
+            volume.as_ref(),
             loaded.camera,
-            &configs[0].spec,
-            &params,
+            &nearfield_render::technique::Spec::resolve(&configs[0].spec, &params)?,
             settings,
         )?;
-        renderer.set_far_field(volume.as_ref())?;
         let mut target = Target {
             name: method.clone(),
             renderer,

@@ -9,6 +9,7 @@ use display::{display_side, source, wgpu_encoder_label};
 use far::Bake;
 pub use files::{env_name, save_camera};
 use nearfield_render::passes::display::{DisplayPass, DisplayPost};
+use nearfield_render::technique::Spec;
 use nearfield_render::{Aov, GpuContext, RenderSettings, Renderer, Tonemap};
 use nearfield_scene::probes::ProbeVolume;
 use nearfield_scene::{Camera, CameraFile, EnvSource, Environment, Scene, SceneSource, SunMode};
@@ -160,13 +161,19 @@ impl Session {
                 let msg = e.to_string().replace('\n', " ");
                 eprintln!("nearfield: view: GPU error: {msg}");
             }));
+        let far_volume = !matches!(start.far, StartFar::Sky);
+        let bake = matches!(start.far, StartFar::Bake);
+        let volume = match start.far {
+            StartFar::Volume(v) => Some(v),
+            StartFar::Sky | StartFar::Bake => None,
+        };
         let renderer_a = Renderer::new(
             &ctx,
             &start.scene,
             &start.env,
+            volume.as_ref(),
             start.camera,
-            start.a.name(),
-            &start.a.params(),
+            &Spec::resolve(start.a.name(), &start.a.params())?,
             start.settings,
         )?;
         let display = DisplayPass::new(&ctx.device, start.settings.size);
@@ -186,23 +193,17 @@ impl Session {
             renderer_b: None,
             display,
             timings: Default::default(),
-            far_volume: !matches!(start.far, StartFar::Sky),
+            far_volume,
             volume: None,
             bake: None,
             grid: start.grid,
             scene: start.scene,
             ctx,
         };
-        match start.far {
-            StartFar::Sky => {}
-            StartFar::Volume(v) => {
-                let key = s.far_key();
-                s.renderer_a
-                    .set_far_field(Some(&v))
-                    .map_err(anyhow::Error::from)?;
-                s.volume = Some((key, Arc::new(v)));
-            }
-            StartFar::Bake => s.refresh_far().map_err(crate::BadInput)?,
+        if let Some(v) = volume {
+            s.volume = Some((s.far_key(), Arc::new(v)));
+        } else if bake {
+            s.refresh_far().map_err(crate::BadInput)?;
         }
         if start.b.is_some() {
             s.apply(Change::Split(Some(0.5))).map_err(crate::BadInput)?;
@@ -358,9 +359,7 @@ impl Session {
                     return Err(format!("split {f}: must be off or in 0..=1"));
                 }
                 if self.renderer_b.is_none() {
-                    let mut b = self.new_renderer(&self.b)?;
-                    self.copy_live_state(&mut b)?;
-                    self.renderer_b = Some(b);
+                    self.renderer_b = Some(self.new_renderer(&self.b)?);
                 }
                 self.split = Some(f);
                 Ok(())
@@ -432,31 +431,30 @@ impl Session {
         Ok(env)
     }
 
+    /// A renderer of `state` over the session's scene, environment and far field, its lights
+    /// switched as side A's.
     fn new_renderer(&self, state: &TechniqueState) -> Result<Renderer, String> {
         let env = self.load_env(&self.env_name)?;
-        Renderer::new(
+        let volume = self
+            .volume
+            .as_ref()
+            .filter(|_| self.far_volume)
+            .map(|(_, v)| v.as_ref());
+        let technique = Spec::resolve(state.name(), &state.params()).map_err(|e| e.to_string())?;
+        let mut r = Renderer::new(
             &self.ctx,
             &self.scene,
             &env,
+            volume,
             self.camera,
-            state.name(),
-            &state.params(),
+            &technique,
             self.settings,
         )
-        .map_err(|e| e.to_string())
-    }
-
-    /// Light switches and the far field of side A onto a new renderer.
-    fn copy_live_state(&self, r: &mut Renderer) -> Result<(), String> {
+        .map_err(|e| e.to_string())?;
         for i in 0..self.renderer_a.lights().len() {
             r.set_light_enabled(i, self.renderer_a.light_enabled(i));
         }
-        if let Some((_, v)) = &self.volume
-            && self.far_volume
-        {
-            r.set_far_field(Some(v)).map_err(|e| e.to_string())?;
-        }
-        Ok(())
+        Ok(r)
     }
 
     /// Loads a scene; the environment and the camera become the scene's own.
@@ -468,13 +466,15 @@ impl Session {
         // The old renderers stay until the new ones exist, so a failure changes nothing.
         let a = self.a.clone();
         let make = |state: &TechniqueState| {
+            let technique =
+                Spec::resolve(state.name(), &state.params()).map_err(|e| e.to_string())?;
             Renderer::new(
                 &self.ctx,
                 &scene,
                 &env,
+                None,
                 camera,
-                state.name(),
-                &state.params(),
+                &technique,
                 self.settings,
             )
             .map_err(|e| e.to_string())

@@ -50,6 +50,47 @@ crate::bind_group! {
         out_aov: view = kind::write(AOV_FORMAT),
         /// The far field at the point (rgba16float: rgb E_far(n)/π, a its visibility within R).
         far_field: view = kind::TEXTURE,
+        /// Which AOV ([`AovSelection`]).
+        selection: buffer = kind::UNIFORM,
+    }
+}
+
+crate::gpu_struct! {
+    /// `AovSelection` in aov.wgsl: the AOV the pass copies ([`crate::aov::Aov::shader_id`]).
+    pub struct AovSelection {
+        pub aov: u32,
+        pub _pad0: u32,
+        pub _pad1: u32,
+        pub _pad2: u32,
+    }
+}
+
+/// The AOV pass and its selector.
+pub struct AovPass {
+    pass: ScreenPass,
+    selection: wgpu::Buffer,
+}
+
+impl AovPass {
+    /// Records the copy of `aov` from the images of frame `frame_index` (whose uniforms group 0
+    /// still holds).
+    pub fn encode(
+        &self,
+        queue: &wgpu::Queue,
+        encoder: &mut wgpu::CommandEncoder,
+        profiler: &mut crate::profiler::GpuProfiler,
+        size: (u32, u32),
+        frame_index: u32,
+        aov: crate::aov::Aov,
+    ) {
+        let selection = AovSelection {
+            aov: aov.shader_id(),
+            _pad0: 0,
+            _pad1: 0,
+            _pad2: 0,
+        };
+        queue.write_buffer(&self.selection, 0, bytemuck::bytes_of(&selection));
+        self.pass.encode(encoder, profiler, size, frame_index);
     }
 }
 
@@ -70,8 +111,14 @@ pub fn new(
     targets: &FrameTargets,
     ao_scales_far: bool,
     far_rule: crate::technique::FarRule,
-) -> ScreenPass {
+) -> AovPass {
     let layout = AovBindings::layout(device);
+    let selection = device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("aov selection"),
+        size: std::mem::size_of::<AovSelection>() as u64,
+        usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+        mapped_at_creation: false,
+    });
     let module = crate::pipeline_cache::shader_module(device, "aov", &source());
     let own = PingPong::from_fn(|side| {
         AovBindings {
@@ -89,10 +136,11 @@ pub fn new(
             gb_emissive: &targets.emissive.view,
             out_aov: &targets.aov.view,
             far_field: &targets.far_field.view,
+            selection: &selection,
         }
         .bind_group(device, &layout)
     });
-    ScreenPass {
+    let pass = ScreenPass {
         step: ComputeStep::new(
             device,
             "aov",
@@ -103,5 +151,6 @@ pub fn new(
             &super::irradiance_terms_constants(ao_scales_far, far_rule, frame),
         ),
         own,
-    }
+    };
+    AovPass { pass, selection }
 }

@@ -1,4 +1,4 @@
-// aov.wgsl — copies one AOV (frame.aov, numbered as crate::Aov) into an rgba32float image
+// aov.wgsl — copies one AOV (selection.aov, numbered as crate::Aov) into an rgba32float image
 // for output: rgb = the AOV's value exactly as docs/src/aovs.md defines it, a = 1 on surfaces,
 // 0 on background (where rgb = 0, except for `radiance`, which shows the environment).
 //
@@ -24,6 +24,16 @@
 @group(1) @binding(12) var out_aov: texture_storage_2d<rgba32float, write>;
 @group(1) @binding(13) var far_field: texture_2d<f32>;
 
+// Which AOV to copy (crate::passes::aov::AovSelection): the pass's own, written before it runs,
+// so that reading an AOV leaves the frame's uniforms as the frame was rendered with.
+struct AovSelection {
+    aov: u32,
+    _pad0: u32,
+    _pad1: u32,
+    _pad2: u32,
+}
+@group(1) @binding(14) var<uniform> selection: AovSelection;
+
 // Whether the technique wrote only ao (gtao): its env- and indirect-irradiance are then formed
 // here (irradiance_terms.wgsl).
 override AO_SCALES_FAR: bool = false;
@@ -36,7 +46,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     let surface = textureLoad(gb_normal, pixel, 0).w;
     var v = vec3<f32>(0.0);
-    switch frame.aov {
+    switch selection.aov {
         case 1u: {
             v = textureLoad(radiance, pixel, 0).rgb;
         }
@@ -84,7 +94,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         default: {
         }
     }
-    if surface == 0.0 && frame.aov != 1u {
+    if surface == 0.0 && selection.aov != 1u {
         v = vec3<f32>(0.0);
     }
     textureStore(out_aov, pixel, vec4<f32>(v, surface));

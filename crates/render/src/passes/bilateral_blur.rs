@@ -8,7 +8,6 @@ use crate::bindings::{PassLayout, kind};
 use crate::contract::io::NearFieldInputs;
 use crate::targets::HDR_FORMAT;
 use crate::util;
-use bytemuck::{Pod, Zeroable};
 use wgpu::util::DeviceExt;
 
 pub const SHADER: &str = include_str!("bilateral_blur.wgsl");
@@ -22,17 +21,17 @@ pub fn source() -> String {
     ])
 }
 
-/// `BlurParams` in bilateral_blur.wgsl.
-#[repr(C)]
-#[derive(Clone, Copy, Debug, Pod, Zeroable)]
-pub struct BlurParams {
-    pub direction: [i32; 2],
-    pub radius: i32,
-    pub enabled: u32,
-    pub depth_sigma: f32,
-    pub normal_power: f32,
-    pub _pad0: f32,
-    pub _pad1: f32,
+crate::gpu_struct! {
+    /// `BlurParams` in bilateral_blur.wgsl.
+    pub struct BlurParams {
+        pub direction: [i32; 2],
+        pub radius: i32,
+        pub enabled: u32,
+        pub depth_sigma: f32,
+        pub normal_power: f32,
+        pub _pad0: f32,
+        pub _pad1: f32,
+    }
 }
 
 crate::bind_group! {

@@ -7,7 +7,6 @@ use crate::aov::Aov;
 use crate::bindings::{PassLayout, kind};
 use crate::frame::Tonemap;
 use crate::util;
-use bytemuck::{Pod, Zeroable};
 
 pub const SHADER: &str = include_str!("display.wgsl");
 
@@ -76,25 +75,25 @@ pub struct DisplayPost {
     pub range: (f32, f32),
 }
 
-/// `DisplayParams` in display.wgsl.
-#[repr(C)]
-#[derive(Clone, Copy, Debug, Pod, Zeroable)]
-pub struct DisplayParams {
-    /// Output size (pixels), the split column (≥ width: A only), the divider's half-width.
-    pub width: u32,
-    pub height: u32,
-    pub split: u32,
-    pub divider: u32,
-    /// [`DisplayMode`] of each side, [`Tonemap::index`], coverage bits (1: A, 2: B).
-    pub mode_a: u32,
-    pub mode_b: u32,
-    pub tonemap: u32,
-    pub coverage: u32,
-    /// Exposure (EV) and the false-colour range.
-    pub exposure: f32,
-    pub lo: f32,
-    pub hi: f32,
-    pub _pad0: f32,
+crate::gpu_struct! {
+    /// `DisplayParams` in display.wgsl.
+    pub struct DisplayParams {
+        /// Output size (pixels), the split column (≥ width: A only), the divider's half-width.
+        pub width: u32,
+        pub height: u32,
+        pub split: u32,
+        pub divider: u32,
+        /// [`DisplayMode`] of each side, [`Tonemap::index`], coverage bits (1: A, 2: B).
+        pub mode_a: u32,
+        pub mode_b: u32,
+        pub tonemap: u32,
+        pub coverage: u32,
+        /// Exposure (EV) and the false-colour range.
+        pub exposure: f32,
+        pub lo: f32,
+        pub hi: f32,
+        pub _pad0: f32,
+    }
 }
 
 crate::bind_group! {

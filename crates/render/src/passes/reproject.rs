@@ -9,7 +9,6 @@ use crate::contract::io::NearFieldInputs;
 use crate::profiler::GpuProfiler;
 use crate::targets::HDR_FORMAT;
 use crate::util;
-use bytemuck::{Pod, Zeroable};
 use wgpu::util::DeviceExt;
 
 pub const SHADER: &str = include_str!("reproject.wgsl");
@@ -25,17 +24,17 @@ pub fn source() -> String {
 
 pub use crate::settings::march::ReprojectMode;
 
-/// `ReprojectParams` in reproject.wgsl.
-#[repr(C)]
-#[derive(Clone, Copy, Debug, Pod, Zeroable)]
-pub struct ReprojectParams {
-    /// Largest distance of a reprojected point from the surface seen now, relative to its view
-    /// depth.
-    pub reject_depth: f32,
-    /// Smallest cosine between last frame's and this frame's normal.
-    pub reject_normal: f32,
-    pub _pad0: f32,
-    pub _pad1: f32,
+crate::gpu_struct! {
+    /// `ReprojectParams` in reproject.wgsl.
+    pub struct ReprojectParams {
+        /// Largest distance of a reprojected point from the surface seen now, relative to its view
+        /// depth.
+        pub reject_depth: f32,
+        /// Smallest cosine between last frame's and this frame's normal.
+        pub reject_normal: f32,
+        pub _pad0: f32,
+        pub _pad1: f32,
+    }
 }
 
 /// Last frame's inputs of one ping-pong side: its geometry (rgba32float: world normal, view

@@ -31,12 +31,12 @@ pub struct RsmTexel {
     pub flux: Vec3,
 }
 
-/// `RsmView` in gbuffer.wgsl.
-#[repr(C)]
-#[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
-pub struct RsmView {
-    pub clip_from_world: [[f32; 4]; 4],
-    pub to_light: [f32; 4],
+crate::gpu_struct! {
+    /// `RsmView` in gbuffer.wgsl.
+    pub struct RsmView {
+        pub clip_from_world: [[f32; 4]; 4],
+        pub to_light: [f32; 4],
+    }
 }
 
 /// Flux of one texel crossing the view of `light` (before the surface's albedo): see the module

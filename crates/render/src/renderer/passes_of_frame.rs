@@ -7,7 +7,7 @@ use crate::gpu_env::GpuEnvironment;
 use crate::gpu_scene::GpuScene;
 use crate::passes::{self, FrameGroup, ScreenPass, shadow::ShadowPass};
 use crate::targets::FrameTargets;
-use crate::technique::{self, Output, Technique, TechniqueContext, TechniqueParams};
+use crate::technique::{self, Output, Technique, TechniqueContext};
 
 /// The passes that bind the frame targets, the environment or the technique: rebuilt together.
 pub(super) struct Passes {
@@ -15,7 +15,7 @@ pub(super) struct Passes {
     pub technique: Box<dyn Technique>,
     pub composite: ScreenPass,
     pub tonemap: ScreenPass,
-    pub aov: ScreenPass,
+    pub aov: passes::aov::AovPass,
 }
 
 impl Passes {
@@ -29,10 +29,9 @@ impl Passes {
         env: &GpuEnvironment,
         shadows: &ShadowPass,
         pack_half: bool,
-        spec: &str,
-        params: &TechniqueParams,
+        spec: &technique::Spec,
     ) -> Result<Self, RenderError> {
-        let (desc, params) = technique::resolve_params(spec, params)?;
+        let (desc, params) = (spec.desc, &spec.params);
         let direct = passes::direct_lighting::new(device, frame_group, targets, scene, shadows);
         let technique = technique::create(
             desc,
@@ -49,7 +48,7 @@ impl Passes {
                 }),
                 pack_half,
             },
-            &params,
+            params,
         )?;
         // A technique that writes only ao (gtao): composite and aov form its env- and
         // indirect-irradiance.

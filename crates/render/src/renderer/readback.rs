@@ -2,25 +2,22 @@
 
 use super::Renderer;
 use crate::aov::{Aov, AovImage};
-use crate::frame::CameraMatrices;
 use crate::technique;
 
 impl Renderer {
     /// Writes one float AOV of the last rendered frame into `targets.aov` (rgba32float; see
-    /// aov.wgsl) and submits the work; nothing is read back.
+    /// aov.wgsl) and submits the work; nothing is read back. Group 0 still holds the uniforms the
+    /// last frame was rendered with.
     pub fn extract_aov(&mut self, aov: Aov) {
-        let last = self.last_frame.index;
-        let current = self.previous.unwrap_or_else(|| {
-            CameraMatrices::new(&self.camera, self.settings.size, self.scene.bounds)
-        });
-        // Same matrices as the last frame; only the AOV selector differs.
-        let mut u = self.uniforms(current, aov);
-        u.0.frame_index = last;
-        self.write_uniforms(u);
         let mut encoder = self.device.create_command_encoder(&Default::default());
-        self.passes
-            .aov
-            .encode(&mut encoder, &mut self.quiet, self.settings.size, last);
+        self.passes.aov.encode(
+            &self.queue,
+            &mut encoder,
+            &mut self.quiet,
+            self.settings.size,
+            self.last_frame.index,
+            aov,
+        );
         self.queue.submit([encoder.finish()]);
     }
 

@@ -44,7 +44,7 @@ struct View {
 }
 
 // The rest of nearfield's own frame (crate::frame::FrameUniforms), read by nearfield's own
-// passes (lighting, tone mapping, AOV display) and by the techniques that shade with the light
+// passes (lighting, tone mapping) and by the techniques that shade with the light
 // table (ssdo, s3ho): nothing a horizon kernel reads.
 struct Frame {
     // Exposure (EV), tonemap operator (0 aces, 1 neutral, 2 linear), shadow normal offset (in
@@ -52,12 +52,8 @@ struct Frame {
     exposure: f32,
     tonemap: u32,
     shadow_normal_offset: f32,
-    // Light count, selected AOV (for the AOV pass).
+    // Lights in the light table.
     light_count: u32,
-    aov: u32,
-    _pad0: u32,
-    _pad1: u32,
-    _pad2: u32,
 }
 
 // One view of the extra layers (passes/layers/, `LayerView` there): a peeled depth layer of the

@@ -123,33 +123,69 @@ pub fn resolve_params(
     Ok((desc, params))
 }
 
-/// The near-field radius R (m) a spec resolves to: its `radius` setting (`--radius`, `--set
-/// radius=`, a preset, the spec), else the technique's default; `None` for a technique without
-/// one (`none`).
-pub fn radius_of(spec: &str, params: &TechniqueParams) -> Result<Option<f32>, RenderError> {
-    let (desc, resolved) = resolve_params(spec, params)?;
-    let Some(setting) = desc.settings.iter().find(|s| s.key == "radius") else {
-        return Ok(None);
+/// A technique resolved once: its declaration, the spec and parameters as given (to show and to
+/// compare), and the parameters it is made with, checked. What [`crate::Renderer::new`] takes.
+#[derive(Clone)]
+pub struct Spec {
+    pub desc: &'static TechniqueDesc,
+    /// `name` or `name:key=value+…`, as named.
+    pub spec: String,
+    /// The command line's parameters, as given.
+    pub given: TechniqueParams,
+    /// The spec's settings after the given ones, `quality` expanded ([`resolve_params`]).
+    pub params: TechniqueParams,
+}
+
+impl Spec {
+    /// Resolves `spec` against the command line's parameters and parses its settings without a
+    /// device: the error `create` would give for a refused setting, before anything is loaded.
+    pub fn resolve(spec: &str, given: &TechniqueParams) -> Result<Spec, RenderError> {
+        let (desc, params) = resolve_params(spec, given)?;
+        (desc.check)(&params).map_err(RenderError::setting(desc.name))?;
+        Ok(Spec {
+            desc,
+            spec: spec.to_string(),
+            given: given.clone(),
+            params,
+        })
+    }
+
+    /// The near-field radius R (m): its `radius` setting (`--radius`, `--set radius=`, a preset,
+    /// the spec), else the technique's default; `None` for a technique without one (`none`).
+    pub fn radius(&self) -> Option<f32> {
+        let setting = self.desc.settings.iter().find(|s| s.key == "radius")?;
+        let typed = self
+            .params
+            .set
+            .iter()
+            .rev()
+            .find(|(k, _)| k == "radius")
+            .map(|(_, v)| v.as_str());
+        match (typed, self.params.radius) {
+            (Some(v), _) => v.parse().ok(),
+            (None, Some(r)) => Some(r),
+            (None, None) => setting.default.parse().ok(),
+        }
+    }
+}
+
+/// The near-field radius R (m) a spec resolves to ([`Spec::radius`]).
+/// Unlike [`Spec::resolve`] it does not check the other settings.
+pub fn radius_of(spec: &str, given: &TechniqueParams) -> Result<Option<f32>, RenderError> {
+    let (desc, params) = resolve_params(spec, given)?;
+    let spec = Spec {
+        desc,
+        spec: spec.to_string(),
+        given: given.clone(),
+        params,
     };
-    let typed = resolved
-        .set
-        .iter()
-        .rev()
-        .find(|(k, _)| k == "radius")
-        .map(|(_, v)| v.as_str());
-    let value = match (typed, resolved.radius) {
-        (Some(v), _) => v.parse().ok(),
-        (None, Some(r)) => Some(r),
-        (None, None) => setting.default.parse().ok(),
-    };
-    Ok(value)
+    Ok(spec.radius())
 }
 
 /// Resolves a spec against the command line's parameters and parses its settings without a
-/// device: the error `create` would give for a refused setting, before anything is loaded.
+/// device ([`Spec::resolve`]).
 pub fn check_spec(spec: &str, params: &TechniqueParams) -> Result<(), RenderError> {
-    let (desc, resolved) = resolve_params(spec, params)?;
-    (desc.check)(&resolved).map_err(RenderError::setting(desc.name))
+    Spec::resolve(spec, params).map(|_| ())
 }
 
 /// Looks a technique up by name (or by a `name:key=value` spec).

@@ -35,9 +35,9 @@ pub fn renderer(
         ctx,
         scene,
         env,
+        None,
         camera,
-        "none",
-        &TechniqueParams::default(),
+        &nearfield_render::technique::Spec::resolve("none", &TechniqueParams::default()).unwrap(),
         settings,
     )
     .unwrap();
@@ -170,9 +170,9 @@ pub fn render_shot(
         ctx,
         shot.scene,
         shot.env,
+        None,
         shot.camera,
-        method,
-        &params,
+        &nearfield_render::technique::Spec::resolve(method, &params).unwrap(),
         settings,
     )
     .unwrap();

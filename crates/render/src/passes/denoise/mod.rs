@@ -46,7 +46,6 @@ use crate::passes::{ComputeStep, PingPong};
 use crate::profiler::GpuProfiler;
 pub use crate::settings::denoise::{Denoise, SvgfConfig, SvgfSettings};
 use crate::util;
-use bytemuck::{Pod, Zeroable};
 use wgpu::util::DeviceExt;
 
 /// Composes a denoise kernel's source.
@@ -72,18 +71,18 @@ pub fn pass_layouts() -> Vec<PassLayout> {
 
 pub use crate::contract::technique::DenoiseFn as ConfigFn;
 
-/// `SvgfParams` in params.wgsl.
-#[repr(C)]
-#[derive(Clone, Copy, Debug, Pod, Zeroable)]
-pub struct SvgfParams {
-    pub temporal: u32,
-    pub max_history: f32,
-    pub reject_depth: f32,
-    pub reject_normal: f32,
-    pub sigma_l: f32,
-    pub sigma_z: f32,
-    pub sigma_n: f32,
-    pub step: i32,
+crate::gpu_struct! {
+    /// `SvgfParams` in params.wgsl.
+    pub struct SvgfParams {
+        pub temporal: u32,
+        pub max_history: f32,
+        pub reject_depth: f32,
+        pub reject_normal: f32,
+        pub sigma_l: f32,
+        pub sigma_z: f32,
+        pub sigma_n: f32,
+        pub step: i32,
+    }
 }
 
 /// The uniforms of à-trous iteration spacing `step` (the first also serves temporal and

@@ -24,7 +24,7 @@ use crate::contract::io::{NearFieldInputs, SceneInputs};
 use crate::profiler::GpuProfiler;
 use crate::targets;
 use crate::util;
-use bytemuck::{Pod, Zeroable};
+use bytemuck::Zeroable;
 use glam::Vec3;
 use nearfield_scene::{Aabb, Camera};
 use wgpu::util::DeviceExt;
@@ -51,28 +51,28 @@ pub const CAMERA_DIRECTIONS: [[f32; 3]; 4] = [
     [0.3, 0.6, -1.0],
 ];
 
-/// `LayerView` in shaders/common.wgsl.
-#[repr(C)]
-#[derive(Clone, Copy, Debug, Pod, Zeroable)]
-pub struct LayerView {
-    pub clip_from_world: [[f32; 4]; 4],
-    pub view_from_world: [[f32; 4]; 4],
-    pub world_from_view: [[f32; 4]; 4],
-    /// Width, height (pixels) and their inverses.
-    pub size: [f32; 2],
-    pub inv_size: [f32; 2],
-    /// Near and far plane (m), aspect, tan(yfov/2).
-    pub near: f32,
-    pub far: f32,
-    pub aspect: f32,
-    pub tan_half_fov: f32,
-    /// 1: peel against the layer before.
-    pub peel: u32,
-    /// 1: an exit layer (normal stored facing away from the camera).
-    pub exit: u32,
-    pub _pad0: u32,
-    pub _pad1: u32,
-    pub _pad2: [f32; 4],
+crate::gpu_struct! {
+    /// `LayerView` in shaders/common.wgsl.
+    pub struct LayerView {
+        pub clip_from_world: [[f32; 4]; 4],
+        pub view_from_world: [[f32; 4]; 4],
+        pub world_from_view: [[f32; 4]; 4],
+        /// Width, height (pixels) and their inverses.
+        pub size: [f32; 2],
+        pub inv_size: [f32; 2],
+        /// Near and far plane (m), aspect, tan(yfov/2).
+        pub near: f32,
+        pub far: f32,
+        pub aspect: f32,
+        pub tan_half_fov: f32,
+        /// 1: peel against the layer before.
+        pub peel: u32,
+        /// 1: an exit layer (normal stored facing away from the camera).
+        pub exit: u32,
+        pub _pad0: u32,
+        pub _pad1: u32,
+        pub _pad2: [f32; 4],
+    }
 }
 
 impl LayerView {

@@ -4,7 +4,6 @@
 use crate::bindings::{PassLayout, kind};
 use crate::targets;
 use crate::util;
-use bytemuck::{Pod, Zeroable};
 
 /// Shader text of the shading pass.
 pub fn source() -> String {
@@ -18,15 +17,15 @@ pub fn source() -> String {
     ])
 }
 
-/// `ShadeParams` in shade.wgsl.
-#[repr(C)]
-#[derive(Clone, Copy, Debug, Pod, Zeroable)]
-pub struct ShadeParams {
-    /// Index in the views buffer of this set's first layer.
-    pub first_view: u32,
-    pub count: u32,
-    pub _pad0: u32,
-    pub _pad1: u32,
+crate::gpu_struct! {
+    /// `ShadeParams` in shade.wgsl.
+    pub struct ShadeParams {
+        /// Index in the views buffer of this set's first layer.
+        pub first_view: u32,
+        pub count: u32,
+        pub _pad0: u32,
+        pub _pad1: u32,
+    }
 }
 
 crate::bind_group! {

@@ -21,7 +21,6 @@ impl Settings {
         HorizonParams {
             radius: self.march.radius,
             bent_normal: 0,
-            _pad1: 0,
             falloff: self.falloff,
             max_pixels: self.march.max_pixels,
             scale,
@@ -52,11 +51,10 @@ impl Settings {
 crate::gpu_struct! {
     /// `HorizonParams` in params.wgsl.
     pub struct HorizonParams {
+        /// R (m). (Slices and steps are the overrides `SLICES` and `STEPS`.)
         pub radius: f32,
-        /// (Slices and steps: the overrides `SLICES` and `STEPS`.)
         /// 1: write the bent normal (the host handed one in).
         pub bent_normal: u32,
-        pub _pad1: u32,
         pub falloff: f32,
         pub max_pixels: f32,
         pub scale: u32,

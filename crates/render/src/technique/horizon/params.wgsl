@@ -7,7 +7,6 @@ struct HorizonParams {
     // (Slices per pixel and samples per side: the overrides SLICES and STEPS.)
     // 1: the host handed in a bent-normal output (accumulate writes it).
     bent_normal: u32,
-    _pad1: u32,
     falloff: f32,
     max_pixels: f32,
     // 4 with interleaving (layers of 1/4 × 1/4 resolution), else 1.

@@ -2,7 +2,6 @@
 
 use super::Settings;
 use crate::settings::sampling::Pattern;
-use bytemuck::{Pod, Zeroable};
 
 impl Settings {
     /// The GPU constants (pure).
@@ -24,22 +23,22 @@ impl Settings {
     }
 }
 
-/// `S3hoParams` in sh.wgsl.
-#[repr(C)]
-#[derive(Clone, Copy, Debug, Pod, Zeroable)]
-pub struct S3hoParams {
-    pub radius: f32,
-    /// (Directions per pixel: the override `SAMPLES`.)
-    pub _pad0: u32,
-    pub pattern: u32,
-    pub fade: f32,
-    /// (Points per direction: the override `STEPS`.)
-    pub _pad1: u32,
-    pub lambda: f32,
-    pub technique: u32,
-    pub indirect: u32,
-    pub strength: f32,
-    pub distance_clamp: f32,
-    pub layers: u32,
-    pub cameras: u32,
+crate::gpu_struct! {
+    /// `S3hoParams` in sh.wgsl.
+    pub struct S3hoParams {
+        pub radius: f32,
+        /// (Directions per pixel: the override `SAMPLES`.)
+        pub _pad0: u32,
+        pub pattern: u32,
+        pub fade: f32,
+        /// (Points per direction: the override `STEPS`.)
+        pub _pad1: u32,
+        pub lambda: f32,
+        pub technique: u32,
+        pub indirect: u32,
+        pub strength: f32,
+        pub distance_clamp: f32,
+        pub layers: u32,
+        pub cameras: u32,
+    }
 }

@@ -2,7 +2,6 @@
 
 use super::settings::SampleLight;
 use super::{LightSegment, Mode, Pattern, Settings};
-use bytemuck::{Pod, Zeroable};
 
 impl Settings {
     /// The GPU constants (pure).
@@ -32,34 +31,34 @@ impl Settings {
     }
 }
 
-/// `SsdoParams` in params.wgsl.
-#[repr(C)]
-#[derive(Clone, Copy, Debug, Pod, Zeroable)]
-pub struct SsdoParams {
-    pub radius: f32,
-    /// Radiance mode's L_in: 0 the environment's SH, 1 the mip at `lod`. (Directions per pixel
-    /// are the override `SAMPLES`.)
-    pub sample_light: u32,
-    pub mode: u32,
-    pub technique: u32,
-    pub lod: f32,
-    pub contrast: f32,
-    pub scale: f32,
-    pub fade: f32,
-    pub strength: f32,
-    pub distance_clamp: f32,
-    pub pattern: u32,
-    pub light_samples: u32,
-    pub layers: u32,
-    pub cameras: u32,
-    pub light_segment: u32,
-    /// 0 none, 1 the environment as VPLs (direct pass), 2 Instant Radiosity (bounce pass).
-    pub vpl_mode: u32,
-    pub vpl_count: u32,
-    pub vpl_clamp: f32,
-    /// 1: the bounce pass gathers sender pixels.
-    pub near: u32,
-    /// Radiance mode: 1 self-normalised per channel (direct.wgsl), 0 the paper's plain sum.
-    /// (Points per direction: the override `STEPS`.)
-    pub normalise: u32,
+crate::gpu_struct! {
+    /// `SsdoParams` in params.wgsl.
+    pub struct SsdoParams {
+        pub radius: f32,
+        /// Radiance mode's L_in: 0 the environment's SH, 1 the mip at `lod`. (Directions per pixel
+        /// are the override `SAMPLES`.)
+        pub sample_light: u32,
+        pub mode: u32,
+        pub technique: u32,
+        pub lod: f32,
+        pub contrast: f32,
+        pub scale: f32,
+        pub fade: f32,
+        pub strength: f32,
+        pub distance_clamp: f32,
+        pub pattern: u32,
+        pub light_samples: u32,
+        pub layers: u32,
+        pub cameras: u32,
+        pub light_segment: u32,
+        /// 0 none, 1 the environment as VPLs (direct pass), 2 Instant Radiosity (bounce pass).
+        pub vpl_mode: u32,
+        pub vpl_count: u32,
+        pub vpl_clamp: f32,
+        /// 1: the bounce pass gathers sender pixels.
+        pub near: u32,
+        /// Radiance mode: 1 self-normalised per channel (direct.wgsl), 0 the paper's plain sum.
+        /// (Points per direction: the override `STEPS`.)
+        pub normalise: u32,
+    }
 }

@@ -67,7 +67,6 @@ use crate::contract::technique::{Output, TechniqueDesc, TechniqueParams};
 use crate::passes::denoise::{Denoise, SvgfConfig};
 use crate::settings::Declared;
 use crate::technique::horizon;
-use bytemuck::{Pod, Zeroable};
 
 pub use settings::{PRESETS, Settings, Thickness, VbgiFar};
 
@@ -93,14 +92,15 @@ pub const VBGI: TechniqueDesc = TechniqueDesc {
     far_rule: FarRule::Replace,
 };
 
-/// `VbgiParams` in bitmask.wgsl.
-#[repr(C)]
-#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
-pub struct VbgiParams {
-    pub thickness: u32,
-    pub thickness_m: f32,
-    pub thickness_ratio: f32,
-    pub _pad0: u32,
+crate::gpu_struct! {
+    /// `VbgiParams` in bitmask.wgsl.
+    #[derive(PartialEq)]
+    pub struct VbgiParams {
+        pub thickness: u32,
+        pub thickness_m: f32,
+        pub thickness_ratio: f32,
+        pub _pad0: u32,
+    }
 }
 
 /// What the bitmask march adds to the horizon machinery.
