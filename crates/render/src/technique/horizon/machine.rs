@@ -2,15 +2,17 @@
 //! technique's [`March`], reprojection with push/pull, the bilateral blur and the running mean
 //! with the outputs (accumulate). See the module above for the derivation.
 
-use super::march::{Flavor, March, MarchContext, MarchIo, work};
+use super::march::{Flavor, March, MarchContext, MarchIo};
 use super::params::{FAR_SLICES, HorizonParams};
 use super::settings::Far;
+use super::stages::{
+    Histories, accumulate_groups, blur_stage, extra_images, search_groups, steps, upsample_group,
+};
 use super::{GEOMETRY_FORMAT, Resolution, Settings, Source, accumulate, split, upsample};
 use crate::RenderError;
 use crate::contract::formats::HDR_FORMAT;
 use crate::contract::technique::{
-    FrameInfo, Output, Technique, TechniqueContext, TechniqueParams, layered_texture,
-    screen_texture,
+    FrameInfo, Output, Technique, TechniqueContext, TechniqueParams, screen_texture,
 };
 use crate::passes::bilateral_blur::{BilateralBlur, BlurChain, BlurSettings};
 use crate::passes::denoise::Denoise;
@@ -22,10 +24,10 @@ use wgpu::util::DeviceExt;
 
 /// The 4×4 deinterleaved layers (with interleaving): split by radiance source (direct side 0,
 /// side 1, reprojected) and search.
-struct Split {
-    split_bg: [wgpu::BindGroup; 3],
-    search_bg: wgpu::BindGroup,
-    layer_size: (u32, u32),
+pub(super) struct Split {
+    pub split_bg: [wgpu::BindGroup; 3],
+    pub search_bg: wgpu::BindGroup,
+    pub layer_size: (u32, u32),
 }
 
 struct Horizon {
@@ -61,7 +63,7 @@ struct Horizon {
     march: Box<dyn March>,
 }
 
-fn array_view(t: &wgpu::Texture) -> wgpu::TextureView {
+pub(super) fn array_view(t: &wgpu::Texture) -> wgpu::TextureView {
     t.create_view(&wgpu::TextureViewDescriptor {
         dimension: Some(wgpu::TextureViewDimension::D2Array),
         ..Default::default()
@@ -191,176 +193,81 @@ pub fn build(
             },
         )
     };
-    let mut textures = Vec::new();
     let split_layout = split::SplitBindings::layout(device);
-    let mut full_bg = Vec::new();
-    let split = if settings.march.interleaved {
-        let layer_size = (p.layer_width, p.layer_height);
-        let layered = |label: &str, format| layered_texture(device, layer_size, 16, label, format);
-        let s_geometry = layered("split geometry", GEOMETRY_FORMAT);
-        let s_radiance = layered("split radiance", HDR_FORMAT);
-        let (vg, vr) = (array_view(&s_geometry), array_view(&s_radiance));
-        let (vc, vnear, vfar) = (view(&raw_cone), view(&raw_near), view(&raw_far));
-        let split_bg = |radiance: &wgpu::TextureView| {
-            split::SplitBindings {
-                params: &params,
-                full_depth: i.view_depth,
-                full_normal: i.normal,
-                full_radiance: radiance,
-                split_geometry: &vg,
-                split_radiance: &vr,
-            }
-            .bind_group(device, &split_layout)
-        };
-        let s = Split {
-            split_bg: [
-                split_bg(source_views[0]),
-                split_bg(source_views[1]),
-                split_bg(source_views[2]),
-            ],
-            // Depth is read from the geometry's w; `in_depth` only has to be bound.
-            search_bg: search_bg(&vg, &vg, &vr, [&vc, &vnear, &vfar]),
-            layer_size,
-        };
-        textures.extend([s_geometry, s_radiance]);
-        Some(s)
-    } else {
-        let as_array = |t: &wgpu::Texture| array_view(t);
-        let (depth, normal) = (
-            as_array(i.view_depth.texture()),
-            as_array(i.normal.texture()),
-        );
-        let (cone, near, far) = (view(&raw_cone), view(&raw_near), view(&raw_far));
-        let source_textures = [
-            i.direct_radiance[0].texture(),
-            i.direct_radiance[1].texture(),
-            reprojection
-                .as_ref()
-                .map(|r| &r.output_texture)
-                .unwrap_or(i.direct_radiance[0].texture()),
-        ];
-        for s in source_textures {
-            let radiance = s.create_view(&wgpu::TextureViewDescriptor {
-                dimension: Some(wgpu::TextureViewDimension::D2Array),
-                base_mip_level: 0,
-                mip_level_count: Some(1),
-                ..Default::default()
-            });
-            full_bg.push(search_bg(&depth, &normal, &radiance, [&cone, &near, &far]));
-        }
-        None
-    };
-
-    // What the blur reads: the search's results, or with `resolution=half` their upsample.
-    let [blur_cone, blur_near, blur_far] = match &upsampled {
-        Some(u) => [&u[0], &u[1], &u[2]],
-        None => [&raw_cone, &raw_near, &raw_far],
-    };
-    let blur = blurred.then(|| {
-        let b = BilateralBlur::new(device, frame, blur_settings(&settings));
-        let scratch = full("horizon blur scratch", HDR_FORMAT);
-        let cone_out = full("horizon cone blurred", HDR_FORMAT);
-        let near_out = full("horizon near blurred", HDR_FORMAT);
-        let far_out = full("horizon far blurred", HDR_FORMAT);
-        let chain = |from: &wgpu::Texture, to: &wgpu::Texture| {
-            b.chain(device, i, &view(from), &view(&scratch), &view(to))
-        };
-        let mut chains = vec![chain(blur_cone, &cone_out)];
-        if near {
-            chains.push(chain(blur_near, &near_out));
-        }
-        if p.far == FAR_SLICES {
-            chains.push(chain(blur_far, &far_out));
-        }
-        (b, chains, [scratch, cone_out, near_out, far_out])
-    });
-    let (cone_in, near_in, far_in) = match &blur {
-        Some((_, _, tex)) => (
-            view(&tex[1]),
-            if near { view(&tex[2]) } else { view(&raw_near) },
-            if p.far == FAR_SLICES {
-                view(&tex[3])
-            } else {
-                view(&raw_far)
-            },
+    let (split, full_bg, mut textures) = search_groups(
+        device,
+        i,
+        &settings,
+        &p,
+        &params,
+        &split_layout,
+        [&raw_cone, &raw_near, &raw_far],
+        (
+            source_views,
+            reprojection.as_ref().map(|r| &r.output_texture),
         ),
-        None => (view(&raw_cone), view(&raw_near), view(&raw_far)),
-    };
+        &search_bg,
+    );
+
+    let raw = [&raw_cone, &raw_near, &raw_far];
     let upsample_layout = upsample::UpsampleBindings::layout(device);
     let upsample_bg = upsampled.as_ref().map(|u| {
-        upsample::UpsampleBindings {
-            params: &params,
-            gb_normal: i.normal,
-            gb_view_depth: i.view_depth,
-            half_cone: &view(&raw_cone),
-            half_near: &view(&raw_near),
-            half_far: &view(&raw_far),
-            out_cone: &view(&u[0]),
-            out_near: &view(&u[1]),
-            out_far: &view(&u[2]),
-        }
-        .bind_group(device, &upsample_layout)
+        upsample_group(
+            device,
+            &upsample_layout,
+            &params,
+            i,
+            raw,
+            [&u[0], &u[1], &u[2]],
+        )
     });
+    // What the blur reads: the search's results, or with `resolution=half` their upsample.
+    let blur_from = match &upsampled {
+        Some(u) => [&u[0], &u[1], &u[2]],
+        None => raw,
+    };
+    let blur = blurred.then(|| blur_stage(ctx, &settings, near, p.far == FAR_SLICES, blur_from));
+    // What accumulate reads: the blurred results where the blur ran on them, else the raw.
+    let [cone_in, near_in, far_in] = match &blur {
+        Some((_, _, tex)) => [
+            view(&tex[1]),
+            view(if near { &tex[2] } else { &raw_near }),
+            view(if p.far == FAR_SLICES {
+                &tex[3]
+            } else {
+                &raw_far
+            }),
+        ],
+        None => raw.map(view),
+    };
 
     let accumulate_layout = accumulate::AccumulateBindings::layout(device);
-    let accumulate_bg = PingPong::from_fn(|side| {
-        let prev = 1 - side;
-        accumulate::AccumulateBindings {
-            params: &params,
-            gb_normal: i.normal,
-            gb_view_depth: i.view_depth,
-            raw_cone: &cone_in,
-            raw_near: &near_in,
-            raw_far: &far_in,
-            prev_cone: &view(&hist_cone[prev]),
-            prev_near: &view(&hist_near[prev]),
-            prev_far: &view(&hist_far[prev]),
-            prev_geometry: &hist_geo_views[prev],
-            acc_cone: &view(&hist_cone[side]),
-            acc_near: &view(&hist_near[side]),
-            acc_far: &view(&hist_far[side]),
-            acc_geometry: &hist_geo_views[side],
-            gb_albedo: i.albedo,
-            gb_material: i.material,
-            gb_emissive: i.emission,
-            light_irradiance: light_in,
-            out_ao: o.ao,
-            out_env,
-            out_indirect,
-            out_feedback: &feedback_views[side],
-            out_bent,
-        }
-        .bind_group(device, &accumulate_layout)
-    });
-    let extras = PingPong::from_fn(|side| {
-        let mut e = vec![
-            ("bent-cone", hist_cone[side].clone()),
-            ("near-history", hist_near[side].clone()),
-            ("far-history", hist_far[side].clone()),
-            ("feedback", feedback[side].clone()),
-        ];
-        if let Some(r) = &reprojection {
-            e.push(("reprojected", r.raw.clone()));
-            e.push(("radiance-source", r.output_texture.clone()));
-        }
-        e
-    });
-    let (search_source, search_entry, march_counts) = march.kernel();
-    let mut counts = vec![
-        ("SLICES", settings.march.slices as f64),
-        ("STEPS", settings.march.steps as f64),
-    ];
-    counts.extend(march_counts);
-    if half {
-        counts.push(("HALF", 1.0));
-    }
-    let far_field = frame.far_field_constant();
-    counts.push(far_field);
-    let work = work(near, &p);
-    let step = |label: &'static str, source: String, entry: &str, layout, constants: &[_]| {
-        let module = crate::pipeline_cache::shader_module(device, label, &source);
-        ComputeStep::new(device, label, &module, entry, frame, layout, constants)
-    };
+    let accumulate_bg = accumulate_groups(
+        device,
+        &accumulate_layout,
+        &params,
+        (i, o),
+        [&cone_in, &near_in, &far_in],
+        &Histories {
+            cone: &hist_cone,
+            near: &hist_near,
+            far: &hist_far,
+            geometry: &hist_geo_views,
+            feedback: &feedback_views,
+        },
+        (out_env, out_indirect, out_bent, light_in),
+    );
+    let extras = extra_images(
+        [&hist_cone, &hist_near, &hist_far, &feedback],
+        reprojection.as_ref(),
+    );
+    let steps = steps(
+        ctx,
+        name,
+        (&settings, &p, march.as_ref()),
+        (&split_layout, &accumulate_layout, &upsample_layout),
+        (half, blurred, upsample_bg.is_some()),
+    );
     let technique = Horizon {
         name,
         flavor,
@@ -369,35 +276,10 @@ pub fn build(
         size,
         search_size,
         source: settings.march.source,
-        split_step: step("split", split::source(), "split", &split_layout, &[]),
-        search_step: step(name, search_source, search_entry, march.layout(), &counts),
-        accumulate_step: step(
-            "accumulate",
-            accumulate::source(),
-            "accumulate",
-            &accumulate_layout,
-            &[
-                work[0],
-                work[1],
-                ("HISTORY", f64::from(u8::from(keeps_history(near, &p)))),
-                far_field,
-                ("HALF", f64::from(u8::from(half && !blurred))),
-            ],
-        ),
-        upsample: upsample_bg.map(|bg| {
-            let module =
-                crate::pipeline_cache::shader_module(device, "upsample", &upsample::source());
-            let step = ComputeStep::new(
-                device,
-                "upsample",
-                &module,
-                "upsample",
-                frame,
-                &upsample_layout,
-                &work,
-            );
-            (step, bg)
-        }),
+        split_step: steps.split,
+        search_step: steps.search,
+        accumulate_step: steps.accumulate,
+        upsample: steps.upsample.zip(upsample_bg),
         split,
         full_bg,
         accumulate_bg,
@@ -434,7 +316,7 @@ fn search_size(half: bool, size: (u32, u32)) -> (u32, u32) {
     }
 }
 
-fn blur_settings(settings: &Settings) -> BlurSettings {
+pub(super) fn blur_settings(settings: &Settings) -> BlurSettings {
     BlurSettings {
         enabled: true,
         radius: settings.march.blur_radius,
@@ -456,7 +338,7 @@ fn reproject_params(settings: &Settings) -> ReprojectParams {
 /// Whether the accumulation is kept for the next frame: always with near-field light (hbil's
 /// reprojection reads its geometry), otherwise only under the running mean (`HISTORY` in
 /// accumulate.wgsl; gtao with `temporal=off` or `denoise=svgf` keeps none).
-fn keeps_history(near: bool, p: &HorizonParams) -> bool {
+pub(super) fn keeps_history(near: bool, p: &HorizonParams) -> bool {
     near || p.temporal == 1
 }
 

@@ -107,6 +107,7 @@ pub mod params;
 pub mod search;
 pub mod settings;
 pub mod split;
+mod stages;
 pub mod upsample;
 
 use crate::contract::technique::FarRule;

@@ -1,0 +1,303 @@
+//! The horizon machine's stages ([`super::machine::build`]): each takes the handles it reads and
+//! returns what it makes: the compute steps, the search's, accumulate's and the upsample's bind
+//! groups, the blur, and the images it shows.
+
+use super::machine::{Split, array_view, blur_settings, keeps_history};
+use super::march::{March, work};
+use super::params::HorizonParams;
+use super::{GEOMETRY_FORMAT, Settings, accumulate, split, upsample};
+use crate::contract::formats::HDR_FORMAT;
+use crate::contract::technique::{TechniqueContext, layered_texture, screen_texture};
+use crate::passes::bilateral_blur::{BilateralBlur, BlurChain};
+use crate::passes::reproject::Reprojection;
+use crate::passes::{ComputeStep, PingPong};
+
+/// The compute steps of the machine, each with its constants.
+pub(super) struct Steps {
+    pub split: ComputeStep,
+    pub search: ComputeStep,
+    pub accumulate: ComputeStep,
+    pub upsample: Option<ComputeStep>,
+}
+
+/// Compiles the machine's steps: the split, the search (its march's kernel with the slice, step
+/// and march counts), accumulate and, with `upsample`, the upsample.
+pub(super) fn steps(
+    ctx: &TechniqueContext,
+    name: &'static str,
+    (settings, p, march): (&Settings, &HorizonParams, &dyn March),
+    (split_layout, accumulate_layout, upsample_layout): (
+        &wgpu::BindGroupLayout,
+        &wgpu::BindGroupLayout,
+        &wgpu::BindGroupLayout,
+    ),
+    (half, blurred, upsample): (bool, bool, bool),
+) -> Steps {
+    let (device, frame) = (ctx.device, ctx.frame_group);
+    let near = p.indirect != 0;
+    let (search_source, search_entry, march_counts) = march.kernel();
+    let mut counts = vec![
+        ("SLICES", settings.march.slices as f64),
+        ("STEPS", settings.march.steps as f64),
+    ];
+    counts.extend(march_counts);
+    if half {
+        counts.push(("HALF", 1.0));
+    }
+    let far_field = frame.far_field_constant();
+    counts.push(far_field);
+    let work = work(near, p);
+    let step = |label: &'static str, source: String, entry: &str, layout, constants: &[_]| {
+        let module = crate::pipeline_cache::shader_module(device, label, &source);
+        ComputeStep::new(device, label, &module, entry, frame, layout, constants)
+    };
+    Steps {
+        split: step("split", split::source(), "split", split_layout, &[]),
+        search: step(name, search_source, search_entry, march.layout(), &counts),
+        accumulate: step(
+            "accumulate",
+            accumulate::source(),
+            "accumulate",
+            accumulate_layout,
+            &[
+                work[0],
+                work[1],
+                ("HISTORY", f64::from(u8::from(keeps_history(near, p)))),
+                far_field,
+                ("HALF", f64::from(u8::from(half && !blurred))),
+            ],
+        ),
+        upsample: upsample.then(|| {
+            step(
+                "upsample",
+                upsample::source(),
+                "upsample",
+                upsample_layout,
+                &work,
+            )
+        }),
+    }
+}
+
+/// Makes one search bind group from depth, normal, radiance and the three outputs.
+type SearchGroup<'a> = dyn Fn(
+        &wgpu::TextureView,
+        &wgpu::TextureView,
+        &wgpu::TextureView,
+        [&wgpu::TextureView; 3],
+    ) -> wgpu::BindGroup
+    + 'a;
+
+/// The search's bind groups, one per radiance source (this frame's direct radiance on either
+/// side, or last frame's reprojected): over the 16 interleaved layers with the split pass that
+/// fills them (and the layers' textures), or over the full-resolution images.
+#[allow(clippy::too_many_arguments)]
+pub(super) fn search_groups(
+    device: &wgpu::Device,
+    i: &crate::contract::io::NearFieldInputs,
+    settings: &Settings,
+    p: &HorizonParams,
+    params: &wgpu::Buffer,
+    split_layout: &wgpu::BindGroupLayout,
+    [raw_cone, raw_near, raw_far]: [&wgpu::Texture; 3],
+    (source_views, reprojected): ([&wgpu::TextureView; 3], Option<&wgpu::Texture>),
+    search_bg: &SearchGroup,
+) -> (Option<Split>, Vec<wgpu::BindGroup>, Vec<wgpu::Texture>) {
+    let view = |t: &wgpu::Texture| t.create_view(&Default::default());
+    let mut textures = Vec::new();
+    let mut full_bg = Vec::new();
+    let split = if settings.march.interleaved {
+        let layer_size = (p.layer_width, p.layer_height);
+        let layered = |label: &str, format| layered_texture(device, layer_size, 16, label, format);
+        let s_geometry = layered("split geometry", GEOMETRY_FORMAT);
+        let s_radiance = layered("split radiance", HDR_FORMAT);
+        let (vg, vr) = (array_view(&s_geometry), array_view(&s_radiance));
+        let (vc, vnear, vfar) = (view(raw_cone), view(raw_near), view(raw_far));
+        let split_bg = |radiance: &wgpu::TextureView| {
+            split::SplitBindings {
+                params,
+                full_depth: i.view_depth,
+                full_normal: i.normal,
+                full_radiance: radiance,
+                split_geometry: &vg,
+                split_radiance: &vr,
+            }
+            .bind_group(device, split_layout)
+        };
+        let s = Split {
+            split_bg: [
+                split_bg(source_views[0]),
+                split_bg(source_views[1]),
+                split_bg(source_views[2]),
+            ],
+            // Depth is read from the geometry's w; `in_depth` only has to be bound.
+            search_bg: search_bg(&vg, &vg, &vr, [&vc, &vnear, &vfar]),
+            layer_size,
+        };
+        textures.extend([s_geometry, s_radiance]);
+        Some(s)
+    } else {
+        let as_array = |t: &wgpu::Texture| array_view(t);
+        let (depth, normal) = (
+            as_array(i.view_depth.texture()),
+            as_array(i.normal.texture()),
+        );
+        let (cone, near, far) = (view(raw_cone), view(raw_near), view(raw_far));
+        let source_textures = [
+            i.direct_radiance[0].texture(),
+            i.direct_radiance[1].texture(),
+            reprojected.unwrap_or(i.direct_radiance[0].texture()),
+        ];
+        for s in source_textures {
+            let radiance = s.create_view(&wgpu::TextureViewDescriptor {
+                dimension: Some(wgpu::TextureViewDimension::D2Array),
+                base_mip_level: 0,
+                mip_level_count: Some(1),
+                ..Default::default()
+            });
+            full_bg.push(search_bg(&depth, &normal, &radiance, [&cone, &near, &far]));
+        }
+        None
+    };
+    (split, full_bg, textures)
+}
+
+/// The temporal images: each a pair, this frame's and last frame's, swapped by frame parity.
+pub(super) struct Histories<'a> {
+    /// The running means of the cone (bent normal, aperture), the near-field and the far-field
+    /// light.
+    pub cone: &'a [wgpu::Texture; 2],
+    pub near: &'a [wgpu::Texture; 2],
+    pub far: &'a [wgpu::Texture; 2],
+    /// Depth and normal of the frame each mean belongs to (disocclusion test).
+    pub geometry: &'a [wgpu::TextureView; 2],
+    /// The diffuse radiance handed to the next frame's reprojection.
+    pub feedback: &'a [wgpu::TextureView; 2],
+}
+
+/// Accumulate's bind groups, one per frame parity: the blurred (or raw) results in, last frame's
+/// means read, this frame's written, and the technique's outputs.
+#[allow(clippy::too_many_arguments)]
+pub(super) fn accumulate_groups(
+    device: &wgpu::Device,
+    layout: &wgpu::BindGroupLayout,
+    params: &wgpu::Buffer,
+    (i, o): (
+        &crate::contract::io::NearFieldInputs,
+        &crate::contract::io::NearFieldOutputs,
+    ),
+    [raw_cone, raw_near, raw_far]: [&wgpu::TextureView; 3],
+    h: &Histories,
+    (out_env, out_indirect, out_bent, light_irradiance): (
+        &wgpu::TextureView,
+        &wgpu::TextureView,
+        &wgpu::TextureView,
+        &wgpu::TextureView,
+    ),
+) -> PingPong<wgpu::BindGroup> {
+    let view = |t: &wgpu::Texture| t.create_view(&Default::default());
+    PingPong::from_fn(|side| {
+        let prev = 1 - side;
+        accumulate::AccumulateBindings {
+            params,
+            gb_normal: i.normal,
+            gb_view_depth: i.view_depth,
+            raw_cone,
+            raw_near,
+            raw_far,
+            prev_cone: &view(&h.cone[prev]),
+            prev_near: &view(&h.near[prev]),
+            prev_far: &view(&h.far[prev]),
+            prev_geometry: &h.geometry[prev],
+            acc_cone: &view(&h.cone[side]),
+            acc_near: &view(&h.near[side]),
+            acc_far: &view(&h.far[side]),
+            acc_geometry: &h.geometry[side],
+            gb_albedo: i.albedo,
+            gb_material: i.material,
+            gb_emissive: i.emission,
+            light_irradiance,
+            out_ao: o.ao,
+            out_env,
+            out_indirect,
+            out_feedback: &h.feedback[side],
+            out_bent,
+        }
+        .bind_group(device, layout)
+    })
+}
+
+/// The technique's own images by name, per frame parity (what `--aov` and the viewer show).
+pub(super) fn extra_images(
+    [cone, near, far, feedback]: [&[wgpu::Texture; 2]; 4],
+    reprojection: Option<&Reprojection>,
+) -> PingPong<Vec<(&'static str, wgpu::Texture)>> {
+    PingPong::from_fn(|side| {
+        let mut e = vec![
+            ("bent-cone", cone[side].clone()),
+            ("near-history", near[side].clone()),
+            ("far-history", far[side].clone()),
+            ("feedback", feedback[side].clone()),
+        ];
+        if let Some(r) = reprojection {
+            e.push(("reprojected", r.raw.clone()));
+            e.push(("radiance-source", r.output_texture.clone()));
+        }
+        e
+    })
+}
+
+/// The bilateral blur of the search's results (the cone always, the near light with `near`, the
+/// far light with `far_slices`): the blur, its chains and its textures (scratch, then the
+/// blurred cone, near and far).
+pub(super) fn blur_stage(
+    ctx: &TechniqueContext,
+    settings: &Settings,
+    near: bool,
+    far_slices: bool,
+    [cone, near_light, far]: [&wgpu::Texture; 3],
+) -> (BilateralBlur, Vec<BlurChain>, [wgpu::Texture; 4]) {
+    let (device, i) = (ctx.device, ctx.inputs);
+    let full = |label: &str| screen_texture(device, i.size, label, HDR_FORMAT);
+    let view = |t: &wgpu::Texture| t.create_view(&Default::default());
+    let b = BilateralBlur::new(device, ctx.frame_group, blur_settings(settings));
+    let scratch = full("horizon blur scratch");
+    let cone_out = full("horizon cone blurred");
+    let near_out = full("horizon near blurred");
+    let far_out = full("horizon far blurred");
+    let chain = |from: &wgpu::Texture, to: &wgpu::Texture| {
+        b.chain(device, i, &view(from), &view(&scratch), &view(to))
+    };
+    let mut chains = vec![chain(cone, &cone_out)];
+    if near {
+        chains.push(chain(near_light, &near_out));
+    }
+    if far_slices {
+        chains.push(chain(far, &far_out));
+    }
+    (b, chains, [scratch, cone_out, near_out, far_out])
+}
+
+/// The upsample's bind group: the half-resolution results to full resolution.
+pub(super) fn upsample_group(
+    device: &wgpu::Device,
+    layout: &wgpu::BindGroupLayout,
+    params: &wgpu::Buffer,
+    i: &crate::contract::io::NearFieldInputs,
+    [cone, near, far]: [&wgpu::Texture; 3],
+    [out_cone, out_near, out_far]: [&wgpu::Texture; 3],
+) -> wgpu::BindGroup {
+    let view = |t: &wgpu::Texture| t.create_view(&Default::default());
+    upsample::UpsampleBindings {
+        params,
+        gb_normal: i.normal,
+        gb_view_depth: i.view_depth,
+        half_cone: &view(cone),
+        half_near: &view(near),
+        half_far: &view(far),
+        out_cone: &view(out_cone),
+        out_near: &view(out_near),
+        out_far: &view(out_far),
+    }
+    .bind_group(device, layout)
+}
