@@ -132,7 +132,7 @@ pub fn run(args: BenchArgs) -> Result<()> {
     let ctx = GpuContext::new(args.scene.adapter.as_deref())?;
     let loaded = args.scene.load()?;
     let plan = args.far.plan(&loaded, None)?;
-    crate::options::apply_auto_radius(&mut params, &plan);
+    crate::far::apply_auto_radius(&mut params, &plan);
     for m in &methods {
         nearfield_render::technique::check_spec(m, &params)?;
     }

@@ -230,7 +230,7 @@ pub fn run(args: CompareArgs) -> Result<()> {
         crate::footprint::check(&args.scene, &loaded)?;
     }
     let plan = args.far.plan(&loaded, Some(args.aov.as_str()))?;
-    crate::options::apply_auto_radius(&mut params, &plan);
+    crate::far::apply_auto_radius(&mut params, &plan);
     let radius = common_radius(&methods, &params)?;
     params.radius = Some(radius);
     for m in &methods {

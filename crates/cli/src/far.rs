@@ -118,6 +118,14 @@ pub fn auto_radius(plan: &FarPlan) -> Option<f32> {
     plan.spacing()
 }
 
+/// `--radius auto` (the default, `None` in `params`): [`auto_radius`] with a volume, the
+/// technique's own radius under the sky.
+pub fn apply_auto_radius(params: &mut nearfield_render::TechniqueParams, plan: &FarPlan) {
+    if params.radius.is_none() {
+        params.radius = auto_radius(plan);
+    }
+}
+
 /// The grid and tracing options of a bake.
 #[derive(Args, Clone, Debug)]
 pub struct GridOpts {

@@ -225,17 +225,6 @@ impl SceneOpts {
     }
 }
 
-/// `--radius auto` (the default, `None` in `params`): the far field's probe spacing with a
-/// volume (crate::far::auto_radius), the technique's own radius under the sky.
-pub fn apply_auto_radius(
-    params: &mut nearfield_render::TechniqueParams,
-    plan: &crate::far::FarPlan,
-) {
-    if params.radius.is_none() {
-        params.radius = crate::far::auto_radius(plan);
-    }
-}
-
 /// Technique options shared by render and bench.
 #[derive(Args, Clone, Debug)]
 pub struct TechniqueOpts {

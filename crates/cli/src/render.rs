@@ -60,7 +60,7 @@ pub fn run(args: RenderArgs) -> Result<()> {
     let loaded = args.scene.load()?;
     let far_aov = (aov != Some(Aov::Final)).then_some(args.aov.as_str());
     let plan = args.far.plan(&loaded, far_aov)?;
-    crate::options::apply_auto_radius(&mut params, &plan);
+    crate::far::apply_auto_radius(&mut params, &plan);
     let technique = nearfield_render::technique::Spec::resolve(&args.method, &params)?;
     let ctx = GpuContext::new(args.scene.adapter.as_deref())?;
     let new = |volume: Option<&nearfield_scene::probes::ProbeVolume>| {

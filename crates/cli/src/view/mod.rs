@@ -98,7 +98,7 @@ pub fn run(args: ViewArgs) -> Result<()> {
     // cache) has it.
     let shown = (args.aov != "final").then_some(args.aov.as_str());
     let plan = args.far.plan(&loaded, shown)?;
-    crate::options::apply_auto_radius(&mut params, &plan);
+    crate::far::apply_auto_radius(&mut params, &plan);
     let a = technique_state::TechniqueState::from_command_line(&args.method, &params)
         .map_err(|e| BadInput(format!("--method {}: {e}", args.method)))?;
     let b_params = nearfield_render::TechniqueParams {

@@ -110,7 +110,7 @@ pub fn new(
     frame: &FrameGroup,
     targets: &FrameTargets,
     ao_scales_far: bool,
-    far_rule: crate::technique::FarRule,
+    far_rule: crate::contract::technique::FarRule,
 ) -> AovPass {
     let layout = AovBindings::layout(device);
     let selection = device.create_buffer(&wgpu::BufferDescriptor {

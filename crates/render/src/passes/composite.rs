@@ -64,7 +64,7 @@ pub fn new(
     frame: &FrameGroup,
     targets: &FrameTargets,
     ao_scales_far: bool,
-    far_rule: crate::technique::FarRule,
+    far_rule: crate::contract::technique::FarRule,
 ) -> ScreenPass {
     let layout = CompositeBindings::layout(device);
     let module = crate::pipeline_cache::shader_module(device, "composite", &source());

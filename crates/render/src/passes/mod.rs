@@ -24,10 +24,10 @@ pub use crate::contract::frame::FrameGroup;
 /// The pipeline constant of the passes that read the technique's irradiance images (composite,
 /// aov; passes/irradiance_terms.wgsl): `AO_SCALES_FAR`, whether the technique writes only ao.
 /// `FAR_RULE`: how the technique's near field is counted against a probe volume
-/// ([`crate::technique::FarRule`]); and far.wgsl's `FAR_FIELD` of the frame.
+/// ([`crate::contract::technique::FarRule`]); and far.wgsl's `FAR_FIELD` of the frame.
 pub fn irradiance_terms_constants(
     ao_scales_far: bool,
-    far_rule: crate::technique::FarRule,
+    far_rule: crate::contract::technique::FarRule,
     frame: &FrameGroup,
 ) -> [(&'static str, f64); 3] {
     [

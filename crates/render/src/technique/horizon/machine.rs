@@ -3,10 +3,11 @@
 //! with the outputs (accumulate). See the module above for the derivation.
 
 use super::march::{Flavor, March, MarchContext, MarchIo};
-use super::params::{FAR_SLICES, HorizonParams};
+use super::params::FAR_SLICES;
 use super::settings::Far;
 use super::stages::{
-    Histories, accumulate_groups, blur_stage, extra_images, search_groups, steps, upsample_group,
+    Histories, Split, accumulate_groups, blur_settings, blur_stage, extra_images, search_groups,
+    steps, upsample_group,
 };
 use super::{GEOMETRY_FORMAT, Resolution, Settings, Source, accumulate, split, upsample};
 use crate::RenderError;
@@ -14,21 +15,13 @@ use crate::contract::formats::HDR_FORMAT;
 use crate::contract::technique::{
     FrameInfo, Output, Technique, TechniqueContext, TechniqueParams, screen_texture,
 };
-use crate::passes::bilateral_blur::{BilateralBlur, BlurChain, BlurSettings};
+use crate::passes::bilateral_blur::{BilateralBlur, BlurChain};
 use crate::passes::denoise::Denoise;
 use crate::passes::reproject::{History, ReprojectParams, Reprojection};
 use crate::passes::{ComputeStep, PingPong};
 use crate::profiler::GpuProfiler;
 use crate::util;
 use wgpu::util::DeviceExt;
-
-/// The 4×4 deinterleaved layers (with interleaving): split by radiance source (direct side 0,
-/// side 1, reprojected) and search.
-pub(super) struct Split {
-    pub split_bg: [wgpu::BindGroup; 3],
-    pub search_bg: wgpu::BindGroup,
-    pub layer_size: (u32, u32),
-}
 
 struct Horizon {
     name: &'static str,
@@ -61,13 +54,6 @@ struct Horizon {
     params: wgpu::Buffer,
     settings: Settings,
     march: Box<dyn March>,
-}
-
-pub(super) fn array_view(t: &wgpu::Texture) -> wgpu::TextureView {
-    t.create_view(&wgpu::TextureViewDescriptor {
-        dimension: Some(wgpu::TextureViewDimension::D2Array),
-        ..Default::default()
-    })
 }
 
 /// Builds gtao, hbil or vbgi (without svgf: the registry wraps it in the denoiser).
@@ -316,15 +302,6 @@ fn search_size(half: bool, size: (u32, u32)) -> (u32, u32) {
     }
 }
 
-pub(super) fn blur_settings(settings: &Settings) -> BlurSettings {
-    BlurSettings {
-        enabled: true,
-        radius: settings.march.blur_radius,
-        depth_sigma: 0.01,
-        normal_power: 8.0,
-    }
-}
-
 fn reproject_params(settings: &Settings) -> ReprojectParams {
     ReprojectParams {
         reject_depth: settings.march.reject_depth,
@@ -335,13 +312,6 @@ fn reproject_params(settings: &Settings) -> ReprojectParams {
 }
 
 /// What shapes the passes' pipelines and resources: a change of any of these rebuilds.
-/// Whether the accumulation is kept for the next frame: always with near-field light (hbil's
-/// reprojection reads its geometry), otherwise only under the running mean (`HISTORY` in
-/// accumulate.wgsl; gtao with `temporal=off` or `denoise=svgf` keeps none).
-pub(super) fn keeps_history(near: bool, p: &HorizonParams) -> bool {
-    near || p.temporal == 1
-}
-
 fn structure(s: &Settings) -> impl PartialEq + use<> {
     (
         s.march.temporal,

@@ -2,13 +2,12 @@
 //! returns what it makes: the compute steps, the search's, accumulate's and the upsample's bind
 //! groups, the blur, and the images it shows.
 
-use super::machine::{Split, array_view, blur_settings, keeps_history};
 use super::march::{March, work};
 use super::params::HorizonParams;
 use super::{GEOMETRY_FORMAT, Settings, accumulate, split, upsample};
 use crate::contract::formats::HDR_FORMAT;
 use crate::contract::technique::{TechniqueContext, layered_texture, screen_texture};
-use crate::passes::bilateral_blur::{BilateralBlur, BlurChain};
+use crate::passes::bilateral_blur::{BilateralBlur, BlurChain, BlurSettings};
 use crate::passes::reproject::Reprojection;
 use crate::passes::{ComputeStep, PingPong};
 
@@ -300,4 +299,37 @@ pub(super) fn upsample_group(
         out_far: &view(out_far),
     }
     .bind_group(device, layout)
+}
+
+/// The 4×4 deinterleaved layers (with interleaving): split by radiance source (direct side 0,
+/// side 1, reprojected) and search.
+pub(super) struct Split {
+    pub split_bg: [wgpu::BindGroup; 3],
+    pub search_bg: wgpu::BindGroup,
+    pub layer_size: (u32, u32),
+}
+
+/// All layers of `t` as one array view.
+pub(super) fn array_view(t: &wgpu::Texture) -> wgpu::TextureView {
+    t.create_view(&wgpu::TextureViewDescriptor {
+        dimension: Some(wgpu::TextureViewDimension::D2Array),
+        ..Default::default()
+    })
+}
+
+/// The bilateral blur of the search's results.
+pub(super) fn blur_settings(settings: &Settings) -> BlurSettings {
+    BlurSettings {
+        enabled: true,
+        radius: settings.march.blur_radius,
+        depth_sigma: 0.01,
+        normal_power: 8.0,
+    }
+}
+
+/// Whether the accumulation is kept for the next frame: always with near-field light (hbil's
+/// reprojection reads its geometry), otherwise only under the running mean (`HISTORY` in
+/// accumulate.wgsl; gtao with `temporal=off` or `denoise=svgf` keeps none).
+pub(super) fn keeps_history(near: bool, p: &HorizonParams) -> bool {
+    near || p.temporal == 1
 }
