@@ -38,7 +38,7 @@ pub mod variance;
 use crate::RenderError;
 use crate::bindings::PassLayout;
 use crate::contract::formats::{AO_FORMAT, HDR_FORMAT};
-use crate::contract::io::{NearFieldOutputs, Output};
+use crate::contract::io::{NearFieldInputs, NearFieldOutputs, Output};
 use crate::contract::technique::{
     FrameInfo, Technique, TechniqueContext, TechniqueParams, screen_texture,
 };
@@ -141,25 +141,11 @@ pub fn create_denoised(
     }
     let device = ctx.device;
     let i = ctx.inputs;
-    let size = i.size;
-    let full = |label: &str, format| screen_texture(device, size, label, format);
+    let iterations = config.svgf.svgf_iterations;
+    let images = SvgfImages::new(device, i.size, writes, iterations as usize);
     let view = |t: &wgpu::Texture| t.create_view(&Default::default());
-    let raw = [
-        full("svgf raw ao", AO_FORMAT),
-        full("svgf raw env", HDR_FORMAT),
-        full("svgf raw indirect", HDR_FORMAT),
-    ];
-    let raw_views = [view(&raw[0]), view(&raw[1]), view(&raw[2])];
-    // The denoiser writes ao, and env-irradiance and indirect-irradiance where the technique
-    // declares them; the others' filtered zeros go to images of its own.
-    let unwritten =
-        |output: Output, label: &str| (!writes.contains(&output)).then(|| full(label, HDR_FORMAT));
-    let spare_env = unwritten(Output::EnvIrradiance, "svgf env (not declared)");
-    let spare_indirect = unwritten(Output::IndirectIrradiance, "svgf indirect (not declared)");
-    let spare_views = [
-        spare_env.as_ref().map(view),
-        spare_indirect.as_ref().map(view),
-    ];
+    let raw_views = images.raw.each_ref().map(view);
+    let spare_views = images.spare.each_ref().map(|t| t.as_ref().map(view));
     let out_env = match &spare_views[0] {
         Some(v) => v,
         None => ctx.outputs.require(name, Output::EnvIrradiance)?,
@@ -168,47 +154,16 @@ pub fn create_denoised(
         Some(v) => v,
         None => ctx.outputs.require(name, Output::IndirectIrradiance)?,
     };
-    let inner_outputs = NearFieldOutputs {
-        ao: &raw_views[0],
-        bent_normal: ctx.outputs.bent_normal,
-        env_irradiance: Some(&raw_views[1]),
-        indirect_irradiance: Some(&raw_views[2]),
-        light_irradiance: ctx.outputs.light_irradiance,
-    };
-    let inner_ctx = TechniqueContext {
-        device: ctx.device,
-        queue: ctx.queue,
-        frame_group: ctx.frame_group,
-        inputs: ctx.inputs,
-        outputs: &inner_outputs,
-        env: ctx.env,
-        scene: ctx.scene,
-        pack_half: ctx.pack_half,
-    };
-    let inner = inner(&inner_ctx)?;
-
-    let pair = |label: &str, format| {
-        [
-            full(&format!("{label} 0"), format),
-            full(&format!("{label} 1"), format),
-        ]
-    };
-    let f32x4 = wgpu::TextureFormat::Rgba32Float;
-    let moments = pair("svgf moments", f32x4);
-    let env = pair("svgf env history", HDR_FORMAT);
-    let indirect = pair("svgf indirect history", HDR_FORMAT);
-    let geometry = pair("svgf geometry", f32x4);
-    // Two sets of (signal, env, indirect) for the à-trous ping-pong.
-    let work: Vec<[wgpu::Texture; 3]> = (0..2)
-        .map(|k| {
-            [
-                full(&format!("svgf signal {k}"), HDR_FORMAT),
-                full(&format!("svgf env {k}"), HDR_FORMAT),
-                full(&format!("svgf indirect {k}"), HDR_FORMAT),
-            ]
-        })
-        .collect();
-    let iterations = config.svgf.svgf_iterations;
+    let inner = inner(&TechniqueContext {
+        outputs: &NearFieldOutputs {
+            ao: &raw_views[0],
+            bent_normal: ctx.outputs.bent_normal,
+            env_irradiance: Some(&raw_views[1]),
+            indirect_irradiance: Some(&raw_views[2]),
+            light_irradiance: ctx.outputs.light_irradiance,
+        },
+        ..*ctx
+    })?;
     let params: Vec<wgpu::Buffer> = (0..iterations)
         .map(|k| {
             device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
@@ -218,50 +173,203 @@ pub fn create_denoised(
             })
         })
         .collect();
+    let layouts = [
+        temporal::TemporalBindings::layout(device),
+        variance::VarianceBindings::layout(device),
+        atrous::AtrousBindings::layout(device),
+        resolve::ResolveBindings::layout(device),
+    ];
+    let step = |label: &'static str, source: String, entry: &str, layout| {
+        let module = crate::pipeline_cache::shader_module(device, label, &source);
+        ComputeStep::new(device, label, &module, entry, ctx.frame_group, layout, &[])
+    };
+    Ok(Box::new(Denoised {
+        inner,
+        config_fn,
+        config,
+        size: i.size,
+        temporal: step("svgf temporal", temporal::source(), "temporal", &layouts[0]),
+        variance: step("svgf variance", variance::source(), "variance", &layouts[1]),
+        atrous: step("svgf atrous", atrous::source(), "atrous", &layouts[2]),
+        resolve: step("svgf resolve", resolve::source(), "resolve", &layouts[3]),
+        temporal_bg: temporal_groups(device, &layouts[0], &params[0], i, &images),
+        variance_bg: variance_groups(device, &layouts[1], &params[0], i, &images),
+        atrous_bg: atrous_groups(device, &layouts[2], &params, i, &images),
+        resolve_bg: resolve::ResolveBindings {
+            final_signal: &view(&images.last()[0]),
+            final_env: &view(&images.last()[1]),
+            final_indirect: &view(&images.last()[2]),
+            out_ao: ctx.outputs.ao,
+            out_env,
+            out_indirect,
+        }
+        .bind_group(device, &layouts[3]),
+        extras: images.extras(),
+        params,
+        _textures: images.into_textures(),
+    }))
+}
 
-    let temporal_layout = temporal::TemporalBindings::layout(device);
-    let temporal_bg = PingPong::from_fn(|side| {
+/// The denoiser's images.
+struct SvgfImages {
+    /// The technique's raw ao, env- and indirect-irradiance (what it writes instead of the
+    /// outputs).
+    raw: [wgpu::Texture; 3],
+    /// Where the filtered env- and indirect-irradiance go when the technique does not declare
+    /// them (their filtered zeros), instead of the host's outputs.
+    spare: [Option<wgpu::Texture>; 2],
+    /// The temporal images, each a pair (this frame's, last frame's; swapped by frame parity):
+    /// the luminance moments, the running means of env and indirect, the geometry they belong to.
+    moments: [wgpu::Texture; 2],
+    env: [wgpu::Texture; 2],
+    indirect: [wgpu::Texture; 2],
+    geometry: [wgpu::Texture; 2],
+    /// Two sets of (signal, env, indirect) for the à-trous ping-pong.
+    work: [[wgpu::Texture; 3]; 2],
+    iterations: usize,
+}
+
+impl SvgfImages {
+    fn new(device: &wgpu::Device, size: (u32, u32), writes: &[Output], iterations: usize) -> Self {
+        let full = |label: &str, format| screen_texture(device, size, label, format);
+        let unwritten = |output: Output, label: &str| {
+            (!writes.contains(&output)).then(|| full(label, HDR_FORMAT))
+        };
+        let pair = |label: &str, format| {
+            [
+                full(&format!("{label} 0"), format),
+                full(&format!("{label} 1"), format),
+            ]
+        };
+        let f32x4 = wgpu::TextureFormat::Rgba32Float;
+        SvgfImages {
+            raw: [
+                full("svgf raw ao", AO_FORMAT),
+                full("svgf raw env", HDR_FORMAT),
+                full("svgf raw indirect", HDR_FORMAT),
+            ],
+            spare: [
+                unwritten(Output::EnvIrradiance, "svgf env (not declared)"),
+                unwritten(Output::IndirectIrradiance, "svgf indirect (not declared)"),
+            ],
+            moments: pair("svgf moments", f32x4),
+            env: pair("svgf env history", HDR_FORMAT),
+            indirect: pair("svgf indirect history", HDR_FORMAT),
+            geometry: pair("svgf geometry", f32x4),
+            work: [0, 1].map(|k| {
+                [
+                    full(&format!("svgf signal {k}"), HDR_FORMAT),
+                    full(&format!("svgf env {k}"), HDR_FORMAT),
+                    full(&format!("svgf indirect {k}"), HDR_FORMAT),
+                ]
+            }),
+            iterations,
+        }
+    }
+
+    /// The set the last à-trous iteration wrote.
+    fn last(&self) -> &[wgpu::Texture; 3] {
+        &self.work[self.iterations % 2]
+    }
+
+    /// The denoiser's images by name, per frame parity.
+    fn extras(&self) -> PingPong<Vec<(&'static str, wgpu::Texture)>> {
+        PingPong::from_fn(|side| {
+            vec![
+                ("denoise-history", self.env[side].clone()),
+                ("denoise-moments", self.moments[side].clone()),
+                ("denoise-raw-ao", self.raw[0].clone()),
+                ("denoise-raw-indirect", self.raw[2].clone()),
+            ]
+        })
+    }
+
+    fn into_textures(self) -> Vec<wgpu::Texture> {
+        let mut textures: Vec<wgpu::Texture> = Vec::new();
+        textures.extend(self.raw);
+        textures.extend(self.moments);
+        textures.extend(self.env);
+        textures.extend(self.indirect);
+        textures.extend(self.geometry);
+        textures.extend(self.work.into_iter().flatten());
+        textures.extend(self.spare.into_iter().flatten());
+        textures
+    }
+}
+
+fn view(t: &wgpu::Texture) -> wgpu::TextureView {
+    t.create_view(&Default::default())
+}
+
+/// Temporal accumulation's groups, per frame parity: the raw AOVs and last frame's means in,
+/// this frame's means out.
+fn temporal_groups(
+    device: &wgpu::Device,
+    layout: &wgpu::BindGroupLayout,
+    params: &wgpu::Buffer,
+    i: &NearFieldInputs,
+    m: &SvgfImages,
+) -> PingPong<wgpu::BindGroup> {
+    PingPong::from_fn(|side| {
         let prev = 1 - side;
         temporal::TemporalBindings {
-            params: &params[0],
+            params,
             gb_normal: i.normal,
             gb_view_depth: i.view_depth,
             gb_motion: i.motion,
-            raw_ao: &raw_views[0],
-            raw_env: &raw_views[1],
-            raw_indirect: &raw_views[2],
-            prev_moments: &view(&moments[prev]),
-            prev_env: &view(&env[prev]),
-            prev_indirect: &view(&indirect[prev]),
-            prev_geometry: &view(&geometry[prev]),
-            acc_moments: &view(&moments[side]),
-            acc_env: &view(&env[side]),
-            acc_indirect: &view(&indirect[side]),
-            acc_geometry: &view(&geometry[side]),
+            raw_ao: &view(&m.raw[0]),
+            raw_env: &view(&m.raw[1]),
+            raw_indirect: &view(&m.raw[2]),
+            prev_moments: &view(&m.moments[prev]),
+            prev_env: &view(&m.env[prev]),
+            prev_indirect: &view(&m.indirect[prev]),
+            prev_geometry: &view(&m.geometry[prev]),
+            acc_moments: &view(&m.moments[side]),
+            acc_env: &view(&m.env[side]),
+            acc_indirect: &view(&m.indirect[side]),
+            acc_geometry: &view(&m.geometry[side]),
         }
-        .bind_group(device, &temporal_layout)
-    });
-    let variance_layout = variance::VarianceBindings::layout(device);
-    let variance_bg = PingPong::from_fn(|side| {
+        .bind_group(device, layout)
+    })
+}
+
+/// The variance estimate's groups, per frame parity: the signal à-trous starts from.
+fn variance_groups(
+    device: &wgpu::Device,
+    layout: &wgpu::BindGroupLayout,
+    params: &wgpu::Buffer,
+    i: &NearFieldInputs,
+    m: &SvgfImages,
+) -> PingPong<wgpu::BindGroup> {
+    PingPong::from_fn(|side| {
         variance::VarianceBindings {
-            params: &params[0],
+            params,
             gb_normal: i.normal,
             gb_view_depth: i.view_depth,
-            acc_moments: &view(&moments[side]),
-            acc_env: &view(&env[side]),
-            out_signal: &view(&work[0][0]),
+            acc_moments: &view(&m.moments[side]),
+            acc_env: &view(&m.env[side]),
+            out_signal: &view(&m.work[0][0]),
         }
-        .bind_group(device, &variance_layout)
-    });
-    // Iteration k reads set k % 2 and writes set (k + 1) % 2; iteration 0 reads the variance
-    // pass's signal (set 0) with this frame's env and indirect means.
-    let atrous_layout = atrous::AtrousBindings::layout(device);
-    let atrous_bg = (0..iterations as usize)
+        .bind_group(device, layout)
+    })
+}
+
+/// The à-trous groups, per iteration and frame parity: iteration k reads set k % 2 and writes
+/// set (k + 1) % 2; iteration 0 reads the variance pass's signal (set 0) with this frame's env
+/// and indirect means.
+fn atrous_groups(
+    device: &wgpu::Device,
+    layout: &wgpu::BindGroupLayout,
+    params: &[wgpu::Buffer],
+    i: &NearFieldInputs,
+    m: &SvgfImages,
+) -> Vec<PingPong<wgpu::BindGroup>> {
+    (0..params.len())
         .map(|k| {
-            let (from, to) = (&work[k % 2], &work[(k + 1) % 2]);
+            let (from, to) = (&m.work[k % 2], &m.work[(k + 1) % 2]);
             PingPong::from_fn(|side| {
                 let (in_env, in_indirect) = if k == 0 {
-                    (view(&env[side]), view(&indirect[side]))
+                    (view(&m.env[side]), view(&m.indirect[side]))
                 } else {
                     (view(&from[1]), view(&from[2]))
                 };
@@ -276,74 +384,10 @@ pub fn create_denoised(
                     out_env: &view(&to[1]),
                     out_indirect: &view(&to[2]),
                 }
-                .bind_group(device, &atrous_layout)
+                .bind_group(device, layout)
             })
         })
-        .collect();
-    let last = &work[iterations as usize % 2];
-    let resolve_layout = resolve::ResolveBindings::layout(device);
-    let resolve_bg = resolve::ResolveBindings {
-        final_signal: &view(&last[0]),
-        final_env: &view(&last[1]),
-        final_indirect: &view(&last[2]),
-        out_ao: ctx.outputs.ao,
-        out_env,
-        out_indirect,
-    }
-    .bind_group(device, &resolve_layout);
-    let step = |label: &'static str, source: String, entry: &str, layout| {
-        let module = crate::pipeline_cache::shader_module(device, label, &source);
-        ComputeStep::new(device, label, &module, entry, ctx.frame_group, layout, &[])
-    };
-    let extras = PingPong::from_fn(|side| {
-        vec![
-            ("denoise-history", env[side].clone()),
-            ("denoise-moments", moments[side].clone()),
-            ("denoise-raw-ao", raw[0].clone()),
-            ("denoise-raw-indirect", raw[2].clone()),
-        ]
-    });
-    let mut textures: Vec<wgpu::Texture> = Vec::new();
-    textures.extend(raw);
-    textures.extend(moments);
-    textures.extend(env);
-    textures.extend(indirect);
-    textures.extend(geometry);
-    textures.extend(work.into_iter().flatten());
-    textures.extend(spare_env);
-    textures.extend(spare_indirect);
-    Ok(Box::new(Denoised {
-        inner,
-        config_fn,
-        config,
-        size,
-        params,
-        temporal: step(
-            "svgf temporal",
-            temporal::source(),
-            "temporal",
-            &temporal_layout,
-        ),
-        variance: step(
-            "svgf variance",
-            variance::source(),
-            "variance",
-            &variance_layout,
-        ),
-        atrous: step("svgf atrous", atrous::source(), "atrous", &atrous_layout),
-        resolve: step(
-            "svgf resolve",
-            resolve::source(),
-            "resolve",
-            &resolve_layout,
-        ),
-        temporal_bg,
-        variance_bg,
-        atrous_bg,
-        resolve_bg,
-        extras,
-        _textures: textures,
-    }))
+        .collect()
 }
 
 impl Technique for Denoised {

@@ -2,22 +2,19 @@
 //! technique's [`March`], reprojection with push/pull, the bilateral blur and the running mean
 //! with the outputs (accumulate). See the module above for the derivation.
 
-use super::march::{Flavor, March, MarchContext, MarchIo};
+use super::march::{Flavor, March, MarchContext};
 use super::params::FAR_SLICES;
 use super::settings::Far;
 use super::stages::{
-    Histories, Split, accumulate_groups, blur_settings, blur_stage, extra_images, search_groups,
-    steps, upsample_group,
+    Images, Split, StandIns, accumulate_groups, blur_settings, blur_stage, reproject_params,
+    reprojection_stage, search_groups, steps, upsample_group,
 };
-use super::{GEOMETRY_FORMAT, Resolution, Settings, Source, accumulate, split, upsample};
+use super::{Resolution, Settings, Source, accumulate, split, upsample};
 use crate::RenderError;
-use crate::contract::formats::HDR_FORMAT;
-use crate::contract::technique::{
-    FrameInfo, Output, Technique, TechniqueContext, TechniqueParams, screen_texture,
-};
+use crate::contract::technique::{FrameInfo, Technique, TechniqueContext, TechniqueParams};
 use crate::passes::bilateral_blur::{BilateralBlur, BlurChain};
 use crate::passes::denoise::Denoise;
-use crate::passes::reproject::{History, ReprojectParams, Reprojection};
+use crate::passes::reproject::Reprojection;
 use crate::passes::{ComputeStep, PingPong};
 use crate::profiler::GpuProfiler;
 use crate::util;
@@ -66,29 +63,10 @@ pub fn build(
     let near = flavor.near;
     let settings = (flavor.settings)(tp).map_err(RenderError::setting(name))?;
     let device = ctx.device;
-    let frame = ctx.frame_group;
     let (i, o) = (ctx.inputs, ctx.outputs);
     let size = i.size;
-    // What the flavour writes (TechniqueDesc::writes): gtao ao and the bent normal; hbil and
-    // vbgi also env- and indirect-irradiance. Outputs it does not write, and light-irradiance
-    // (read for the next frame's radiance) where the host has none, bind a 1×1 stand-in.
-    let stand_in = |label: &str, format| {
-        let t = screen_texture(device, (1, 1), label, format);
-        let v = t.create_view(&Default::default());
-        (t, v)
-    };
-    let (spare_hdr, spare_hdr_view) = stand_in("horizon stand-in output", HDR_FORMAT);
-    let (spare_in, spare_in_view) = stand_in("horizon stand-in light", HDR_FORMAT);
-    let (out_env, out_indirect) = if near {
-        (
-            o.require(name, Output::EnvIrradiance)?,
-            o.require(name, Output::IndirectIrradiance)?,
-        )
-    } else {
-        (&spare_hdr_view, &spare_hdr_view)
-    };
-    let out_bent = o.bent_normal.unwrap_or(&spare_hdr_view);
-    let light_in = o.light_irradiance.unwrap_or(&spare_in_view);
+    let stand_ins = StandIns::new(device);
+    let [out_env, out_indirect, out_bent, light_in] = stand_ins.outputs(o, name, near)?;
     let mut p = settings.params(near, size);
     p.bent_normal = o.bent_normal.is_some() as u32;
     let params = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
@@ -96,66 +74,20 @@ pub fn build(
         contents: bytemuck::bytes_of(&p),
         usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
     });
-    let full = |label: &str, format| screen_texture(device, size, label, format);
-    // The search's results: at every pixel, or with `resolution=half` one texel per 2×2 block
-    // (half.wgsl), which accumulate upsamples on its way in. With the blur, which reads every
-    // pixel, the upsample pass first writes them at full resolution (`upsampled`).
     let half = settings.march.resolution == Resolution::Half;
     let blurred = settings.denoise == Denoise::Bilateral;
     let search_size = search_size(half, size);
-    let raw = |label: &str| screen_texture(device, search_size, label, HDR_FORMAT);
-    let raw_cone = raw("horizon cone");
-    let raw_near = raw("horizon near");
-    let raw_far = raw("horizon far");
-    let upsampled = (half && blurred).then(|| {
-        [
-            full("horizon cone upsampled", HDR_FORMAT),
-            full("horizon near upsampled", HDR_FORMAT),
-            full("horizon far upsampled", HDR_FORMAT),
-        ]
-    });
-    let pair = |label: &str, format| {
-        [
-            full(&format!("{label} 0"), format),
-            full(&format!("{label} 1"), format),
-        ]
-    };
-    let hist_far = pair("far history", HDR_FORMAT);
-    let hist_cone = pair("cone history", HDR_FORMAT);
-    let hist_near = pair("near history", HDR_FORMAT);
-    let hist_geo = pair("geometry history", GEOMETRY_FORMAT);
-    let feedback = pair("diffuse radiance", HDR_FORMAT);
-    let view = |t: &wgpu::Texture| t.create_view(&Default::default());
-    let hist_geo_views = [view(&hist_geo[0]), view(&hist_geo[1])];
-    let feedback_views = [view(&feedback[0]), view(&feedback[1])];
-
-    let reprojection = (near && settings.march.source == Source::Previous).then(|| {
-        Reprojection::new(
-            device,
-            frame,
-            i,
-            [
-                History {
-                    geometry: &hist_geo_views[0],
-                    radiance: &feedback_views[0],
-                },
-                History {
-                    geometry: &hist_geo_views[1],
-                    radiance: &feedback_views[1],
-                },
-            ],
-            settings.march.reprojection,
-            reproject_params(&settings),
-        )
-    });
+    let images = Images::new(device, size, search_size, half && blurred);
+    let h = images.histories();
+    let reprojection = (near && settings.march.source == Source::Previous)
+        .then(|| reprojection_stage(ctx, &settings, &h));
     // Radiance sources by index: this frame's direct radiance (side 0, side 1), reprojected.
-    let direct_views = i.direct_radiance;
-    let reprojected_view = reprojection
-        .as_ref()
-        .map(|r| &r.output)
-        .unwrap_or(direct_views[0]);
-    let source_views = [direct_views[0], direct_views[1], reprojected_view];
-
+    let [direct_0, direct_1] = i.direct_radiance;
+    let sources = [
+        direct_0,
+        direct_1,
+        reprojection.as_ref().map_or(direct_0, |r| &r.output),
+    ];
     let march = (flavor.march)(&MarchContext {
         ctx,
         tp,
@@ -164,21 +96,6 @@ pub fn build(
         params: &p,
         params_buffer: &params,
     })?;
-    let search_bg = |depth: &wgpu::TextureView,
-                     normal: &wgpu::TextureView,
-                     radiance: &wgpu::TextureView,
-                     out: [&wgpu::TextureView; 3]| {
-        march.bind_group(
-            device,
-            MarchIo {
-                params: &params,
-                depth,
-                normal,
-                radiance,
-                out,
-            },
-        )
-    };
     let split_layout = split::SplitBindings::layout(device);
     let (split, full_bg, mut textures) = search_groups(
         device,
@@ -187,46 +104,17 @@ pub fn build(
         &p,
         &params,
         &split_layout,
-        [&raw_cone, &raw_near, &raw_far],
-        (
-            source_views,
-            reprojection.as_ref().map(|r| &r.output_texture),
-        ),
-        &search_bg,
+        images.raw.each_ref(),
+        (sources, reprojection.as_ref().map(|r| &r.output_texture)),
+        march.as_ref(),
     );
 
-    let raw = [&raw_cone, &raw_near, &raw_far];
     let upsample_layout = upsample::UpsampleBindings::layout(device);
-    let upsample_bg = upsampled.as_ref().map(|u| {
-        upsample_group(
-            device,
-            &upsample_layout,
-            &params,
-            i,
-            raw,
-            [&u[0], &u[1], &u[2]],
-        )
-    });
-    // What the blur reads: the search's results, or with `resolution=half` their upsample.
-    let blur_from = match &upsampled {
-        Some(u) => [&u[0], &u[1], &u[2]],
-        None => raw,
-    };
-    let blur = blurred.then(|| blur_stage(ctx, &settings, near, p.far == FAR_SLICES, blur_from));
-    // What accumulate reads: the blurred results where the blur ran on them, else the raw.
-    let [cone_in, near_in, far_in] = match &blur {
-        Some((_, _, tex)) => [
-            view(&tex[1]),
-            view(if near { &tex[2] } else { &raw_near }),
-            view(if p.far == FAR_SLICES {
-                &tex[3]
-            } else {
-                &raw_far
-            }),
-        ],
-        None => raw.map(view),
-    };
-
+    let upsample_bg = upsample_group(device, &upsample_layout, &params, i, &images);
+    let far_slices = p.far == FAR_SLICES;
+    let blur = blurred.then(|| blur_stage(ctx, &settings, near, far_slices, images.blur_from()));
+    let [cone_in, near_in, far_in] =
+        images.accumulate_from(blur.as_ref().map(|(_, _, tex)| tex), near, far_slices);
     let accumulate_layout = accumulate::AccumulateBindings::layout(device);
     let accumulate_bg = accumulate_groups(
         device,
@@ -234,19 +122,10 @@ pub fn build(
         &params,
         (i, o),
         [&cone_in, &near_in, &far_in],
-        &Histories {
-            cone: &hist_cone,
-            near: &hist_near,
-            far: &hist_far,
-            geometry: &hist_geo_views,
-            feedback: &feedback_views,
-        },
+        &h,
         (out_env, out_indirect, out_bent, light_in),
     );
-    let extras = extra_images(
-        [&hist_cone, &hist_near, &hist_far, &feedback],
-        reprojection.as_ref(),
-    );
+    let extras = images.extras(reprojection.as_ref());
     let steps = steps(
         ctx,
         name,
@@ -276,13 +155,8 @@ pub fn build(
             (b, chains)
         }),
         _textures: {
-            textures.extend([raw_cone, raw_near, raw_far, spare_hdr, spare_in]);
-            textures.extend(upsampled.into_iter().flatten());
-            textures.extend(hist_far);
-            textures.extend(hist_cone);
-            textures.extend(hist_near);
-            textures.extend(hist_geo);
-            textures.extend(feedback);
+            textures.extend(stand_ins.textures);
+            textures.extend(images.into_textures());
             textures
         },
         params,
@@ -299,15 +173,6 @@ fn search_size(half: bool, size: (u32, u32)) -> (u32, u32) {
         (size.0.div_ceil(2), size.1.div_ceil(2))
     } else {
         size
-    }
-}
-
-fn reproject_params(settings: &Settings) -> ReprojectParams {
-    ReprojectParams {
-        reject_depth: settings.march.reject_depth,
-        reject_normal: settings.march.reject_normal,
-        _pad0: 0.0,
-        _pad1: 0.0,
     }
 }
 

@@ -2,13 +2,15 @@
 //! returns what it makes: the compute steps, the search's, accumulate's and the upsample's bind
 //! groups, the blur, and the images it shows.
 
-use super::march::{March, work};
+use super::march::{March, MarchIo, work};
 use super::params::HorizonParams;
 use super::{GEOMETRY_FORMAT, Settings, accumulate, split, upsample};
+use crate::RenderError;
 use crate::contract::formats::HDR_FORMAT;
+use crate::contract::io::{NearFieldOutputs, Output};
 use crate::contract::technique::{TechniqueContext, layered_texture, screen_texture};
 use crate::passes::bilateral_blur::{BilateralBlur, BlurChain, BlurSettings};
-use crate::passes::reproject::Reprojection;
+use crate::passes::reproject::{History, ReprojectParams, Reprojection};
 use crate::passes::{ComputeStep, PingPong};
 
 /// The compute steps of the machine, each with its constants.
@@ -78,15 +80,6 @@ pub(super) fn steps(
     }
 }
 
-/// Makes one search bind group from depth, normal, radiance and the three outputs.
-type SearchGroup<'a> = dyn Fn(
-        &wgpu::TextureView,
-        &wgpu::TextureView,
-        &wgpu::TextureView,
-        [&wgpu::TextureView; 3],
-    ) -> wgpu::BindGroup
-    + 'a;
-
 /// The search's bind groups, one per radiance source (this frame's direct radiance on either
 /// side, or last frame's reprojected): over the 16 interleaved layers with the split pass that
 /// fills them (and the layers' textures), or over the full-resolution images.
@@ -100,8 +93,21 @@ pub(super) fn search_groups(
     split_layout: &wgpu::BindGroupLayout,
     [raw_cone, raw_near, raw_far]: [&wgpu::Texture; 3],
     (source_views, reprojected): ([&wgpu::TextureView; 3], Option<&wgpu::Texture>),
-    search_bg: &SearchGroup,
+    march: &dyn March,
 ) -> (Option<Split>, Vec<wgpu::BindGroup>, Vec<wgpu::Texture>) {
+    let search_bg = |depth: &wgpu::TextureView,
+                     normal: &wgpu::TextureView,
+                     radiance: &wgpu::TextureView,
+                     out: [&wgpu::TextureView; 3]| {
+        let io = MarchIo {
+            params,
+            depth,
+            normal,
+            radiance,
+            out,
+        };
+        march.bind_group(device, io)
+    };
     let view = |t: &wgpu::Texture| t.create_view(&Default::default());
     let mut textures = Vec::new();
     let mut full_bg = Vec::new();
@@ -161,17 +167,125 @@ pub(super) fn search_groups(
     (split, full_bg, textures)
 }
 
-/// The temporal images: each a pair, this frame's and last frame's, swapped by frame parity.
-pub(super) struct Histories<'a> {
-    /// The running means of the cone (bent normal, aperture), the near-field and the far-field
-    /// light.
-    pub cone: &'a [wgpu::Texture; 2],
-    pub near: &'a [wgpu::Texture; 2],
-    pub far: &'a [wgpu::Texture; 2],
-    /// Depth and normal of the frame each mean belongs to (disocclusion test).
-    pub geometry: &'a [wgpu::TextureView; 2],
-    /// The diffuse radiance handed to the next frame's reprojection.
-    pub feedback: &'a [wgpu::TextureView; 2],
+/// The machine's own images.
+pub(super) struct Images {
+    /// The search's results (cone, near light, far light): at every pixel, or with
+    /// `resolution=half` one texel per 2×2 block (half.wgsl), which accumulate upsamples on its
+    /// way in.
+    pub raw: [wgpu::Texture; 3],
+    /// With `resolution=half` and the blur, which reads every pixel: the results upsampled to
+    /// full resolution first.
+    pub upsampled: Option<[wgpu::Texture; 3]>,
+    /// The temporal images, each a pair (this frame's and last frame's, swapped by frame
+    /// parity): the running means of the cone (bent normal, aperture), the near-field and the
+    /// far-field light, the depth and normal they belong to (disocclusion test), and the diffuse
+    /// radiance handed to the next frame's reprojection.
+    cone: [wgpu::Texture; 2],
+    near: [wgpu::Texture; 2],
+    far: [wgpu::Texture; 2],
+    geometry: [wgpu::Texture; 2],
+    feedback: [wgpu::Texture; 2],
+}
+
+/// Views of the temporal images, by frame parity.
+pub(super) struct Histories {
+    pub cone: [wgpu::TextureView; 2],
+    pub near: [wgpu::TextureView; 2],
+    pub far: [wgpu::TextureView; 2],
+    pub geometry: [wgpu::TextureView; 2],
+    pub feedback: [wgpu::TextureView; 2],
+}
+
+impl Images {
+    pub fn new(
+        device: &wgpu::Device,
+        size: (u32, u32),
+        search_size: (u32, u32),
+        upsampled: bool,
+    ) -> Self {
+        let full = |label: &str, format| screen_texture(device, size, label, format);
+        let raw = |label: &str| screen_texture(device, search_size, label, HDR_FORMAT);
+        let pair = |label: &str, format| [0, 1].map(|k| full(&format!("{label} {k}"), format));
+        Images {
+            raw: [raw("horizon cone"), raw("horizon near"), raw("horizon far")],
+            upsampled: upsampled.then(|| {
+                ["cone", "near", "far"].map(|n| full(&format!("horizon {n} upsampled"), HDR_FORMAT))
+            }),
+            cone: pair("cone history", HDR_FORMAT),
+            near: pair("near history", HDR_FORMAT),
+            far: pair("far history", HDR_FORMAT),
+            geometry: pair("geometry history", GEOMETRY_FORMAT),
+            feedback: pair("diffuse radiance", HDR_FORMAT),
+        }
+    }
+
+    /// What the blur reads: the search's results, or with `resolution=half` their upsample.
+    pub fn blur_from(&self) -> [&wgpu::Texture; 3] {
+        self.upsampled.as_ref().unwrap_or(&self.raw).each_ref()
+    }
+
+    /// What accumulate reads: the blurred results where the blur ran on them (`blurred`: the
+    /// blur's scratch, cone, near and far), else the raw.
+    pub fn accumulate_from(
+        &self,
+        blurred: Option<&[wgpu::Texture; 4]>,
+        near: bool,
+        far_slices: bool,
+    ) -> [wgpu::TextureView; 3] {
+        let raw = &self.raw;
+        match blurred {
+            Some(b) => [
+                view(&b[1]),
+                view(if near { &b[2] } else { &raw[1] }),
+                view(if far_slices { &b[3] } else { &raw[2] }),
+            ],
+            None => raw.each_ref().map(view),
+        }
+    }
+
+    pub fn histories(&self) -> Histories {
+        let views = |pair: &[wgpu::Texture; 2]| pair.each_ref().map(view);
+        Histories {
+            cone: views(&self.cone),
+            near: views(&self.near),
+            far: views(&self.far),
+            geometry: views(&self.geometry),
+            feedback: views(&self.feedback),
+        }
+    }
+
+    /// The technique's own images by name, per frame parity (what `--aov` and the viewer show).
+    pub fn extras(
+        &self,
+        reprojection: Option<&Reprojection>,
+    ) -> PingPong<Vec<(&'static str, wgpu::Texture)>> {
+        PingPong::from_fn(|side| {
+            let mut e = vec![
+                ("bent-cone", self.cone[side].clone()),
+                ("near-history", self.near[side].clone()),
+                ("far-history", self.far[side].clone()),
+                ("feedback", self.feedback[side].clone()),
+            ];
+            if let Some(r) = reprojection {
+                e.push(("reprojected", r.raw.clone()));
+                e.push(("radiance-source", r.output_texture.clone()));
+            }
+            e
+        })
+    }
+
+    pub fn into_textures(self) -> impl Iterator<Item = wgpu::Texture> {
+        let pairs = [self.far, self.cone, self.near, self.geometry, self.feedback];
+        self.raw
+            .into_iter()
+            .chain(self.upsampled.into_iter().flatten())
+            .chain(pairs.into_iter().flatten())
+    }
+}
+
+/// The default view of `t`.
+pub(super) fn view(t: &wgpu::Texture) -> wgpu::TextureView {
+    t.create_view(&Default::default())
 }
 
 /// Accumulate's bind groups, one per frame parity: the blurred (or raw) results in, last frame's
@@ -194,7 +308,6 @@ pub(super) fn accumulate_groups(
         &wgpu::TextureView,
     ),
 ) -> PingPong<wgpu::BindGroup> {
-    let view = |t: &wgpu::Texture| t.create_view(&Default::default());
     PingPong::from_fn(|side| {
         let prev = 1 - side;
         accumulate::AccumulateBindings {
@@ -204,13 +317,13 @@ pub(super) fn accumulate_groups(
             raw_cone,
             raw_near,
             raw_far,
-            prev_cone: &view(&h.cone[prev]),
-            prev_near: &view(&h.near[prev]),
-            prev_far: &view(&h.far[prev]),
+            prev_cone: &h.cone[prev],
+            prev_near: &h.near[prev],
+            prev_far: &h.far[prev],
             prev_geometry: &h.geometry[prev],
-            acc_cone: &view(&h.cone[side]),
-            acc_near: &view(&h.near[side]),
-            acc_far: &view(&h.far[side]),
+            acc_cone: &h.cone[side],
+            acc_near: &h.near[side],
+            acc_far: &h.far[side],
             acc_geometry: &h.geometry[side],
             gb_albedo: i.albedo,
             gb_material: i.material,
@@ -223,26 +336,6 @@ pub(super) fn accumulate_groups(
             out_bent,
         }
         .bind_group(device, layout)
-    })
-}
-
-/// The technique's own images by name, per frame parity (what `--aov` and the viewer show).
-pub(super) fn extra_images(
-    [cone, near, far, feedback]: [&[wgpu::Texture; 2]; 4],
-    reprojection: Option<&Reprojection>,
-) -> PingPong<Vec<(&'static str, wgpu::Texture)>> {
-    PingPong::from_fn(|side| {
-        let mut e = vec![
-            ("bent-cone", cone[side].clone()),
-            ("near-history", near[side].clone()),
-            ("far-history", far[side].clone()),
-            ("feedback", feedback[side].clone()),
-        ];
-        if let Some(r) = reprojection {
-            e.push(("reprojected", r.raw.clone()));
-            e.push(("radiance-source", r.output_texture.clone()));
-        }
-        e
     })
 }
 
@@ -277,28 +370,30 @@ pub(super) fn blur_stage(
     (b, chains, [scratch, cone_out, near_out, far_out])
 }
 
-/// The upsample's bind group: the half-resolution results to full resolution.
+/// The upsample's bind group where there is an upsample: the half-resolution results to full
+/// resolution.
 pub(super) fn upsample_group(
     device: &wgpu::Device,
     layout: &wgpu::BindGroupLayout,
     params: &wgpu::Buffer,
     i: &crate::contract::io::NearFieldInputs,
-    [cone, near, far]: [&wgpu::Texture; 3],
-    [out_cone, out_near, out_far]: [&wgpu::Texture; 3],
-) -> wgpu::BindGroup {
-    let view = |t: &wgpu::Texture| t.create_view(&Default::default());
-    upsample::UpsampleBindings {
+    images: &Images,
+) -> Option<wgpu::BindGroup> {
+    let [cone, near, far] = images.raw.each_ref().map(view);
+    let [out_cone, out_near, out_far] = images.upsampled.as_ref()?.each_ref().map(view);
+    let group = upsample::UpsampleBindings {
         params,
         gb_normal: i.normal,
         gb_view_depth: i.view_depth,
-        half_cone: &view(cone),
-        half_near: &view(near),
-        half_far: &view(far),
-        out_cone: &view(out_cone),
-        out_near: &view(out_near),
-        out_far: &view(out_far),
+        half_cone: &cone,
+        half_near: &near,
+        half_far: &far,
+        out_cone: &out_cone,
+        out_near: &out_near,
+        out_far: &out_far,
     }
-    .bind_group(device, layout)
+    .bind_group(device, layout);
+    Some(group)
 }
 
 /// The 4×4 deinterleaved layers (with interleaving): split by radiance source (direct side 0,
@@ -332,4 +427,76 @@ pub(super) fn blur_settings(settings: &Settings) -> BlurSettings {
 /// accumulate.wgsl; gtao with `temporal=off` or `denoise=svgf` keeps none).
 pub(super) fn keeps_history(near: bool, p: &HorizonParams) -> bool {
     near || p.temporal == 1
+}
+
+/// 1×1 images bound where the host hands in no output: what the flavour does not write (gtao
+/// writes ao and the bent normal; hbil and vbgi also env- and indirect-irradiance), and
+/// light-irradiance (read for the next frame's radiance) where the host has none.
+pub(super) struct StandIns {
+    pub textures: [wgpu::Texture; 2],
+    views: [wgpu::TextureView; 2],
+}
+
+impl StandIns {
+    pub fn new(device: &wgpu::Device) -> Self {
+        let textures = ["horizon stand-in output", "horizon stand-in light"]
+            .map(|label| screen_texture(device, (1, 1), label, HDR_FORMAT));
+        let views = textures.each_ref().map(view);
+        StandIns { textures, views }
+    }
+
+    /// env-irradiance, indirect-irradiance and the bent normal to write, light-irradiance to
+    /// read: the host's, or a stand-in.
+    pub fn outputs<'a>(
+        &'a self,
+        o: &'a NearFieldOutputs,
+        name: &str,
+        near: bool,
+    ) -> Result<[&'a wgpu::TextureView; 4], RenderError> {
+        let [spare_out, spare_in] = &self.views;
+        let (env, indirect) = if near {
+            (
+                o.require(name, Output::EnvIrradiance)?,
+                o.require(name, Output::IndirectIrradiance)?,
+            )
+        } else {
+            (spare_out, spare_out)
+        };
+        Ok([
+            env,
+            indirect,
+            o.bent_normal.unwrap_or(spare_out),
+            o.light_irradiance.unwrap_or(spare_in),
+        ])
+    }
+}
+
+/// hbil's and vbgi's reprojection of last frame's diffuse radiance (the histories' feedback,
+/// with the geometry it belongs to) into this frame.
+pub(super) fn reprojection_stage(
+    ctx: &TechniqueContext,
+    settings: &Settings,
+    h: &Histories,
+) -> Reprojection {
+    let history = |side: usize| History {
+        geometry: &h.geometry[side],
+        radiance: &h.feedback[side],
+    };
+    Reprojection::new(
+        ctx.device,
+        ctx.frame_group,
+        ctx.inputs,
+        [history(0), history(1)],
+        settings.march.reprojection,
+        reproject_params(settings),
+    )
+}
+
+pub(super) fn reproject_params(settings: &Settings) -> ReprojectParams {
+    ReprojectParams {
+        reject_depth: settings.march.reject_depth,
+        reject_normal: settings.march.reject_normal,
+        _pad0: 0.0,
+        _pad1: 0.0,
+    }
 }

@@ -44,6 +44,7 @@
 //! shared by them).
 
 pub mod filter;
+mod groups;
 pub mod params;
 pub mod sample;
 pub mod settings;
@@ -63,6 +64,7 @@ use crate::profiler::GpuProfiler;
 use crate::settings::Declared;
 use crate::targets::HDR_FORMAT;
 use crate::technique::samples::interleaved_sets;
+use groups::{Shared, filter_group, sample_group, shade_group};
 use wgpu::util::DeviceExt;
 
 pub use params::S3hoParams;
@@ -149,6 +151,40 @@ fn denoise_config(tp: &TechniqueParams) -> Result<(Denoise, SvgfConfig), String>
     Ok((s.denoise, SvgfConfig::with_defaults(s.svgf)))
 }
 
+/// The technique's own images: the SH coefficients (two images) raw and filtered, the bent
+/// cone and ao raw and blurred, the raw indirect light and the blur's scratch.
+const IMAGES: [(&str, wgpu::TextureFormat); 10] = [
+    ("s3ho coefficients 0", COEFFS_FORMAT),
+    ("s3ho coefficients 1", COEFFS_FORMAT),
+    ("s3ho filtered 0", COEFFS_FORMAT),
+    ("s3ho filtered 1", COEFFS_FORMAT),
+    ("s3ho bent cone", HDR_FORMAT),
+    ("s3ho bent cone blurred", HDR_FORMAT),
+    ("s3ho ao", HDR_FORMAT),
+    ("s3ho ao blurred", HDR_FORMAT),
+    ("s3ho indirect", HDR_FORMAT),
+    ("s3ho scratch", HDR_FORMAT),
+];
+
+/// The parameters' uniform and the interleaved sample sets of `samples` directions.
+fn buffers(
+    device: &wgpu::Device,
+    params: &S3hoParams,
+    samples: u32,
+) -> (wgpu::Buffer, wgpu::Buffer) {
+    let params = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some("s3ho params"),
+        contents: bytemuck::bytes_of(params),
+        usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+    });
+    let sample_sets = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some("s3ho sample sets"),
+        contents: bytemuck::cast_slice(&interleaved_sets(samples)),
+        usage: wgpu::BufferUsages::STORAGE,
+    });
+    (params, sample_sets)
+}
+
 fn create(
     ctx: &TechniqueContext,
     tp: &TechniqueParams,
@@ -165,108 +201,47 @@ fn create(
     let device = ctx.device;
     let frame = ctx.frame_group;
     let (i, o) = (ctx.inputs, ctx.outputs);
-    let texture = |label: &str, format| {
+    let textures = IMAGES.map(|(label, format)| {
         crate::contract::technique::screen_texture(device, i.size, label, format)
-    };
-    let textures = vec![
-        texture("s3ho coefficients 0", COEFFS_FORMAT),
-        texture("s3ho coefficients 1", COEFFS_FORMAT),
-        texture("s3ho filtered 0", COEFFS_FORMAT),
-        texture("s3ho filtered 1", COEFFS_FORMAT),
-        texture("s3ho bent cone", HDR_FORMAT),
-        texture("s3ho bent cone blurred", HDR_FORMAT),
-        texture("s3ho ao", HDR_FORMAT),
-        texture("s3ho ao blurred", HDR_FORMAT),
-        texture("s3ho indirect", HDR_FORMAT),
-        texture("s3ho scratch", HDR_FORMAT),
-    ];
-    let v: Vec<wgpu::TextureView> = textures
-        .iter()
-        .map(|t| t.create_view(&Default::default()))
-        .collect();
-    let params = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-        label: Some("s3ho params"),
-        contents: bytemuck::bytes_of(&settings.params(ssbn)),
-        usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
     });
-    let sets = interleaved_sets(settings.samples);
-    let sample_sets = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-        label: Some("s3ho sample sets"),
-        contents: bytemuck::cast_slice(&sets),
-        usage: wgpu::BufferUsages::STORAGE,
-    });
+    let v = textures
+        .each_ref()
+        .map(|t| t.create_view(&Default::default()));
+    let (params, sample_sets) = buffers(device, &settings.params(ssbn), settings.samples);
     let stack = LayerStack::new(device, i, ctx.scene, frame, settings.layers)
         .map_err(RenderError::setting(name))?;
-    let layer = stack.resources();
     let no_lights = ctx.scene.is_none().then(|| NoLights::new(device));
-    let l = ctx.lights(no_lights.as_ref());
-
-    let sample_layout = sample::SampleBindings::layout(device);
-    let sample_bg = sample::SampleBindings {
+    let shared = Shared {
         params: &params,
         sample_sets: &sample_sets,
-        gb_normal: i.normal,
-        gb_view_depth: i.view_depth,
-        gb_albedo: i.albedo,
-        layer_views: layer.layer_views,
-        peel_normal: layer.peel_normal,
-        peel_depth: layer.peel_depth,
-        cam_normal: layer.cam_normal,
-        cam_depth: layer.cam_depth,
-        peel_radiance: layer.peel_radiance,
-        cam_radiance: layer.cam_radiance,
-        lights: l.lights,
-        shadow_clip_from_world: l.shadow_clip_from_world,
-        shadow_maps: l.shadow_maps,
-        shadow_sampler: l.shadow_sampler,
-        shadow_depths: l.shadow_depths,
-        out_coeffs0: &v[0],
-        out_coeffs1: &v[1],
-        out_bent: &v[4],
-        out_ao_raw: &v[6],
-        out_indirect: &v[8],
-    }
-    .bind_group(device, &sample_layout);
-    let filter_layout = filter::FilterBindings::layout(device);
-    let filter_bg = filter::FilterBindings {
-        gb_normal: i.normal,
-        gb_view_depth: i.view_depth,
-        in_coeffs0: &v[0],
-        in_coeffs1: &v[1],
-        out_coeffs0: &v[2],
-        out_coeffs1: &v[3],
-    }
-    .bind_group(device, &filter_layout);
-    // With the filter off, shade reads the raw coefficients (and the raw bent cone and ao).
-    let (c0, c1) = if settings.denoise == Denoise::Bilateral {
-        (&v[2], &v[3])
-    } else {
-        (&v[0], &v[1])
+        i,
+        layer: stack.resources(),
+        lights: ctx.lights(no_lights.as_ref()),
     };
-    let shade_layout = shade::ShadeBindings::layout(device);
-    let shade_bg = shade::ShadeBindings {
-        params: &params,
-        gb_normal: i.normal,
-        gb_view_depth: i.view_depth,
-        lights: l.lights,
-        shadow_clip_from_world: l.shadow_clip_from_world,
-        shadow_maps: l.shadow_maps,
-        shadow_sampler: l.shadow_sampler,
-        shadow_depths: l.shadow_depths,
-        in_coeffs0: c0,
-        in_coeffs1: c1,
-        in_bent: &v[5],
-        in_ao_raw: &v[7],
-        out_env_irradiance: o.require(name, Output::EnvIrradiance)?,
-        out_light_irradiance: o.require(name, Output::LightIrradiance)?,
-        out_ao: o.ao,
-    }
-    .bind_group(device, &shade_layout);
+    let sample_pass = sample_group(device, &shared, [&v[0], &v[1], &v[4], &v[6], &v[8]]);
+    let filter_pass = filter_group(device, i, [&v[0], &v[1], &v[2], &v[3]]);
+    // With the filter off, shade reads the raw coefficients (and the raw bent cone and ao).
+    let blurred = settings.denoise == Denoise::Bilateral;
+    let coefficients = if blurred {
+        [&v[2], &v[3]]
+    } else {
+        [&v[0], &v[1]]
+    };
+    let shade_pass = shade_group(
+        device,
+        &shared,
+        [coefficients[0], coefficients[1], &v[5], &v[7]],
+        [
+            o.require(name, Output::EnvIrradiance)?,
+            o.require(name, Output::LightIrradiance)?,
+            o.ao,
+        ],
+    );
     let blur = BilateralBlur::new(
         device,
         frame,
         BlurSettings {
-            enabled: (settings.denoise == Denoise::Bilateral),
+            enabled: blurred,
             radius: 4,
             depth_sigma: 0.01,
             normal_power: 8.0,
@@ -278,10 +253,13 @@ fn create(
         ("STEPS", settings.steps as f64),
         far_field,
     ];
-    let step = |label: &'static str, source: String, entry: &str, layout, constants: &[_]| {
-        let module = crate::pipeline_cache::shader_module(device, label, &source);
-        ComputeStep::new(device, label, &module, entry, frame, layout, constants)
-    };
+    // A compute step over a (layout, group) pair: the step and its group.
+    let pass =
+        |label: &'static str, source: String, entry: &str, (layout, group), constants: &[_]| {
+            let module = crate::pipeline_cache::shader_module(device, label, &source);
+            let step = ComputeStep::new(device, label, &module, entry, frame, &layout, constants);
+            (step, group)
+        };
     Ok(Box::new(S3ho {
         name,
         settings,
@@ -289,36 +267,21 @@ fn create(
         size: i.size,
         ssbn,
         indirect: !ssbn && settings.indirect,
-        blur_on: (settings.denoise == Denoise::Bilateral),
-        sample: (
-            step(
-                name,
-                sample::source(),
-                "sample_pass",
-                &sample_layout,
-                &counts,
-            ),
-            sample_bg,
+        blur_on: blurred,
+        sample: pass(name, sample::source(), "sample_pass", sample_pass, &counts),
+        filter: pass(
+            "sh filter",
+            filter::source(),
+            "filter_pass",
+            filter_pass,
+            &[],
         ),
-        filter: (
-            step(
-                "sh filter",
-                filter::source(),
-                "filter_pass",
-                &filter_layout,
-                &[],
-            ),
-            filter_bg,
-        ),
-        shade: (
-            step(
-                "shade",
-                shade::source(),
-                "shade_pass",
-                &shade_layout,
-                &[far_field],
-            ),
-            shade_bg,
+        shade: pass(
+            "shade",
+            shade::source(),
+            "shade_pass",
+            shade_pass,
+            &[far_field],
         ),
         blur_bent: blur.chain(device, i, &v[4], &v[9], &v[5]),
         blur_ao: blur.chain(device, i, &v[6], &v[9], &v[7]),
@@ -331,7 +294,7 @@ fn create(
         ),
         blur,
         layers: stack,
-        _textures: textures,
+        _textures: textures.into(),
     }))
 }
 

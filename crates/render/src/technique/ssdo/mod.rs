@@ -37,6 +37,7 @@
 
 pub mod bounce;
 pub mod direct;
+mod groups;
 pub mod params;
 pub mod resolve;
 pub mod settings;
@@ -56,6 +57,7 @@ use crate::profiler::GpuProfiler;
 use crate::settings::Declared;
 use crate::targets::HDR_FORMAT;
 use crate::technique::samples::interleaved_sets;
+use groups::{Shared, bounce_group, direct_group, resolve_group};
 use vpls::Vpls;
 use wgpu::util::DeviceExt;
 
@@ -189,6 +191,17 @@ struct Ssdo {
     _textures: Vec<wgpu::Texture>,
 }
 
+/// The technique's own images: the direct pass's two visibility images, the blur's scratch,
+/// both blurred, and the bounce's raw indirect light.
+const IMAGES: [&str; 6] = [
+    "ssdo a",
+    "ssdo b",
+    "ssdo blur scratch",
+    "ssdo a blurred",
+    "ssdo b blurred",
+    "ssdo indirect",
+];
+
 fn create(
     ctx: &TechniqueContext,
     tp: &TechniqueParams,
@@ -196,133 +209,52 @@ fn create(
 ) -> Result<Box<dyn Technique>, RenderError> {
     let name = variant.name();
     let settings = variant.settings(tp)?;
-    let vpls = match variant {
-        Variant::SsdoVpl => Some(Vpls::environment(
-            ctx,
-            ctx.require_scene(name, "virtual point lights")?,
-            &settings,
-        )),
-        Variant::InstantRadiosity => Some(Vpls::radiosity(
-            ctx,
-            ctx.require_scene(name, "virtual point lights")?,
-            &settings,
-        )),
-        _ => None,
-    };
+    let vpls = vpls_of(ctx, variant, &settings)?;
     let device = ctx.device;
     let (i, o) = (ctx.inputs, ctx.outputs);
-    let texture =
-        |label: &str| crate::contract::technique::screen_texture(device, i.size, label, HDR_FORMAT);
-    let textures: Vec<wgpu::Texture> = [
-        "ssdo a",
-        "ssdo b",
-        "ssdo blur scratch",
-        "ssdo a blurred",
-        "ssdo b blurred",
-        "ssdo indirect",
-    ]
-    .iter()
-    .map(|l| texture(l))
-    .collect();
-    let views: Vec<wgpu::TextureView> = textures
-        .iter()
-        .map(|t| t.create_view(&Default::default()))
-        .collect();
-    let (raw_a, raw_b, scratch, blurred_a, blurred_b, raw_indirect) = (
-        &views[0], &views[1], &views[2], &views[3], &views[4], &views[5],
+    let textures =
+        IMAGES.map(|l| crate::contract::technique::screen_texture(device, i.size, l, HDR_FORMAT));
+    let [raw_a, raw_b, scratch, blurred_a, blurred_b, raw_indirect] = &textures
+        .each_ref()
+        .map(|t| t.create_view(&Default::default()));
+    let (params, sample_sets) = buffers(
+        device,
+        &variant.params(&settings, vpls.as_ref().map_or(0, |v| v.count)),
+        settings.samples,
     );
-
-    let gpu_params = variant.params(&settings, vpls.as_ref().map_or(0, |v| v.count));
-    let params = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-        label: Some("ssdo params"),
-        contents: bytemuck::bytes_of(&gpu_params),
-        usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-    });
-    let sets = interleaved_sets(settings.samples);
-    let sample_sets = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-        label: Some("ssdo sample sets"),
-        contents: bytemuck::cast_slice(&sets),
-        usage: wgpu::BufferUsages::STORAGE,
-    });
     let stack = LayerStack::new(device, i, ctx.scene, ctx.frame_group, settings.layers)
         .map_err(RenderError::setting(name))?;
     let layer = stack.resources();
     let no_lights = ctx.scene.is_none().then(|| NoLights::new(device));
     let scene_lights = ctx.lights(no_lights.as_ref());
     // The light table of each pass: the VPLs where it uses them, else the scene's lights.
-    let (direct_lights, bounce_lights) = match (&vpls, variant) {
-        (Some(v), Variant::SsdoVpl) => (v.light_resources(), scene_lights),
-        (Some(v), Variant::InstantRadiosity) => (scene_lights, v.light_resources()),
+    let vpl_lights = vpls.as_ref().map(|v| v.light_resources());
+    let (direct_lights, bounce_lights) = match variant {
+        Variant::SsdoVpl => (vpl_lights.unwrap_or(scene_lights), scene_lights),
+        Variant::InstantRadiosity => (scene_lights, vpl_lights.unwrap_or(scene_lights)),
         _ => (scene_lights, scene_lights),
     };
     let frame = ctx.frame_group;
-
-    let direct_layout = direct::DirectBindings::layout(device);
-    let direct_bg = direct::DirectBindings {
+    let shared = Shared {
         params: &params,
         sample_sets: &sample_sets,
-        gb_normal: i.normal,
-        gb_view_depth: i.view_depth,
-        layer_views: layer.layer_views,
-        peel_normal: layer.peel_normal,
-        peel_depth: layer.peel_depth,
-        cam_normal: layer.cam_normal,
-        cam_depth: layer.cam_depth,
-        lights: direct_lights.lights,
-        shadow_clip_from_world: direct_lights.shadow_clip_from_world,
-        shadow_maps: direct_lights.shadow_maps,
-        shadow_sampler: direct_lights.shadow_sampler,
-        shadow_depths: direct_lights.shadow_depths,
-        out_a: raw_a,
-        out_b: raw_b,
-        out_light_irradiance: o.require(name, Output::LightIrradiance)?,
-    }
-    .bind_group(device, &direct_layout);
-    let direct_module =
-        crate::pipeline_cache::shader_module(device, "ssdo direct", &direct::source());
-
-    let resolve_layout = resolve::ResolveBindings::layout(device);
-    let resolve_bg = resolve::ResolveBindings {
-        params: &params,
-        gb_normal: i.normal,
-        gb_view_depth: i.view_depth,
-        in_a: blurred_a,
-        in_b: blurred_b,
-        out_env_irradiance: o.require(name, Output::EnvIrradiance)?,
-        out_ao: o.ao,
-    }
-    .bind_group(device, &resolve_layout);
-    let resolve_module =
-        crate::pipeline_cache::shader_module(device, "ssdo resolve", &resolve::source());
-
-    let bounce_layout = bounce::BounceBindings::layout(device);
-    let bounce_bg = bounce::BounceBindings {
-        params: &params,
-        sample_sets: &sample_sets,
-        gb_normal: i.normal,
-        gb_view_depth: i.view_depth,
-        layer_views: layer.layer_views,
-        peel_normal: layer.peel_normal,
-        peel_depth: layer.peel_depth,
-        cam_normal: layer.cam_normal,
-        cam_depth: layer.cam_depth,
-        peel_radiance: layer.peel_radiance,
-        cam_radiance: layer.cam_radiance,
-        lights: bounce_lights.lights,
-        shadow_clip_from_world: bounce_lights.shadow_clip_from_world,
-        shadow_maps: bounce_lights.shadow_maps,
-        shadow_sampler: bounce_lights.shadow_sampler,
-        shadow_depths: bounce_lights.shadow_depths,
-        gb_albedo: i.albedo,
-        gb_emissive: i.emission,
-        env_irradiance: o.require(name, Output::EnvIrradiance)?,
-        light_irradiance: o.require(name, Output::LightIrradiance)?,
-        out_indirect: raw_indirect,
-    }
-    .bind_group(device, &bounce_layout);
-    let bounce_module =
-        crate::pipeline_cache::shader_module(device, "ssdo bounce", &bounce::source());
-
+        i,
+        layer,
+    };
+    let (env_out, light_out) = (
+        o.require(name, Output::EnvIrradiance)?,
+        o.require(name, Output::LightIrradiance)?,
+    );
+    let (direct_layout, direct_bg) =
+        direct_group(device, &shared, direct_lights, [raw_a, raw_b, light_out]);
+    let (resolve_layout, resolve_bg) =
+        resolve_group(device, &shared, [blurred_a, blurred_b], [env_out, o.ao]);
+    let (bounce_layout, bounce_bg) = bounce_group(
+        device,
+        &shared,
+        bounce_lights,
+        [env_out, light_out, raw_indirect],
+    );
     let blur = BilateralBlur::new(device, frame, blur_settings(&settings));
     let far_field = frame.far_field_constant();
     let counts = [
@@ -330,8 +262,10 @@ fn create(
         ("STEPS", settings.steps as f64),
         far_field,
     ];
-    let step = |label, module, entry, layout, constants: &[(&str, f64)]| {
-        ComputeStep::new(device, label, module, entry, frame, layout, constants)
+    // (step label, entry point), (shader label, source).
+    let step = |(label, entry), (module, source): (&str, String), layout, constants: &[_]| {
+        let module = crate::pipeline_cache::shader_module(device, module, &source);
+        ComputeStep::new(device, label, &module, entry, frame, layout, constants)
     };
     Ok(Box::new(Ssdo {
         name,
@@ -341,21 +275,30 @@ fn create(
         size: i.size,
         bounce_on: variant.bounce_on(&settings),
         direct: (
-            step(name, &direct_module, "direct", &direct_layout, &counts),
+            step(
+                (name, "direct"),
+                ("ssdo direct", direct::source()),
+                &direct_layout,
+                &counts,
+            ),
             direct_bg,
         ),
         resolve: (
             step(
-                "resolve",
-                &resolve_module,
-                "resolve",
+                ("resolve", "resolve"),
+                ("ssdo resolve", resolve::source()),
                 &resolve_layout,
                 &[far_field],
             ),
             resolve_bg,
         ),
         bounce: (
-            step("bounce", &bounce_module, "bounce", &bounce_layout, &counts),
+            step(
+                ("bounce", "bounce"),
+                ("ssdo bounce", bounce::source()),
+                &bounce_layout,
+                &counts,
+            ),
             bounce_bg,
         ),
         blur_a: blur.chain(device, i, raw_a, scratch, blurred_a),
@@ -370,8 +313,42 @@ fn create(
         blur,
         layers: stack,
         vpls,
-        _textures: textures,
+        _textures: textures.into(),
     }))
+}
+
+/// The parameters' uniform and the interleaved sample sets of `samples` directions.
+fn buffers(
+    device: &wgpu::Device,
+    params: &SsdoParams,
+    samples: u32,
+) -> (wgpu::Buffer, wgpu::Buffer) {
+    let params = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some("ssdo params"),
+        contents: bytemuck::bytes_of(params),
+        usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+    });
+    let sample_sets = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some("ssdo sample sets"),
+        contents: bytemuck::cast_slice(&interleaved_sets(samples)),
+        usage: wgpu::BufferUsages::STORAGE,
+    });
+    (params, sample_sets)
+}
+
+/// The virtual point lights of ssdo-vpl (the environment's) and instant-radiosity (the lights'
+/// bounce); none for the others.
+fn vpls_of(
+    ctx: &TechniqueContext,
+    variant: Variant,
+    settings: &Settings,
+) -> Result<Option<Vpls>, RenderError> {
+    let scene = || ctx.require_scene(variant.name(), "virtual point lights");
+    Ok(match variant {
+        Variant::SsdoVpl => Some(Vpls::environment(ctx, scene()?, settings)),
+        Variant::InstantRadiosity => Some(Vpls::radiosity(ctx, scene()?, settings)),
+        _ => None,
+    })
 }
 
 impl Variant {
