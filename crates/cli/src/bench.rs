@@ -111,6 +111,50 @@ struct Report {
     overhead_from: String,
 }
 
+/// A method's renderer and its timings so far.
+struct Timed {
+    renderer: Renderer,
+    per_pass: BTreeMap<String, Vec<f64>>,
+    /// Passes in the order the frame runs them.
+    order: Vec<String>,
+    totals: Vec<f64>,
+    walls: Vec<f64>,
+}
+
+impl Timed {
+    /// Renders and times frame `index` (of the orbit).
+    fn frame(&mut self, index: u32, orbit: f32) {
+        let t0 = Instant::now();
+        crate::options::orbit_frame(&mut self.renderer, index, orbit);
+        self.renderer.wait();
+        self.walls.push(t0.elapsed().as_secs_f64() * 1e3);
+        let mut total = 0.0;
+        for (pass, ms) in self.renderer.timings() {
+            if !self.order.iter().any(|o| o == pass) {
+                self.order.push(pass.to_string());
+            }
+            self.per_pass.entry(pass.to_string()).or_default().push(ms);
+            total += ms;
+        }
+        self.totals.push(total);
+    }
+
+    /// The statistics of the frames timed (the GPU total only with `timestamps`).
+    fn result(mut self, timestamps: bool) -> MethodResult {
+        let passes: BTreeMap<String, Stat> = self
+            .per_pass
+            .into_iter()
+            .map(|(k, mut v)| (k, stat(&mut v)))
+            .collect();
+        MethodResult {
+            gpu_total: timestamps.then(|| stat(&mut self.totals)),
+            passes,
+            pass_order: self.order,
+            wall: stat(&mut self.walls),
+        }
+    }
+}
+
 pub fn run(args: BenchArgs) -> Result<()> {
     let methods = crate::options::methods_and_frames(args.methods.as_deref(), args.frames)?;
     crate::options::check_orbit(args.orbit)?;
@@ -138,16 +182,6 @@ pub fn run(args: BenchArgs) -> Result<()> {
     }
     let volume = plan.volume(&args.scene, &loaded)?;
     let info = ctx.adapter_info();
-    // Every method's renderer is made and warmed first; then the timed frames go round the
-    // methods in turn, so that a slow drift of the machine (thermal, other load) touches all of
-    // them alike and their ratios stay fair.
-    struct Timed {
-        renderer: Renderer,
-        per_pass: BTreeMap<String, Vec<f64>>,
-        order: Vec<String>,
-        totals: Vec<f64>,
-        walls: Vec<f64>,
-    }
     if args.ablate {
         return ablate(
             &args,
@@ -166,6 +200,9 @@ pub fn run(args: BenchArgs) -> Result<()> {
         "frames",
         true,
     );
+    // Every method's renderer is made and warmed first; then the timed frames go round the
+    // methods in turn, so that a slow drift of the machine (thermal, other load) touches all of
+    // them alike and their ratios stay fair.
     for method in &methods {
         progress.set_message(&format!("{method}, warm-up"));
         let mut r = Renderer::new(
@@ -195,42 +232,18 @@ pub fn run(args: BenchArgs) -> Result<()> {
     for i in 0..args.frames {
         for t in &mut timed {
             progress.inc(1);
-            let t0 = Instant::now();
-            crate::options::orbit_frame(&mut t.renderer, args.warmup + i, args.orbit);
-            t.renderer.wait();
-            t.walls.push(t0.elapsed().as_secs_f64() * 1e3);
-            let mut total = 0.0;
-            for (pass, ms) in t.renderer.timings() {
-                if !t.order.iter().any(|o| o == pass) {
-                    t.order.push(pass.to_string());
-                }
-                t.per_pass.entry(pass.to_string()).or_default().push(ms);
-                total += ms;
-            }
-            t.totals.push(total);
+            t.frame(args.warmup + i, args.orbit);
         }
         if let Some(t) = timed.first() {
             t.renderer.check_device()?;
         }
     }
     progress.finish();
-    let mut results = BTreeMap::new();
-    for (method, mut t) in methods.iter().zip(timed) {
-        let passes: BTreeMap<String, Stat> = t
-            .per_pass
-            .into_iter()
-            .map(|(k, mut v)| (k, stat(&mut v)))
-            .collect();
-        results.insert(
-            method.clone(),
-            MethodResult {
-                gpu_total: ctx.timestamps.then(|| stat(&mut t.totals)),
-                passes,
-                pass_order: t.order,
-                wall: stat(&mut t.walls),
-            },
-        );
-    }
+    let results: BTreeMap<String, MethodResult> = methods
+        .iter()
+        .zip(timed)
+        .map(|(method, t)| (method.clone(), t.result(ctx.timestamps)))
+        .collect();
     // A CPU adapter (lavapipe) runs dispatches on worker threads and writes timestamps out of
     // step with them: its per-pass numbers (and their sum) are not trustworthy, its wall clock
     // is. Frame-time ratios then come from the wall clock.

@@ -342,6 +342,19 @@ the reference, Σσ/Σref = {rel_noise:.4}.</p>
             "; the reference carries no depth, so only coverage silhouettes were excluded"
         },
     );
+    metrics_rows(&mut h, report);
+    convergence(&mut h, report);
+    for m in &report.methods {
+        method_section(&mut h, report, m);
+    }
+    h.push_str(SCRIPT);
+    h.push_str("</body></html>\n");
+    nearfield_scene::atomic::write_bytes(&dir.join("report.html"), h.as_bytes())
+        .map_err(std::io::Error::other)
+}
+
+/// The metrics table's rows, one per method.
+fn metrics_rows(h: &mut String, report: &Report) {
     for m in &report.methods {
         let x = &m.metrics;
         let _ = write!(
@@ -366,6 +379,10 @@ the reference, Σσ/Σref = {rel_noise:.4}.</p>
         );
     }
     h.push_str("</tbody></table>");
+}
+
+/// The convergence curve and its table, where any method has one.
+fn convergence(h: &mut String, report: &Report) {
     let curve = convergence_svg(&report.methods);
     if !curve.is_empty() {
         let _ = write!(
@@ -386,28 +403,26 @@ the reference, Σσ/Σref = {rel_noise:.4}.</p>
         }
         h.push_str("</table>");
     }
-    for m in &report.methods {
-        let _ = write!(
-            h,
-            r#"<section class="flip" id="m-{id}" tabindex="0"><h2>{name}</h2>
+}
+
+/// A method's section: its image, the reference and the signed error, flipped in place.
+fn method_section(h: &mut String, report: &Report, m: &MethodReport) {
+    let _ = write!(
+        h,
+        r#"<section class="flip" id="m-{id}" tabindex="0"><h2>{name}</h2>
 <div class="controls"><button data-i="0">1 {name}</button><button data-i="1">2 reference</button><button data-i="2">3 error</button>
 <input type="range" min="0" max="2" step="1" value="0" aria-label="method, reference, error"> <span class="which"></span></div>
 <div class="frame"><img data-srcs="{img}|{refimg}|{heat}" data-names="{name} (tonemapped)|reference (tonemapped)|signed error, method − reference (grey: excluded)" src="{img}" alt="{name}" width="{w}" height="{hh}"></div>
 <div class="legend"><div class="bar"></div><div class="ticks"><span>{lo:+.4}</span><span>0</span><span>{hi:+.4}</span></div></div>
 </section>"#,
-            id = anchor(&m.name),
-            name = escape(&m.name),
-            img = escape(&m.image),
-            refimg = escape(&report.reference.image),
-            heat = escape(&m.heatmap),
-            lo = -m.error_range,
-            hi = m.error_range,
-            w = report.size[0],
-            hh = report.size[1],
-        );
-    }
-    h.push_str(SCRIPT);
-    h.push_str("</body></html>\n");
-    nearfield_scene::atomic::write_bytes(&dir.join("report.html"), h.as_bytes())
-        .map_err(std::io::Error::other)
+        id = anchor(&m.name),
+        name = escape(&m.name),
+        img = escape(&m.image),
+        refimg = escape(&report.reference.image),
+        heat = escape(&m.heatmap),
+        lo = -m.error_range,
+        hi = m.error_range,
+        w = report.size[0],
+        hh = report.size[1],
+    );
 }

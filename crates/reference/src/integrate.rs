@@ -474,37 +474,8 @@ impl<'a> Context<'a> {
                 ReferenceAov::Ao => Vec3::splat(if visible { 1.0 } else { 0.0 }),
                 ReferenceAov::IndirectIrradiance => indirect,
                 _ => {
-                    // Environment: cosine sample and environment sample combined by the balance
-                    // heuristic (weights pdf_strategy / (pdf_cos + pdf_env)).
-                    let mut env = Vec3::ZERO;
-                    if visible {
-                        let weight = match &self.env_dist {
-                            Some(d) => {
-                                let pc = w.dot(hit.ns).max(0.0) / PI;
-                                pc / (pc + d.pdf(self.env, w))
-                            }
-                            None => 1.0,
-                        };
-                        env += self.env.radiance(w) * weight;
-                    }
-                    if let (true, Some(d)) = (env_terms, &self.env_dist) {
-                        let (we, pe) = d.sample(self.env, r2(i, env_offset));
-                        let cos = we.dot(hit.ns);
-                        if pe > 0.0 && cos > 0.0 && we.dot(hit.ng) > 0.0 {
-                            let seen = radius == 0.0 || {
-                                rays += 1;
-                                !self.tracer.occluded(
-                                    offset_origin(&hit, we, eye, self.scene_radius),
-                                    we,
-                                    radius,
-                                )
-                            };
-                            if seen {
-                                env += self.env.radiance(we) * (cos / PI) / (cos / PI + pe);
-                            }
-                        }
-                    }
-                    env + indirect
+                    let env_sample = env_terms.then(|| r2(i, env_offset));
+                    self.environment(&hit, w, visible, env_sample, &mut rays) + indirect
                 }
             };
             stats.push(sample);
@@ -518,6 +489,49 @@ impl<'a> Context<'a> {
         } else {
             done(mean, se, rays)
         }
+    }
+
+    /// The environment's light at `hit` from the cosine sample `w` (seen within R when
+    /// `visible`) and, with `env_sample`, one sample of the environment's own distribution,
+    /// combined by the balance heuristic (weights pdf_strategy / (pdf_cos + pdf_env)).
+    fn environment(
+        &self,
+        hit: &Hit,
+        w: Vec3,
+        visible: bool,
+        env_sample: Option<glam::Vec2>,
+        rays: &mut u64,
+    ) -> Vec3 {
+        let radius = self.settings.radius;
+        let mut env = Vec3::ZERO;
+        if visible {
+            let weight = match &self.env_dist {
+                Some(d) => {
+                    let pc = w.dot(hit.ns).max(0.0) / PI;
+                    pc / (pc + d.pdf(self.env, w))
+                }
+                None => 1.0,
+            };
+            env += self.env.radiance(w) * weight;
+        }
+        if let (Some(u), Some(d)) = (env_sample, &self.env_dist) {
+            let (we, pe) = d.sample(self.env, u);
+            let cos = we.dot(hit.ns);
+            if pe > 0.0 && cos > 0.0 && we.dot(hit.ng) > 0.0 {
+                let seen = radius == 0.0 || {
+                    *rays += 1;
+                    !self.tracer.occluded(
+                        offset_origin(hit, we, self.camera.eye, self.scene_radius),
+                        we,
+                        radius,
+                    )
+                };
+                if seen {
+                    env += self.env.radiance(we) * (cos / PI) / (cos / PI + pe);
+                }
+            }
+        }
+        env
     }
 
     fn path_trace(&self, x: u32, y: u32, primary: &Hit, depth: f32) -> PixelResult {

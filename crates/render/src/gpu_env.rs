@@ -118,50 +118,11 @@ pub struct GpuEnvironment {
 impl GpuEnvironment {
     pub fn new(device: &wgpu::Device, queue: &wgpu::Queue, env: &Environment) -> Self {
         let sh_coeffs = sh::project_environment(env, 16);
-
-        // Level 0 texels as f16, box-downsampled on the CPU if the map is very wide.
-        let (w, h, texels) = env.box_downsampled(MAX_RADIANCE_WIDTH);
-        let half: Vec<u16> = texels
-            .iter()
-            .flat_map(|c| {
-                let c = c.min(Vec3::splat(F16_MAX));
-                [c.x, c.y, c.z, 1.0].map(|v| half::f16::from_f32(v).to_bits())
-            })
-            .collect();
-        let radiance_mips = 32 - w.min(h).leading_zeros();
-        let radiance = device.create_texture(&wgpu::TextureDescriptor {
-            label: Some("env radiance"),
-            size: wgpu::Extent3d {
-                width: w,
-                height: h,
-                depth_or_array_layers: 1,
-            },
-            mip_level_count: radiance_mips,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format: wgpu::TextureFormat::Rgba16Float,
-            usage: wgpu::TextureUsages::TEXTURE_BINDING
-                | wgpu::TextureUsages::STORAGE_BINDING
-                | wgpu::TextureUsages::COPY_DST,
-            view_formats: &[],
-        });
-        queue.write_texture(
-            radiance.as_image_copy(),
-            bytemuck::cast_slice(&half),
-            wgpu::TexelCopyBufferLayout {
-                offset: 0,
-                bytes_per_row: Some(8 * w),
-                rows_per_image: Some(h),
-            },
-            wgpu::Extent3d {
-                width: w,
-                height: h,
-                depth_or_array_layers: 1,
-            },
-        );
+        let radiance = radiance_texture(device, queue, env);
+        let w = radiance.width();
+        let radiance_mips = radiance.mip_level_count();
         let sw = SPECULAR_WIDTH.min(w);
         let sh_ = (sw / 2).max(1);
-        let specular_levels = SPECULAR_LEVELS.min(32 - sh_.leading_zeros());
         let specular = device.create_texture(&wgpu::TextureDescriptor {
             label: Some("env specular"),
             size: wgpu::Extent3d {
@@ -169,7 +130,7 @@ impl GpuEnvironment {
                 height: sh_,
                 depth_or_array_layers: 1,
             },
-            mip_level_count: specular_levels,
+            mip_level_count: SPECULAR_LEVELS.min(32 - sh_.leading_zeros()),
             sample_count: 1,
             dimension: wgpu::TextureDimension::D2,
             format: wgpu::TextureFormat::Rgba16Float,
@@ -185,123 +146,20 @@ impl GpuEnvironment {
             mipmap_filter: wgpu::MipmapFilterMode::Linear,
             ..Default::default()
         });
-
-        // Build both chains.
-        let layout = PrefilterBindings::layout(device);
-        let module = crate::pipeline_cache::shader_module(device, "env prefilter", PREFILTER_WGSL);
-        let downsample = crate::pipeline_cache::standalone_pipeline(
-            device,
-            "env downsample",
-            &module,
-            "downsample",
-            &layout,
-        );
-        let prefilter = crate::pipeline_cache::standalone_pipeline(
-            device,
-            "env prefilter",
-            &module,
-            "prefilter",
-            &layout,
-        );
-        let mip_view = |t: &wgpu::Texture, level: u32| {
-            t.create_view(&wgpu::TextureViewDescriptor {
-                base_mip_level: level,
-                mip_level_count: Some(1),
-                ..Default::default()
-            })
-        };
-        let mut encoder = device.create_command_encoder(&Default::default());
-        let mut uniforms = Vec::new();
-        for level in 0..radiance_mips - 1 {
-            let params = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: None,
-                contents: bytemuck::bytes_of(&PrefilterParams {
-                    roughness: 0.0,
-                    source_width: w as f32,
-                    source_height: h as f32,
-                    source_mips: radiance_mips as f32,
-                }),
-                usage: wgpu::BufferUsages::UNIFORM,
-            });
-            let src = mip_view(&radiance, level);
-            let dst = mip_view(&radiance, level + 1);
-            let bg = PrefilterBindings {
-                params: &params,
-                source: &src,
-                source_sampler: &sampler,
-                destination: &dst,
-            }
-            .bind_group(device, &layout);
-            let mut pass = encoder.begin_compute_pass(&Default::default());
-            pass.set_pipeline(&downsample);
-            pass.set_bind_group(1, &bg, &[]);
-            let (gx, gy) = util::groups_8x8(((w >> (level + 1)).max(1), (h >> (level + 1)).max(1)));
-            pass.dispatch_workgroups(gx, gy, 1);
-            drop(pass);
-            uniforms.push(params);
-        }
         let radiance_view = radiance.create_view(&Default::default());
-        for level in 0..specular_levels {
-            let params = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: None,
-                contents: bytemuck::bytes_of(&PrefilterParams {
-                    roughness: level as f32 / (specular_levels - 1).max(1) as f32,
-                    source_width: w as f32,
-                    source_height: h as f32,
-                    source_mips: radiance_mips as f32,
-                }),
-                usage: wgpu::BufferUsages::UNIFORM,
-            });
-            let dst = mip_view(&specular, level);
-            let bg = PrefilterBindings {
-                params: &params,
-                source: &radiance_view,
-                source_sampler: &sampler,
-                destination: &dst,
-            }
-            .bind_group(device, &layout);
-            let mut pass = encoder.begin_compute_pass(&Default::default());
-            pass.set_pipeline(&prefilter);
-            pass.set_bind_group(1, &bg, &[]);
-            let (gx, gy) = util::groups_8x8(((sw >> level).max(1), (sh_ >> level).max(1)));
-            pass.dispatch_workgroups(gx, gy, 1);
-            drop(pass);
-            uniforms.push(params);
-        }
-        queue.submit([encoder.finish()]);
-        let (iw, ih) = IRRADIANCE_SIZE;
-        let irradiance_half: Vec<u16> = env
-            .irradiance_map(iw, ih)
-            .iter()
-            .flat_map(|c| {
-                let c = c.min(Vec3::splat(F16_MAX));
-                [c.x, c.y, c.z, 1.0].map(|v| half::f16::from_f32(v).to_bits())
-            })
-            .collect();
-        let irradiance = device.create_texture_with_data(
+        prefilter_chains(
+            device,
             queue,
-            &wgpu::TextureDescriptor {
-                label: Some("env irradiance map"),
-                size: wgpu::Extent3d {
-                    width: iw,
-                    height: ih,
-                    depth_or_array_layers: 1,
-                },
-                mip_level_count: 1,
-                sample_count: 1,
-                dimension: wgpu::TextureDimension::D2,
-                format: wgpu::TextureFormat::Rgba16Float,
-                usage: wgpu::TextureUsages::TEXTURE_BINDING,
-                view_formats: &[],
-            },
-            wgpu::util::TextureDataOrder::LayerMajor,
-            bytemuck::cast_slice(&irradiance_half),
+            &radiance,
+            &radiance_view,
+            &specular,
+            &sampler,
         );
-        let specular_mips = specular.mip_level_count();
+        let irradiance = irradiance_texture(device, queue, env);
         let uniforms = EnvUniforms::new(
             env.rotation,
             env.intensity,
-            specular_mips,
+            specular.mip_level_count(),
             radiance_mips,
             &sh_coeffs,
         );
@@ -365,4 +223,163 @@ impl GpuEnvironment {
     pub fn source(&self) -> &Environment {
         &self.source
     }
+}
+
+/// Colours as rgba16float texels (clamped to f16's range, alpha 1).
+fn f16_texels(colours: &[Vec3]) -> Vec<u16> {
+    colours
+        .iter()
+        .flat_map(|c| {
+            let c = c.min(Vec3::splat(F16_MAX));
+            [c.x, c.y, c.z, 1.0].map(|v| half::f16::from_f32(v).to_bits())
+        })
+        .collect()
+}
+
+/// The radiance map with its level 0 uploaded (box-downsampled on the CPU if the map is very
+/// wide) and room for a full mip chain.
+fn radiance_texture(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    env: &Environment,
+) -> wgpu::Texture {
+    let (w, h, texels) = env.box_downsampled(MAX_RADIANCE_WIDTH);
+    let size = wgpu::Extent3d {
+        width: w,
+        height: h,
+        depth_or_array_layers: 1,
+    };
+    let radiance = device.create_texture(&wgpu::TextureDescriptor {
+        label: Some("env radiance"),
+        size,
+        mip_level_count: 32 - w.min(h).leading_zeros(),
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format: wgpu::TextureFormat::Rgba16Float,
+        usage: wgpu::TextureUsages::TEXTURE_BINDING
+            | wgpu::TextureUsages::STORAGE_BINDING
+            | wgpu::TextureUsages::COPY_DST,
+        view_formats: &[],
+    });
+    queue.write_texture(
+        radiance.as_image_copy(),
+        bytemuck::cast_slice(&f16_texels(&texels)),
+        wgpu::TexelCopyBufferLayout {
+            offset: 0,
+            bytes_per_row: Some(8 * w),
+            rows_per_image: Some(h),
+        },
+        size,
+    );
+    radiance
+}
+
+/// The irradiance map (E(n)/π per direction, equirectangular).
+fn irradiance_texture(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    env: &Environment,
+) -> wgpu::Texture {
+    let (iw, ih) = IRRADIANCE_SIZE;
+    device.create_texture_with_data(
+        queue,
+        &wgpu::TextureDescriptor {
+            label: Some("env irradiance map"),
+            size: wgpu::Extent3d {
+                width: iw,
+                height: ih,
+                depth_or_array_layers: 1,
+            },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: wgpu::TextureFormat::Rgba16Float,
+            usage: wgpu::TextureUsages::TEXTURE_BINDING,
+            view_formats: &[],
+        },
+        wgpu::util::TextureDataOrder::LayerMajor,
+        bytemuck::cast_slice(&f16_texels(&env.irradiance_map(iw, ih))),
+    )
+}
+
+/// Encodes and submits both chains: the radiance map's mips, each downsampled from the one
+/// above, and the specular levels, each prefiltered from the radiance map at its roughness.
+fn prefilter_chains(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    radiance: &wgpu::Texture,
+    radiance_view: &wgpu::TextureView,
+    specular: &wgpu::Texture,
+    sampler: &wgpu::Sampler,
+) {
+    let (w, h, radiance_mips) = (
+        radiance.width(),
+        radiance.height(),
+        radiance.mip_level_count(),
+    );
+    let (sw, sh_, specular_levels) = (
+        specular.width(),
+        specular.height(),
+        specular.mip_level_count(),
+    );
+    let layout = PrefilterBindings::layout(device);
+    let module = crate::pipeline_cache::shader_module(device, "env prefilter", PREFILTER_WGSL);
+    let pipeline = |label, entry| {
+        crate::pipeline_cache::standalone_pipeline(device, label, &module, entry, &layout)
+    };
+    let downsample = pipeline("env downsample", "downsample");
+    let prefilter = pipeline("env prefilter", "prefilter");
+    let mip_view = |t: &wgpu::Texture, level: u32| {
+        t.create_view(&wgpu::TextureViewDescriptor {
+            base_mip_level: level,
+            mip_level_count: Some(1),
+            ..Default::default()
+        })
+    };
+    let mut encoder = device.create_command_encoder(&Default::default());
+    let mut pass = |pipeline: &wgpu::ComputePipeline,
+                    roughness: f32,
+                    source: &wgpu::TextureView,
+                    destination: &wgpu::TextureView,
+                    size: (u32, u32)| {
+        let params = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: None,
+            contents: bytemuck::bytes_of(&PrefilterParams {
+                roughness,
+                source_width: w as f32,
+                source_height: h as f32,
+                source_mips: radiance_mips as f32,
+            }),
+            usage: wgpu::BufferUsages::UNIFORM,
+        });
+        let bg = PrefilterBindings {
+            params: &params,
+            source,
+            source_sampler: sampler,
+            destination,
+        }
+        .bind_group(device, &layout);
+        let mut pass = encoder.begin_compute_pass(&Default::default());
+        pass.set_pipeline(pipeline);
+        pass.set_bind_group(1, &bg, &[]);
+        let (gx, gy) = util::groups_8x8(size);
+        pass.dispatch_workgroups(gx, gy, 1);
+    };
+    for level in 0..radiance_mips - 1 {
+        let (src, dst) = (mip_view(radiance, level), mip_view(radiance, level + 1));
+        let size = ((w >> (level + 1)).max(1), (h >> (level + 1)).max(1));
+        pass(&downsample, 0.0, &src, &dst, size);
+    }
+    for level in 0..specular_levels {
+        let roughness = level as f32 / (specular_levels - 1).max(1) as f32;
+        let size = ((sw >> level).max(1), (sh_ >> level).max(1));
+        pass(
+            &prefilter,
+            roughness,
+            radiance_view,
+            &mip_view(specular, level),
+            size,
+        );
+    }
+    queue.submit([encoder.finish()]);
 }

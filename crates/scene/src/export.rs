@@ -20,6 +20,51 @@ struct Builder {
 }
 
 impl Builder {
+    /// A mesh's positions (with their bounds), normals and texture coordinates where it has them
+    /// at every vertex, and indices, as accessors; the glTF mesh of one primitive.
+    fn mesh(&mut self, m: &crate::Mesh) -> Value {
+        let (mut lo, mut hi) = (Vec3::splat(f32::MAX), Vec3::splat(f32::MIN));
+        for p in &m.positions {
+            lo = lo.min(*p);
+            hi = hi.max(*p);
+        }
+        let pv = self.view(
+            &floats(m.positions.iter().flat_map(|p| p.to_array())),
+            Some(ARRAY_BUFFER),
+        );
+        let bounds = json!({ "min": lo.to_array(), "max": hi.to_array() });
+        let pos = self.accessor(pv, FLOAT, m.positions.len(), "VEC3", bounds);
+        let mut attributes = json!({ "POSITION": pos });
+        if m.normals.len() == m.positions.len() {
+            let nv = self.view(
+                &floats(m.normals.iter().flat_map(|n| n.to_array())),
+                Some(ARRAY_BUFFER),
+            );
+            let normals = self.accessor(nv, FLOAT, m.normals.len(), "VEC3", json!({}));
+            attributes["NORMAL"] = json!(normals);
+        }
+        if m.uvs.len() == m.positions.len() {
+            let uv = self.view(
+                &floats(m.uvs.iter().flat_map(|t| t.to_array())),
+                Some(ARRAY_BUFFER),
+            );
+            let uvs = self.accessor(uv, FLOAT, m.uvs.len(), "VEC2", json!({}));
+            attributes["TEXCOORD_0"] = json!(uvs);
+        }
+        let index_bytes: Vec<u8> = m
+            .indices
+            .iter()
+            .flatten()
+            .flat_map(|i| i.to_le_bytes())
+            .collect();
+        let iv = self.view(&index_bytes, Some(ELEMENT_ARRAY_BUFFER));
+        let indices = self.accessor(iv, UNSIGNED_INT, m.indices.len() * 3, "SCALAR", json!({}));
+        json!({
+            "name": m.name,
+            "primitives": [{ "attributes": attributes, "indices": indices, "material": m.material }],
+        })
+    }
+
     /// Appends `bytes` (4-byte aligned) as a buffer view; returns its index.
     fn view(&mut self, bytes: &[u8], target: Option<u32>) -> usize {
         while !self.bin.len().is_multiple_of(4) {
@@ -74,6 +119,68 @@ fn towards(direction: Vec3) -> Quat {
     Quat::from_rotation_arc(Vec3::NEG_Z, direction.normalize())
 }
 
+/// A material as glTF JSON: glTF's emissive factor is at most 1, the rest goes into
+/// `KHR_materials_emissive_strength`.
+fn material(m: &crate::Material) -> Value {
+    let mut pbr = json!({
+        "baseColorFactor": m.base_color.to_array(),
+        "metallicFactor": m.metallic,
+        "roughnessFactor": m.roughness,
+    });
+    if let Some(t) = m.base_color_texture {
+        pbr["baseColorTexture"] = json!({ "index": t });
+    }
+    if let Some(t) = m.metallic_roughness_texture {
+        pbr["metallicRoughnessTexture"] = json!({ "index": t });
+    }
+    let mut v =
+        json!({ "name": m.name, "pbrMetallicRoughness": pbr, "doubleSided": m.double_sided });
+    let peak = m.emissive.max_element();
+    if peak > 0.0 {
+        let strength = peak.max(1.0);
+        v["emissiveFactor"] = json!((m.emissive / strength).to_array());
+        if strength > 1.0 {
+            v["extensions"] =
+                json!({ "KHR_materials_emissive_strength": { "emissiveStrength": strength } });
+        }
+    }
+    if let Some(t) = m.emissive_texture {
+        v["emissiveTexture"] = json!({ "index": t });
+    }
+    match m.alpha_mode {
+        AlphaMode::Opaque => {}
+        AlphaMode::Mask { cutoff } => {
+            v["alphaMode"] = json!("MASK");
+            v["alphaCutoff"] = json!(cutoff);
+        }
+        AlphaMode::Blend => v["alphaMode"] = json!("BLEND"),
+    }
+    v
+}
+
+/// A light as `KHR_lights_punctual` JSON, with its node's translation and rotation.
+fn light(l: &crate::Light) -> (Value, Vec3, Quat) {
+    let mut light = json!({ "color": l.color.to_array(), "intensity": l.intensity });
+    if let Some(r) = l.range {
+        light["range"] = json!(r);
+    }
+    let (kind, translation, rotation) = match l.kind {
+        LightKind::Directional { direction, .. } => ("directional", Vec3::ZERO, towards(direction)),
+        LightKind::Point { position } => ("point", position, Quat::IDENTITY),
+        LightKind::Spot {
+            position,
+            direction,
+            inner_cone,
+            outer_cone,
+        } => {
+            light["spot"] = json!({ "innerConeAngle": inner_cone, "outerConeAngle": outer_cone });
+            ("spot", position, towards(direction))
+        }
+    };
+    light["type"] = json!(kind);
+    (light, translation, rotation)
+}
+
 /// The scene as glTF JSON and its binary buffer. `camera` becomes camera 0 with the aspect
 /// ratio `aspect` (width / height).
 fn build(scene: &Scene, camera: &Camera, aspect: f32) -> Result<(Value, Vec<u8>), String> {
@@ -84,54 +191,8 @@ fn build(scene: &Scene, camera: &Camera, aspect: f32) -> Result<(Value, Vec<u8>)
     };
     let mut meshes = Vec::new();
     let mut nodes = Vec::new();
-    for m in &scene.meshes {
-        if m.indices.is_empty() {
-            continue;
-        }
-        let (mut lo, mut hi) = (Vec3::splat(f32::MAX), Vec3::splat(f32::MIN));
-        for p in &m.positions {
-            lo = lo.min(*p);
-            hi = hi.max(*p);
-        }
-        let pv = b.view(
-            &floats(m.positions.iter().flat_map(|p| p.to_array())),
-            Some(ARRAY_BUFFER),
-        );
-        let pos = b.accessor(
-            pv,
-            FLOAT,
-            m.positions.len(),
-            "VEC3",
-            json!({ "min": lo.to_array(), "max": hi.to_array() }),
-        );
-        let mut attributes = json!({ "POSITION": pos });
-        if m.normals.len() == m.positions.len() {
-            let nv = b.view(
-                &floats(m.normals.iter().flat_map(|n| n.to_array())),
-                Some(ARRAY_BUFFER),
-            );
-            attributes["NORMAL"] = json!(b.accessor(nv, FLOAT, m.normals.len(), "VEC3", json!({})));
-        }
-        if m.uvs.len() == m.positions.len() {
-            let uv = b.view(
-                &floats(m.uvs.iter().flat_map(|t| t.to_array())),
-                Some(ARRAY_BUFFER),
-            );
-            attributes["TEXCOORD_0"] = json!(b.accessor(uv, FLOAT, m.uvs.len(), "VEC2", json!({})));
-        }
-        let iv = b.view(
-            &m.indices
-                .iter()
-                .flatten()
-                .flat_map(|i| i.to_le_bytes())
-                .collect::<Vec<u8>>(),
-            Some(ELEMENT_ARRAY_BUFFER),
-        );
-        let indices = b.accessor(iv, UNSIGNED_INT, m.indices.len() * 3, "SCALAR", json!({}));
-        meshes.push(json!({
-            "name": m.name,
-            "primitives": [{ "attributes": attributes, "indices": indices, "material": m.material }],
-        }));
+    for m in scene.meshes.iter().filter(|m| !m.indices.is_empty()) {
+        meshes.push(b.mesh(m));
         nodes.push(json!({ "name": m.name, "mesh": meshes.len() - 1 }));
     }
 
@@ -143,71 +204,15 @@ fn build(scene: &Scene, camera: &Camera, aspect: f32) -> Result<(Value, Vec<u8>)
     let textures: Vec<Value> = (0..images.len())
         .map(|i| json!({ "source": i, "sampler": 0 }))
         .collect();
-    let mut emissive_strength = false;
-    let materials: Vec<Value> = scene
+    let materials: Vec<Value> = scene.materials.iter().map(material).collect();
+    let emissive_strength = scene
         .materials
         .iter()
-        .map(|m| {
-            let mut pbr = json!({
-                "baseColorFactor": m.base_color.to_array(),
-                "metallicFactor": m.metallic,
-                "roughnessFactor": m.roughness,
-            });
-            if let Some(t) = m.base_color_texture {
-                pbr["baseColorTexture"] = json!({ "index": t });
-            }
-            if let Some(t) = m.metallic_roughness_texture {
-                pbr["metallicRoughnessTexture"] = json!({ "index": t });
-            }
-            let mut v = json!({ "name": m.name, "pbrMetallicRoughness": pbr, "doubleSided": m.double_sided });
-            // glTF's emissive factor is at most 1: the rest goes into the strength extension.
-            let peak = m.emissive.max_element();
-            if peak > 0.0 {
-                let strength = peak.max(1.0);
-                v["emissiveFactor"] = json!((m.emissive / strength).to_array());
-                if strength > 1.0 {
-                    emissive_strength = true;
-                    v["extensions"] = json!({ "KHR_materials_emissive_strength": { "emissiveStrength": strength } });
-                }
-            }
-            if let Some(t) = m.emissive_texture {
-                v["emissiveTexture"] = json!({ "index": t });
-            }
-            match m.alpha_mode {
-                AlphaMode::Opaque => {}
-                AlphaMode::Mask { cutoff } => {
-                    v["alphaMode"] = json!("MASK");
-                    v["alphaCutoff"] = json!(cutoff);
-                }
-                AlphaMode::Blend => v["alphaMode"] = json!("BLEND"),
-            }
-            v
-        })
-        .collect();
+        .any(|m| m.emissive.max_element() > 1.0);
 
     let mut lights = Vec::new();
     for l in &scene.lights {
-        let mut light = json!({ "color": l.color.to_array(), "intensity": l.intensity });
-        if let Some(r) = l.range {
-            light["range"] = json!(r);
-        }
-        let (kind, translation, rotation) = match l.kind {
-            LightKind::Directional { direction, .. } => {
-                ("directional", Vec3::ZERO, towards(direction))
-            }
-            LightKind::Point { position } => ("point", position, Quat::IDENTITY),
-            LightKind::Spot {
-                position,
-                direction,
-                inner_cone,
-                outer_cone,
-            } => {
-                light["spot"] =
-                    json!({ "innerConeAngle": inner_cone, "outerConeAngle": outer_cone });
-                ("spot", position, towards(direction))
-            }
-        };
-        light["type"] = json!(kind);
+        let (light, translation, rotation) = light(l);
         lights.push(light);
         nodes.push(json!({
             "name": format!("light {}", lights.len() - 1),

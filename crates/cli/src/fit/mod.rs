@@ -8,16 +8,17 @@
 //! frames and measures the AOVs as `compare` does.
 
 pub mod optimise;
+mod run;
 
 use crate::BadInput;
-use crate::measure::schema::{FitFile, FitScene, FitSide};
-use crate::measure::{Metric, Target, Truth, mean};
-use crate::options::{SceneOpts, TechniqueOpts};
-use crate::reference::{ReferenceOpts, parse_aov};
-use anyhow::{Context, Result};
+use crate::measure::Metric;
+use crate::options::TechniqueOpts;
+use crate::reference::ReferenceOpts;
+use anyhow::Result;
 use clap::Args;
-use nearfield_render::{Aov, GpuContext, Renderer};
-use optimise::{Dimension, Optimum};
+use nearfield_render::GpuContext;
+use nearfield_render::technique::Spec;
+use optimise::Dimension;
 use std::path::PathBuf;
 use std::time::Instant;
 
@@ -266,27 +267,8 @@ pub fn run(args: FitArgs) -> Result<()> {
         ))
     })?;
     let size = crate::options::parse_size(&args.size)?;
-    let aov_names: Vec<&str> = args.aov.split('+').map(str::trim).collect();
-    let mut aovs = Vec::new();
-    for name in &aov_names {
-        let ref_name = if *name == "lambertian" {
-            "radiance"
-        } else {
-            name
-        };
-        let ref_aov = parse_aov(ref_name)?;
-        let gpu = Aov::parse(name).expect("every reference AOV is a renderer AOV");
-        if aovs.iter().any(|(a, _)| *a == gpu) {
-            return Err(BadInput(format!("--aov {}: {name} is named twice", args.aov)).into());
-        }
-        aovs.push((gpu, ref_aov));
-    }
-    if args.frames == 0 || args.frames > 10_000 {
-        return Err(BadInput(format!("--frames {}: must be in 1..=10000", args.frames)).into());
-    }
-    if !(args.tolerance.is_finite() && args.tolerance >= 0.0) {
-        return Err(BadInput(format!("--tolerance {}: must be ≥ 0", args.tolerance)).into());
-    }
+    let aovs = run::parse_aovs(&args.aov)?;
+    run::check_counts(&args)?;
     let (technique, params, radius) = TechniqueOpts::measured(&args.radius, &args.set, args.seed)?;
     let settings = technique.settings(size)?;
     let desc = nearfield_render::technique::find(&args.method)?;
@@ -305,148 +287,36 @@ pub fn run(args: FitArgs) -> Result<()> {
     let start_spec = spec_with(&args.method, &dims, &start_values);
     nearfield_render::technique::check_spec(&start_spec, &params)?;
     let train = parse_scene_list("--scenes", &args.scenes)?;
-    let holdout = match args.holdout.as_deref() {
-        Some("none") => Vec::new(),
-        Some(list) => parse_scene_list("--holdout", list)?,
-        None => nearfield_scene::builtin::NAMES
-            .iter()
-            .map(|n| format!("builtin:{n}"))
-            .filter(|n| !train.iter().any(|(_, s)| s.scene == *n))
-            .map(|n| (n.clone(), SceneSpec::parse(&n).expect("a built-in name")))
-            .collect(),
-    };
-    if let Some((n, _)) = holdout
-        .iter()
-        .find(|(n, _)| train.iter().any(|(m, _)| m == n))
-    {
-        return Err(BadInput(format!("--holdout: {n} is also a training scene")).into());
-    }
+    let holdout = run::holdout(&args, &train)?;
     let ref_settings: Vec<_> = aovs
         .iter()
         .map(|(_, r)| args.reference.settings(*r, size, radius, args.seed))
         .collect::<Result<_>>()?;
-    if let Some(parent) = args.out.parent().filter(|p| !p.as_os_str().is_empty())
-        && !parent.is_dir()
-    {
-        return Err(BadInput(format!(
-            "--out {}: the folder {} does not exist",
-            args.out.display(),
-            parent.display()
-        ))
-        .into());
-    }
-
+    run::check_out(&args.out)?;
     args.far.precheck()?;
     let ctx = GpuContext::new(args.adapter.as_deref())?;
-    let load = |list: &[(String, SceneSpec)]| -> Result<Vec<Target>> {
-        let mut targets = Vec::new();
-        for (name, spec) in list {
-            let opts = SceneOpts {
-                scene: spec.scene.clone(),
-                size: args.size.clone(),
-                env: spec.env.clone().or_else(|| args.env.clone()),
-                env_intensity: 1.0,
-                env_rotation: 0.0,
-                camera: spec.camera.clone(),
-                eye: None,
-                target: None,
-                fov: None,
-                sun: args.sun.clone(),
-                adapter: args.adapter.clone(),
-                dynamic: Vec::new(),
-                add: Vec::new(),
-            };
-            let loaded = opts.load().with_context(|| format!("scene {name}"))?;
-            let mut truths = Vec::new();
-            for ((gpu, _), rs) in aovs.iter().zip(&ref_settings) {
-                let (img, _) = crate::reference::compute(&opts, &args.reference, &loaded, rs)?;
-                truths.push(Truth::new(*gpu, img.value, img.depth, size));
-            }
-            // A relative error of nothing is undefined: such a scene says nothing of the fit.
-            if metric == Metric::Relative
-                && let Some(t) = truths.iter().find(|t| t.is_zero())
-            {
-                eprintln!(
-                    "nearfield: {name} left out: its {} is zero everywhere, its relative error is undefined",
-                    t.aov.name()
-                );
-                continue;
-            }
-            let volume = args.far.resolve(&opts, &loaded, Some(args.aov.as_str()))?;
-            let renderer = Renderer::new(
-                &ctx,
-                &loaded.scene,
-                &loaded.env,
-                volume.as_ref(),
-                loaded.camera,
-                &nearfield_render::technique::Spec::resolve(&start_spec, &params)?,
-                settings,
-            )?;
-            targets.push(Target {
-                name: name.clone(),
-                renderer,
-                truths,
-            });
-        }
-        Ok(targets)
+    let scenes = run::Scenes {
+        args: &args,
+        ctx: &ctx,
+        aovs: &aovs,
+        ref_settings: &ref_settings,
+        metric,
+        technique: Spec::resolve(&start_spec, &params)?,
+        settings,
     };
-    let mut train_targets = load(&train)?;
+    let (train, mut train_targets) = scenes.load(train)?;
     if train_targets.is_empty() {
         return Err(BadInput("--scenes: no training scene is left to fit on".into()).into());
     }
-    let mut holdout_targets = load(&holdout)?;
-    // What is reported is what was measured.
-    let train: Vec<(String, SceneSpec)> = train
-        .into_iter()
-        .filter(|(n, _)| train_targets.iter().any(|t| &t.name == n))
-        .collect();
-    let holdout: Vec<(String, SceneSpec)> = holdout
-        .into_iter()
-        .filter(|(n, _)| holdout_targets.iter().any(|t| &t.name == n))
-        .collect();
+    let (holdout, mut holdout_targets) = scenes.load(holdout)?;
     let setup = t0.elapsed().as_secs_f64();
-
-    // The search, over the training scenes; every evaluation's per-scene errors are kept.
-    let progress = nearfield_scene::progress::Progress::new(
-        &format!("fit {}", args.method),
-        u64::from(args.budget),
-        "evaluations",
-        true,
-    );
-    let mut per_scene: Vec<(Vec<f64>, Vec<f64>)> = Vec::new();
-    let mut best = f64::INFINITY;
-    let tolerance = args.tolerance;
-    let optimum: Optimum = {
-        let mut objective = |values: &[f64]| -> Result<f64> {
-            let spec = spec_with(&args.method, &dims, values);
-            let errors = train_targets
-                .iter_mut()
-                .map(|t| t.evaluate(&spec, &params, args.frames, metric))
-                .collect::<Result<Vec<f64>>>()?;
-            let m = mean(&errors);
-            best = best.min(m);
-            per_scene.push((values.to_vec(), errors));
-            progress.inc(1);
-            progress.set_message(&format!("best {best:.4}"));
-            Ok(m)
-        };
-        // The tolerance is relative to the start's error: measure it first (it is the search's
-        // first evaluation too, from the same renderers, so it is not rendered twice).
-        let start_error = objective(&start_values)?;
-        optimise::minimise(
-            &dims,
-            args.budget as usize,
-            tolerance * start_error.abs(),
-            |values: &[f64]| {
-                if values == start_values.as_slice() {
-                    Ok(start_error)
-                } else {
-                    objective(values)
-                }
-            },
-        )?
+    let fit = run::Fit {
+        args: &args,
+        dims: &dims,
+        params: &params,
+        metric,
     };
-    progress.finish();
+    let (optimum, per_scene) = fit.search(&mut train_targets, &start_values)?;
     let errors_at = |values: &[f64]| -> Vec<f64> {
         per_scene
             .iter()
@@ -454,125 +324,30 @@ pub fn run(args: FitArgs) -> Result<()> {
             .map(|(_, e)| e.clone())
             .expect("every evaluated point was recorded")
     };
-    let train_before = errors_at(&start_values);
-    let train_after = errors_at(&optimum.best.values);
+    let train_errors = [errors_at(&start_values), errors_at(&optimum.best.values)];
     let best_spec = spec_with(&args.method, &dims, &optimum.best.values);
-    let mut holdout_before = Vec::new();
-    let mut holdout_after = Vec::new();
+    let mut holdout_errors = [Vec::new(), Vec::new()];
     for t in &mut holdout_targets {
-        holdout_before.push(t.evaluate(&start_spec, &params, args.frames, metric)?);
-        holdout_after.push(t.evaluate(&best_spec, &params, args.frames, metric)?);
+        holdout_errors[0].push(t.evaluate(&start_spec, &params, args.frames, metric)?);
+        holdout_errors[1].push(t.evaluate(&best_spec, &params, args.frames, metric)?);
     }
-    let side = |names: &[(String, SceneSpec)], before: &[f64], after: &[f64]| FitSide {
-        before: mean(before),
-        after: mean(after),
-        per_scene: names
-            .iter()
-            .zip(before.iter().zip(after))
-            .map(|((_, spec), (&b, &a))| {
-                (
-                    short_name(spec),
-                    FitScene {
-                        before: b,
-                        after: a,
-                    },
-                )
-            })
-            .collect(),
-    };
     let seconds = t0.elapsed().as_secs_f64();
-    let file = FitFile {
-        method: args.method.clone(),
-        params: dims
-            .iter()
-            .zip(&optimum.best.values)
-            .map(|(d, &x)| (d.key.clone(), json_number(d, x)))
-            .collect(),
-        start: dims
-            .iter()
-            .zip(&start_values)
-            .map(|(d, &x)| (d.key.clone(), json_number(d, x)))
-            .collect(),
-        spec: best_spec.clone(),
-        metric: metric.name().into(),
-        aov: args.aov.clone(),
-        size: [size.0, size.1],
-        frames: args.frames,
-        radius,
-        spp: args.reference.spp,
-        train: side(&train, &train_before, &train_after),
-        holdout: side(&holdout, &holdout_before, &holdout_after),
-        evaluations: optimum.history.len(),
-        history: optimum
-            .history
-            .iter()
-            .map(|e| (e.values.clone(), e.cost))
-            .collect(),
-        stopped: optimum.stopped.into(),
-        scenes: train
-            .iter()
-            .chain(&holdout)
-            .map(|(n, spec)| (short_name(spec), n.clone()))
-            .collect(),
-        seconds,
-        command: std::env::args()
-            .skip(1)
-            .map(|a| if a.contains(' ') { format!("'{a}'") } else { a })
-            .collect::<Vec<_>>()
-            .join(" "),
-        adapter: nearfield_render::context::describe(&ctx.adapter_info()),
-    };
+    let file = fit.file(
+        &optimum,
+        &start_values,
+        [(&train, &train_errors), (&holdout, &holdout_errors)],
+        (size, radius, seconds),
+        nearfield_render::context::describe(&ctx.adapter_info()),
+    );
     let json = serde_json::to_string_pretty(&file).expect("plain data");
     crate::output::save_atomically(&args.out, |tmp| {
         std::fs::write(tmp, json.as_bytes()).map_err(Into::into)
     })?;
-
-    println!("{:<8} {:<28} {:>10} {:>10}", "", "scene", "before", "after");
-    for (what, names, before, after) in [
-        ("train", &train, &train_before, &train_after),
-        ("holdout", &holdout, &holdout_before, &holdout_after),
-    ] {
-        for ((_, spec), (b, a)) in names.iter().zip(before.iter().zip(after.iter())) {
-            let n = short_name(spec);
-            println!("{what:<8} {n:<28} {b:>10.4} {a:>10.4}");
-        }
-        if !names.is_empty() {
-            println!(
-                "{what:<8} {:<28} {:>10.4} {:>10.4}",
-                "mean",
-                mean(before),
-                mean(after)
-            );
-        }
-    }
-    println!(
-        "{} {} of {} over {} evaluation(s) ({}), {:.1} s ({:.1} s setup)",
-        metric.name(),
-        args.aov,
-        args.method,
-        optimum.history.len(),
-        optimum.stopped,
-        seconds,
-        setup
+    fit.print(
+        &optimum,
+        [(&train, &train_errors), (&holdout, &holdout_errors)],
+        (seconds, setup),
     );
-    let (lo, hi) = optimum
-        .history
-        .iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), e| {
-            (lo.min(e.cost), hi.max(e.cost))
-        });
-    if optimum.history.len() > 1 && hi - lo <= 1e-9 * hi.abs().max(1e-12) {
-        eprintln!(
-            "nearfield: warning: the error was the same at all {} settings tried: {} of {} does not depend on {} here",
-            optimum.history.len(),
-            args.aov,
-            args.method,
-            dims.iter()
-                .map(|d| d.key.as_str())
-                .collect::<Vec<_>>()
-                .join(", ")
-        );
-    }
     println!("fitted: {best_spec}");
     eprintln!("nearfield: wrote {}", args.out.display());
     Ok(())

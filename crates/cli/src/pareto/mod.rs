@@ -21,7 +21,7 @@ use crate::reference::{ReferenceOpts, parse_aov};
 use anyhow::{Context, Result};
 use clap::Args;
 pub use front::{default_slack, mark_front};
-use nearfield_render::{Aov, GpuContext, Renderer};
+use nearfield_render::{Aov, GpuContext, Renderer, TechniqueParams};
 use std::path::PathBuf;
 use std::time::Instant;
 use sweep::effective_settings;
@@ -104,62 +104,10 @@ pub fn run(args: ParetoArgs) -> Result<()> {
     };
     let ref_aov = parse_aov(ref_name)?;
     let aov = Aov::parse(&args.aov).expect("every reference AOV is a renderer AOV");
-    for (name, v) in [("--frames", args.frames), ("--timed", args.timed)] {
-        if v == 0 || v > 10_000 {
-            return Err(BadInput(format!("{name} {v}: must be in 1..=10000")).into());
-        }
-    }
-    if args.warmup > 10_000 {
-        return Err(BadInput(format!("--warmup {}: must be at most 10000", args.warmup)).into());
-    }
+    check_counts(&args)?;
     let (technique, params, radius) = TechniqueOpts::measured(&args.radius, &[], args.seed)?;
-    let methods: Vec<String> = match &args.methods {
-        Some(m) => m
-            .split(',')
-            .map(str::trim)
-            .filter(|s| !s.is_empty())
-            .map(String::from)
-            .collect(),
-        None => nearfield_render::technique::names()
-            .into_iter()
-            .filter(|n| *n != "none")
-            .map(String::from)
-            .collect(),
-    };
-    if methods.is_empty() {
-        return Err(BadInput("--methods: no technique named".into()).into());
-    }
-    let vary = parse_vary(&args.vary)?;
-    let mut sweeps = Vec::new();
-    // Said once every argument is known to be good (a bad one gets one line).
-    let mut notes = Vec::new();
-    for m in &methods {
-        nearfield_render::technique::check_spec(m, &params)?;
-        let configs = sweep(m, &vary)?;
-        // Every configuration is checked before anything is loaded; one that comes to the same
-        // settings as an earlier one (a preset equal to the defaults) is measured once.
-        let mut kept: Vec<Config> = Vec::new();
-        let mut seen = Vec::new();
-        for c in configs {
-            match nearfield_render::technique::check_spec(&c.spec, &params) {
-                Ok(()) => {
-                    let effective = effective_settings(&c.spec, &params)?;
-                    if let Some(k) = seen.iter().position(|s| *s == effective) {
-                        notes.push(format!(
-                            "nearfield: {} left out: the same settings as {}",
-                            c.spec, kept[k].spec
-                        ));
-                        continue;
-                    }
-                    seen.push(effective);
-                    kept.push(c);
-                }
-                Err(e) if kept.is_empty() => return Err(e.into()),
-                Err(e) => notes.push(format!("nearfield: {} left out: {e}", c.spec)),
-            }
-        }
-        sweeps.push((m.clone(), kept));
-    }
+    let methods = methods_of(args.methods.as_deref())?;
+    let (sweeps, notes) = checked_sweeps(&methods, &parse_vary(&args.vary)?, &params)?;
     let size = crate::options::parse_size(&args.scene.size)?;
     let settings = technique.settings(size)?;
     let ref_settings = args.reference.settings(ref_aov, size, radius, args.seed)?;
@@ -211,49 +159,22 @@ pub fn run(args: ParetoArgs) -> Result<()> {
     loaded.report_sun();
     let mut fronts = Vec::new();
     let mut truth = Some(truth);
+    let measure = Measure {
+        ctx: &ctx,
+        loaded: &loaded,
+        volume: volume.as_ref(),
+        params: &params,
+        settings,
+        args: &args,
+        gpu,
+        none_ms,
+        progress: &progress,
+    };
     for (method, configs) in &sweeps {
-        let renderer = Renderer::new(
-            &ctx,
-            &loaded.scene,
-            &loaded.env,
-            volume.as_ref(),
-            loaded.camera,
-            &nearfield_render::technique::Spec::resolve(&configs[0].spec, &params)?,
-            settings,
-        )?;
-        let mut target = Target {
-            name: method.clone(),
-            renderer,
-            truths: vec![truth.take().expect("returned after each method")],
-        };
-        let mut points = Vec::new();
-        for c in configs {
-            progress.set_message(&c.spec);
-            let error = target.evaluate(&c.spec, &params, args.frames, Metric::Relative)?;
-            let ms = time_frames(&mut target.renderer, args.warmup, args.timed, gpu)?;
-            progress.inc(1);
-            points.push(Point {
-                label: c.label.clone(),
-                spec: c.spec.clone(),
-                ms,
-                cost_ms: ms - none_ms,
-                error,
-                front: false,
-                technique_front: false,
-            });
-        }
-        let xy: Vec<(f64, f64)> = points.iter().map(|p| (p.ms, p.error)).collect();
-        for (p, f) in points.iter_mut().zip(mark_front(&xy)) {
-            p.technique_front = f;
-        }
-        let slack = default_slack(&xy);
-        fronts.push(MethodFront {
-            name: method.clone(),
-            points,
-            default_slack: slack,
-            default_near_front: slack <= 0.1,
-        });
-        truth = target.truths.pop();
+        let t = truth.take().expect("returned after each method");
+        let (front, t) = measure.front(method, configs, t)?;
+        fronts.push(front);
+        truth = Some(t);
     }
     progress.finish();
     let all: Vec<(f64, f64)> = fronts
@@ -285,36 +206,187 @@ pub fn run(args: ParetoArgs) -> Result<()> {
         command: std::env::args().collect::<Vec<_>>().join(" "),
         seconds: t0.elapsed().as_secs_f64(),
     };
-    let json = serde_json::to_string_pretty(&file)?;
+    write(&args.out, &file, args.frames, total, t0)
+}
+
+/// Writes pareto.json and pareto.svg into `out`.
+fn write(
+    out: &std::path::Path,
+    file: &ParetoFile,
+    frames: u32,
+    total: usize,
+    t0: Instant,
+) -> Result<()> {
+    let json = serde_json::to_string_pretty(file)?;
     let svg = svg(
         &file.methods,
         &format!(
             "{} · {} · {}×{} · R {} m · {} frame{}",
             short_scene(&file.scene),
             file.aov,
-            size.0,
-            size.1,
-            radius,
-            args.frames,
-            if args.frames == 1 { "" } else { "s" }
+            file.size[0],
+            file.size[1],
+            file.radius,
+            frames,
+            if frames == 1 { "" } else { "s" }
         ),
-        if gpu {
+        if file.timing == "gpu" {
             "GPU time per frame (ms)"
         } else {
             "wall time per frame (ms)"
         },
     );
-    nearfield_scene::atomic::write_bytes(&args.out.join("pareto.json"), json.as_bytes())
+    nearfield_scene::atomic::write_bytes(&out.join("pareto.json"), json.as_bytes())
         .map_err(anyhow::Error::msg)?;
-    nearfield_scene::atomic::write_bytes(&args.out.join("pareto.svg"), svg.as_bytes())
+    nearfield_scene::atomic::write_bytes(&out.join("pareto.svg"), svg.as_bytes())
         .map_err(anyhow::Error::msg)?;
     eprintln!(
         "nearfield: wrote {}/pareto.json and pareto.svg ({} configurations, {:.1} s)",
-        args.out.display(),
+        out.display(),
         total,
         t0.elapsed().as_secs_f64()
     );
     Ok(())
+}
+
+/// `--frames`, `--timed` and `--warmup`.
+fn check_counts(args: &ParetoArgs) -> Result<()> {
+    for (name, v) in [("--frames", args.frames), ("--timed", args.timed)] {
+        if v == 0 || v > 10_000 {
+            return Err(BadInput(format!("{name} {v}: must be in 1..=10000")).into());
+        }
+    }
+    if args.warmup > 10_000 {
+        return Err(BadInput(format!("--warmup {}: must be at most 10000", args.warmup)).into());
+    }
+    Ok(())
+}
+
+/// `--methods`, or every registered technique but `none`.
+fn methods_of(list: Option<&str>) -> Result<Vec<String>> {
+    let methods: Vec<String> = match list {
+        Some(m) => m
+            .split(',')
+            .map(str::trim)
+            .filter(|s| !s.is_empty())
+            .map(String::from)
+            .collect(),
+        None => nearfield_render::technique::names()
+            .into_iter()
+            .filter(|n| *n != "none")
+            .map(String::from)
+            .collect(),
+    };
+    if methods.is_empty() {
+        return Err(BadInput("--methods: no technique named".into()).into());
+    }
+    Ok(methods)
+}
+
+/// Each technique's configurations, every one checked before anything is loaded; one that comes
+/// to the same settings as an earlier one (a preset equal to the defaults) is measured once. The
+/// notes say which were left out, once every argument is known to be good.
+#[allow(clippy::type_complexity)]
+fn checked_sweeps(
+    methods: &[String],
+    vary: &[(String, Vec<String>)],
+    params: &TechniqueParams,
+) -> Result<(Vec<(String, Vec<Config>)>, Vec<String>)> {
+    let mut sweeps = Vec::new();
+    let mut notes = Vec::new();
+    for m in methods {
+        nearfield_render::technique::check_spec(m, params)?;
+        let mut kept: Vec<Config> = Vec::new();
+        let mut seen = Vec::new();
+        for c in sweep(m, vary)? {
+            match nearfield_render::technique::check_spec(&c.spec, params) {
+                Ok(()) => {
+                    let effective = effective_settings(&c.spec, params)?;
+                    if let Some(k) = seen.iter().position(|s| *s == effective) {
+                        notes.push(format!(
+                            "nearfield: {} left out: the same settings as {}",
+                            c.spec, kept[k].spec
+                        ));
+                        continue;
+                    }
+                    seen.push(effective);
+                    kept.push(c);
+                }
+                Err(e) if kept.is_empty() => return Err(e.into()),
+                Err(e) => notes.push(format!("nearfield: {} left out: {e}", c.spec)),
+            }
+        }
+        sweeps.push((m.clone(), kept));
+    }
+    Ok((sweeps, notes))
+}
+
+/// What a technique's front is measured with.
+struct Measure<'a> {
+    ctx: &'a GpuContext,
+    loaded: &'a crate::options::Loaded,
+    volume: Option<&'a nearfield_scene::probes::ProbeVolume>,
+    params: &'a TechniqueParams,
+    settings: nearfield_render::RenderSettings,
+    args: &'a ParetoArgs,
+    gpu: bool,
+    none_ms: f64,
+    progress: &'a nearfield_scene::progress::Progress,
+}
+
+impl Measure<'_> {
+    /// Every configuration of `method` on one renderer: its error against `truth` and its time;
+    /// the technique's own front marked. Gives the truth back.
+    fn front(
+        &self,
+        method: &str,
+        configs: &[Config],
+        truth: Truth,
+    ) -> Result<(MethodFront, Truth)> {
+        let (args, params) = (self.args, self.params);
+        let renderer = Renderer::new(
+            self.ctx,
+            &self.loaded.scene,
+            &self.loaded.env,
+            self.volume,
+            self.loaded.camera,
+            &nearfield_render::technique::Spec::resolve(&configs[0].spec, params)?,
+            self.settings,
+        )?;
+        let mut target = Target {
+            name: method.to_string(),
+            renderer,
+            truths: vec![truth],
+        };
+        let mut points = Vec::new();
+        for c in configs {
+            self.progress.set_message(&c.spec);
+            let error = target.evaluate(&c.spec, params, args.frames, Metric::Relative)?;
+            let ms = time_frames(&mut target.renderer, args.warmup, args.timed, self.gpu)?;
+            self.progress.inc(1);
+            points.push(Point {
+                label: c.label.clone(),
+                spec: c.spec.clone(),
+                ms,
+                cost_ms: ms - self.none_ms,
+                error,
+                front: false,
+                technique_front: false,
+            });
+        }
+        let xy: Vec<(f64, f64)> = points.iter().map(|p| (p.ms, p.error)).collect();
+        for (p, f) in points.iter_mut().zip(mark_front(&xy)) {
+            p.technique_front = f;
+        }
+        let slack = default_slack(&xy);
+        let front = MethodFront {
+            name: method.to_string(),
+            points,
+            default_slack: slack,
+            default_near_front: slack <= 0.1,
+        };
+        Ok((front, target.truths.pop().expect("the truth it was given")))
+    }
 }
 
 fn print_table(fronts: &[MethodFront], none_ms: f64, gpu: bool) {

@@ -95,6 +95,18 @@ impl Panel {
         self.timings(ui, s);
         ui.separator();
 
+        self.technique_controls(ui, s, req);
+        ui.separator();
+        self.display_controls(ui, s, req);
+        ui.separator();
+        self.scene_controls(ui, s, req);
+        ui.separator();
+        self.camera_controls(ui, s, req);
+    }
+
+    /// The technique of the side being edited (A, or B when the view is split): its name, its
+    /// quality presets and its settings.
+    fn technique_controls(&mut self, ui: &mut egui::Ui, s: &Session, req: &mut Requests) {
         // Techniques: A, and B when the view is split.
         let mut split = s.split.is_some();
         ui.horizontal(|ui| {
@@ -152,8 +164,10 @@ impl Panel {
                     ui.label("(no settings)");
                 }
             });
-        ui.separator();
+    }
 
+    /// What is shown, at which exposure, tone mapping and size.
+    fn display_controls(&mut self, ui: &mut egui::Ui, s: &Session, req: &mut Requests) {
         // What is shown.
         egui::ComboBox::from_id_salt("aov")
             .selected_text(format!("image: {}", s.aov))
@@ -202,8 +216,10 @@ impl Panel {
         if ui.checkbox(&mut self.vsync, "vsync").changed() {
             req.vsync = Some(self.vsync);
         }
-        ui.separator();
+    }
 
+    /// The scene, the environment, the far field and the lights.
+    fn scene_controls(&mut self, ui: &mut egui::Ui, s: &Session, req: &mut Requests) {
         // Scene and environment.
         ui.horizontal(|ui| {
             ui.label("scene");
@@ -286,8 +302,10 @@ impl Panel {
                 req.changes.push(Change::Light(i, on));
             }
         }
-        ui.separator();
+    }
 
+    /// The camera, the screenshot and `compare` of this view.
+    fn camera_controls(&mut self, ui: &mut egui::Ui, s: &Session, req: &mut Requests) {
         // Camera.
         ui.horizontal(|ui| {
             ui.checkbox(&mut self.fly, "fly (WASD, Q/E)");

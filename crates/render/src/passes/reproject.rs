@@ -162,6 +162,52 @@ fn level_size(size: (u32, u32), level: u32) -> (u32, u32) {
     ((size.0 >> level).max(1), (size.1 >> level).max(1))
 }
 
+/// The push chain's groups (each level from the finer one, with its size) and the pull chain's
+/// (from the coarsest up: each level from its push level and the coarser pull level, the
+/// coarsest pull reading the coarsest push level).
+#[allow(clippy::type_complexity)]
+fn push_pull_groups(
+    device: &wgpu::Device,
+    (push_layout, pull_layout): (&wgpu::BindGroupLayout, &wgpu::BindGroupLayout),
+    (push_tex, pull_tex): (&wgpu::Texture, &wgpu::Texture),
+    sampler: &wgpu::Sampler,
+) -> (
+    Vec<(wgpu::BindGroup, (u32, u32))>,
+    Vec<(wgpu::BindGroup, (u32, u32))>,
+) {
+    let levels = push_tex.mip_level_count();
+    let size = (push_tex.width(), push_tex.height());
+    let push_levels = (0..levels - 1)
+        .map(|k| {
+            let bg = PushBindings {
+                fine: &mip_view(push_tex, k),
+                level_out: &mip_view(push_tex, k + 1),
+            }
+            .bind_group(device, push_layout);
+            (bg, level_size(size, k + 1))
+        })
+        .collect();
+    let pull_levels = (0..levels - 1)
+        .rev()
+        .map(|k| {
+            let coarse = if k + 1 == levels - 1 {
+                mip_view(push_tex, k + 1)
+            } else {
+                mip_view(pull_tex, k + 1)
+            };
+            let bg = PullBindings {
+                fine: &mip_view(push_tex, k),
+                level_out: &mip_view(pull_tex, k),
+                coarse: &coarse,
+                coarse_sampler: sampler,
+            }
+            .bind_group(device, pull_layout);
+            (bg, level_size(size, k))
+        })
+        .collect();
+    (push_levels, pull_levels)
+}
+
 impl Reprojection {
     /// `history[s]` is what frame side `s` wrote; a frame on side `s` reads `history[1 − s]`.
     pub fn new(
@@ -237,34 +283,12 @@ impl Reprojection {
             .bind_group(device, &main_layout)
         };
         let main = PingPong::new(main_bg(&history[1]), main_bg(&history[0]));
-        let push_levels = (0..levels - 1)
-            .map(|k| {
-                let bg = PushBindings {
-                    fine: &mip_view(&push_tex, k),
-                    level_out: &mip_view(&push_tex, k + 1),
-                }
-                .bind_group(device, &push_layout);
-                (bg, level_size(size, k + 1))
-            })
-            .collect();
-        let pull_levels = (0..levels - 1)
-            .rev()
-            .map(|k| {
-                let coarse = if k + 1 == levels - 1 {
-                    mip_view(&push_tex, k + 1)
-                } else {
-                    mip_view(&pull_tex, k + 1)
-                };
-                let bg = PullBindings {
-                    fine: &mip_view(&push_tex, k),
-                    level_out: &mip_view(&pull_tex, k),
-                    coarse: &coarse,
-                    coarse_sampler: &sampler,
-                }
-                .bind_group(device, &pull_layout);
-                (bg, level_size(size, k))
-            })
-            .collect();
+        let (push_levels, pull_levels) = push_pull_groups(
+            device,
+            (&push_layout, &pull_layout),
+            (&push_tex, &pull_tex),
+            &sampler,
+        );
         let module = crate::pipeline_cache::shader_module(device, "reproject", &source());
         let push_pull =
             crate::pipeline_cache::shader_module(device, "push/pull", &push_pull_source());

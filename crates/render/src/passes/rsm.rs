@@ -95,55 +95,7 @@ pub fn render(
     lights: &[Light],
     size: u32,
 ) -> Vec<RsmTexel> {
-    let layout = RsmBindings::layout(device);
-    let module = crate::pipeline_cache::shader_module(device, "rsm", &source());
-    let pipeline = util::raster_pipeline(
-        device,
-        &util::RasterPipeline {
-            label: "rsm",
-            frame: None,
-            layout: &layout,
-            module: &module,
-            vertex: "vs_rsm",
-            fragment: "fs_rsm",
-            color_formats: &[FORMAT, FORMAT, FORMAT],
-            cull: None,
-            depth_bias: Default::default(),
-        },
-    );
-    let texture = |label: &str, format: wgpu::TextureFormat, usage: wgpu::TextureUsages| {
-        device.create_texture(&wgpu::TextureDescriptor {
-            label: Some(label),
-            size: wgpu::Extent3d {
-                width: size,
-                height: size,
-                depth_or_array_layers: 1,
-            },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format,
-            usage,
-            view_formats: &[],
-        })
-    };
-    let readable = wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC;
-    let targets = [
-        texture("rsm position", FORMAT, readable),
-        texture("rsm normal", FORMAT, readable),
-        texture("rsm albedo", FORMAT, readable),
-    ];
-    let depth = texture(
-        "rsm depth",
-        crate::targets::DEPTH_FORMAT,
-        wgpu::TextureUsages::RENDER_ATTACHMENT,
-    );
-    let target_views: Vec<wgpu::TextureView> = targets
-        .iter()
-        .map(|t| t.create_view(&Default::default()))
-        .collect();
-    let depth_view = depth.create_view(&Default::default());
-
+    let maps = Maps::new(device, size);
     let mut texels = Vec::new();
     for light in lights {
         let (views, texel) = light_views(&light.kind, scene.bounds, size, None);
@@ -158,67 +110,7 @@ pub fn render(
                 clip_from_world: clip_from_world.to_cols_array_2d(),
                 to_light: to_light.to_array(),
             };
-            let uniform = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some("rsm view"),
-                contents: bytemuck::bytes_of(&view),
-                usage: wgpu::BufferUsages::UNIFORM,
-            });
-            let m = scene.material_bindings();
-            let group = RsmBindings {
-                materials: m.materials,
-                srgb_textures: m.srgb_textures,
-                linear_textures: m.linear_textures,
-                material_sampler: m.material_sampler,
-                rsm_view: &uniform,
-            }
-            .bind_group(device, &layout);
-            let mut encoder =
-                device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: None });
-            {
-                let clear = wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
-                    store: wgpu::StoreOp::Store,
-                };
-                let attachments: Vec<_> = target_views
-                    .iter()
-                    .map(|v| {
-                        Some(wgpu::RenderPassColorAttachment {
-                            view: v,
-                            depth_slice: None,
-                            resolve_target: None,
-                            ops: clear,
-                        })
-                    })
-                    .collect();
-                let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-                    label: Some("rsm"),
-                    color_attachments: &attachments,
-                    depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                        view: &depth_view,
-                        depth_ops: Some(wgpu::Operations {
-                            load: wgpu::LoadOp::Clear(1.0),
-                            store: wgpu::StoreOp::Discard,
-                        }),
-                        stencil_ops: None,
-                    }),
-                    timestamp_writes: None,
-                    occlusion_query_set: None,
-                    multiview_mask: None,
-                });
-                pass.set_pipeline(&pipeline);
-                pass.set_bind_group(1, &group, &[]);
-                pass.set_vertex_buffer(0, scene.vertices.slice(..));
-                pass.set_index_buffer(scene.indices.slice(..), wgpu::IndexFormat::Uint32);
-                pass.draw_indexed(0..scene.index_count, 0, 0..1);
-            }
-            let read = |t: &wgpu::Texture, encoder| -> Vec<[f32; 4]> {
-                let bytes = util::read_texture(device, queue, encoder, t, 16);
-                bytemuck::pod_collect_to_vec(&bytes)
-            };
-            let positions = read(&targets[0], encoder);
-            let empty = || device.create_command_encoder(&Default::default());
-            let normals = read(&targets[1], empty());
-            let albedos = read(&targets[2], empty());
+            let [positions, normals, albedos] = maps.draw(device, queue, scene, &view);
             for (i, ((p, n), a)) in positions.iter().zip(&normals).zip(&albedos).enumerate() {
                 if p[3] == 0.0 {
                     continue;
@@ -238,6 +130,141 @@ pub fn render(
         }
     }
     texels
+}
+
+/// The pipeline and the maps one view is drawn into: position, normal and albedo (and depth).
+struct Maps {
+    layout: wgpu::BindGroupLayout,
+    pipeline: wgpu::RenderPipeline,
+    targets: [wgpu::Texture; 3],
+    target_views: [wgpu::TextureView; 3],
+    depth_view: wgpu::TextureView,
+    _depth: wgpu::Texture,
+}
+
+impl Maps {
+    fn new(device: &wgpu::Device, size: u32) -> Self {
+        let layout = RsmBindings::layout(device);
+        let module = crate::pipeline_cache::shader_module(device, "rsm", &source());
+        let pipeline = util::raster_pipeline(
+            device,
+            &util::RasterPipeline {
+                label: "rsm",
+                frame: None,
+                layout: &layout,
+                module: &module,
+                vertex: "vs_rsm",
+                fragment: "fs_rsm",
+                color_formats: &[FORMAT, FORMAT, FORMAT],
+                cull: None,
+                depth_bias: Default::default(),
+            },
+        );
+        let texture = |label: &str, format: wgpu::TextureFormat, usage: wgpu::TextureUsages| {
+            device.create_texture(&wgpu::TextureDescriptor {
+                label: Some(label),
+                size: wgpu::Extent3d {
+                    width: size,
+                    height: size,
+                    depth_or_array_layers: 1,
+                },
+                mip_level_count: 1,
+                sample_count: 1,
+                dimension: wgpu::TextureDimension::D2,
+                format,
+                usage,
+                view_formats: &[],
+            })
+        };
+        let readable = wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC;
+        let targets = ["rsm position", "rsm normal", "rsm albedo"]
+            .map(|label| texture(label, FORMAT, readable));
+        let depth = texture(
+            "rsm depth",
+            crate::targets::DEPTH_FORMAT,
+            wgpu::TextureUsages::RENDER_ATTACHMENT,
+        );
+        Maps {
+            target_views: targets
+                .each_ref()
+                .map(|t| t.create_view(&Default::default())),
+            depth_view: depth.create_view(&Default::default()),
+            _depth: depth,
+            targets,
+            layout,
+            pipeline,
+        }
+    }
+
+    /// Draws the scene from `view` and reads the three maps back.
+    fn draw(
+        &self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        scene: &GpuScene,
+        view: &RsmView,
+    ) -> [Vec<[f32; 4]>; 3] {
+        let uniform = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("rsm view"),
+            contents: bytemuck::bytes_of(view),
+            usage: wgpu::BufferUsages::UNIFORM,
+        });
+        let m = scene.material_bindings();
+        let group = RsmBindings {
+            materials: m.materials,
+            srgb_textures: m.srgb_textures,
+            linear_textures: m.linear_textures,
+            material_sampler: m.material_sampler,
+            rsm_view: &uniform,
+        }
+        .bind_group(device, &self.layout);
+        let mut encoder =
+            device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: None });
+        {
+            let clear = wgpu::Operations {
+                load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
+                store: wgpu::StoreOp::Store,
+            };
+            let attachments = self.target_views.each_ref().map(|v| {
+                Some(wgpu::RenderPassColorAttachment {
+                    view: v,
+                    depth_slice: None,
+                    resolve_target: None,
+                    ops: clear,
+                })
+            });
+            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some("rsm"),
+                color_attachments: &attachments,
+                depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                    view: &self.depth_view,
+                    depth_ops: Some(wgpu::Operations {
+                        load: wgpu::LoadOp::Clear(1.0),
+                        store: wgpu::StoreOp::Discard,
+                    }),
+                    stencil_ops: None,
+                }),
+                timestamp_writes: None,
+                occlusion_query_set: None,
+                multiview_mask: None,
+            });
+            pass.set_pipeline(&self.pipeline);
+            pass.set_bind_group(1, &group, &[]);
+            pass.set_vertex_buffer(0, scene.vertices.slice(..));
+            pass.set_index_buffer(scene.indices.slice(..), wgpu::IndexFormat::Uint32);
+            pass.draw_indexed(0..scene.index_count, 0, 0..1);
+        }
+        let read = |t: &wgpu::Texture, encoder| -> Vec<[f32; 4]> {
+            let bytes = util::read_texture(device, queue, encoder, t, 16);
+            bytemuck::pod_collect_to_vec(&bytes)
+        };
+        let empty = || device.create_command_encoder(&Default::default());
+        [
+            read(&self.targets[0], encoder),
+            read(&self.targets[1], empty()),
+            read(&self.targets[2], empty()),
+        ]
+    }
 }
 
 #[cfg(test)]

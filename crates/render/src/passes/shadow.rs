@@ -224,6 +224,63 @@ fn fit_square(
     (centre.x, centre.y, half)
 }
 
+/// The shadow-map layers of each light (its first layer, `None` past `settings.max_layers`,
+/// and its texel factor) and every layer's clip_from_world.
+#[allow(clippy::type_complexity)]
+fn allocate_layers(
+    scene: &GpuScene,
+    kinds: &[LightKind],
+    settings: ShadowSettings,
+) -> (Vec<Mat4>, Vec<(Option<u32>, f32)>) {
+    let mut matrices: Vec<Mat4> = Vec::new();
+    let mut light_layers = Vec::new();
+    let mut dropped = 0;
+    for kind in kinds {
+        let (views, texel) = light_views(kind, scene.bounds, settings.size, None);
+        if matrices.len() + views.len() > settings.max_layers as usize {
+            light_layers.push((None, texel));
+            dropped += 1;
+            continue;
+        }
+        light_layers.push((Some(matrices.len() as u32), texel));
+        matrices.extend(views);
+    }
+    if dropped > 0 {
+        log::warn!(
+            "{dropped} light(s) get no shadow map: more than {} shadow layers",
+            settings.max_layers
+        );
+    }
+    (matrices, light_layers)
+}
+
+/// The layers' matrices as a storage array (what lighting reads) and as uniforms at a
+/// `VIEW_STRIDE` stride (what each layer's draw reads at its dynamic offset); one identity
+/// matrix where there is no layer.
+fn matrix_buffers(device: &wgpu::Device, matrices: &[Mat4]) -> (wgpu::Buffer, wgpu::Buffer) {
+    let flat: Vec<[[f32; 4]; 4]> = if matrices.is_empty() {
+        vec![Mat4::IDENTITY.to_cols_array_2d()]
+    } else {
+        matrices.iter().map(|m| m.to_cols_array_2d()).collect()
+    };
+    let matrix_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some("shadow matrices"),
+        contents: bytemuck::cast_slice(&flat),
+        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+    });
+    let mut strided = vec![0u8; VIEW_STRIDE as usize * flat.len()];
+    for (i, m) in flat.iter().enumerate() {
+        let at = i * VIEW_STRIDE as usize;
+        strided[at..at + 64].copy_from_slice(bytemuck::bytes_of(m));
+    }
+    let view_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some("shadow views"),
+        contents: &strided,
+        usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+    });
+    (matrix_buffer, view_buffer)
+}
+
 impl ShadowPass {
     /// Shadow maps of the scene's lights.
     pub fn new(device: &wgpu::Device, scene: &GpuScene, settings: ShadowSettings) -> Self {
@@ -239,25 +296,7 @@ impl ShadowPass {
         settings: ShadowSettings,
         label: &'static str,
     ) -> Self {
-        let mut matrices: Vec<Mat4> = Vec::new();
-        let mut light_layers = Vec::new();
-        let mut dropped = 0;
-        for kind in kinds {
-            let (views, texel) = light_views(kind, scene.bounds, settings.size, None);
-            if matrices.len() + views.len() > settings.max_layers as usize {
-                light_layers.push((None, texel));
-                dropped += 1;
-                continue;
-            }
-            light_layers.push((Some(matrices.len() as u32), texel));
-            matrices.extend(views);
-        }
-        if dropped > 0 {
-            log::warn!(
-                "{dropped} light(s) get no shadow map: more than {} shadow layers",
-                settings.max_layers
-            );
-        }
+        let (matrices, light_layers) = allocate_layers(scene, kinds, settings);
         let layers = matrices.len().max(1) as u32;
         let texture = device.create_texture(&wgpu::TextureDescriptor {
             label: Some("shadow maps"),
@@ -287,26 +326,7 @@ impl ShadowPass {
             dimension: Some(wgpu::TextureViewDimension::D2Array),
             ..Default::default()
         });
-        let flat: Vec<[[f32; 4]; 4]> = if matrices.is_empty() {
-            vec![Mat4::IDENTITY.to_cols_array_2d()]
-        } else {
-            matrices.iter().map(|m| m.to_cols_array_2d()).collect()
-        };
-        let matrix_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("shadow matrices"),
-            contents: bytemuck::cast_slice(&flat),
-            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
-        });
-        let mut strided = vec![0u8; VIEW_STRIDE as usize * flat.len()];
-        for (i, m) in flat.iter().enumerate() {
-            let at = i * VIEW_STRIDE as usize;
-            strided[at..at + 64].copy_from_slice(bytemuck::bytes_of(m));
-        }
-        let view_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("shadow views"),
-            contents: &strided,
-            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-        });
+        let (matrix_buffer, view_buffer) = matrix_buffers(device, &matrices);
         let layout = ShadowBindings::layout(device);
         let bind_group = ShadowBindings {
             view: wgpu::BufferBinding {

@@ -6,13 +6,15 @@ use crate::options::{SceneOpts, TechniqueOpts};
 use crate::reference::{ReferenceOpts, parse_aov};
 use anyhow::{Context, Result};
 use clap::Args;
-use nearfield_eval::image_ops;
+use judge::Judge;
 use nearfield_eval::metrics::{self, Mask, MaskSettings};
-use nearfield_eval::report::{ConvergencePoint, MethodReport, ReferenceInfo, Report};
-use nearfield_eval::strip::{Panel, strip};
+use nearfield_eval::report::{ConvergencePoint, Report};
+use nearfield_reference::ReferenceAov;
 use nearfield_reference::{ReferenceImage, exr_io};
-use nearfield_render::{Aov, GpuContext, Renderer};
+use nearfield_render::{Aov, GpuContext, RenderSettings, Renderer, TechniqueParams};
 use std::path::PathBuf;
+
+mod judge;
 
 #[derive(Args, Debug)]
 pub struct CompareArgs {
@@ -164,78 +166,120 @@ fn common_radius(methods: &[String], params: &nearfield_render::TechniqueParams)
     Ok(radius.map_or(f32::INFINITY, |(r, _)| r))
 }
 
-pub fn run(args: CompareArgs) -> Result<()> {
-    // The reference's radiance is Lambertian: it is the truth for the GPU's `lambertian`.
-    let ref_name = if args.aov == "lambertian" {
-        "radiance"
-    } else {
-        args.aov.as_str()
-    };
-    let ref_aov = parse_aov(ref_name)?;
-    let gpu_aov = Aov::parse(&args.aov).expect("every reference AOV is a renderer AOV");
-    let methods = crate::options::methods_and_frames(args.methods.as_deref(), args.frames)?;
-    crate::options::check_orbit(args.orbit)?;
-    let size = crate::options::parse_size(&args.scene.size)?;
-    let border = args.border.unwrap_or_else(|| default_border(size));
-    if 2 * border >= size.0.min(size.1) {
+/// What is known of a comparison before the scene loads: every argument checked.
+struct Checked {
+    ref_aov: ReferenceAov,
+    gpu_aov: Aov,
+    methods: Vec<String>,
+    size: (u32, u32),
+    border: u32,
+    region: Option<[u32; 4]>,
+    params: TechniqueParams,
+    settings: RenderSettings,
+    /// `--reference-file`: the image and its path.
+    reference_file: Option<(ReferenceImage, PathBuf)>,
+    /// `--image NAME=FILE`: images made elsewhere.
+    images: Vec<(String, Vec<[f32; 4]>)>,
+}
+
+impl Checked {
+    fn new(args: &CompareArgs) -> Result<Self> {
+        // The reference's radiance is Lambertian: it is the truth for the GPU's `lambertian`.
+        let ref_name = if args.aov == "lambertian" {
+            "radiance"
+        } else {
+            args.aov.as_str()
+        };
+        let ref_aov = parse_aov(ref_name)?;
+        let gpu_aov = Aov::parse(&args.aov).expect("every reference AOV is a renderer AOV");
+        let methods = crate::options::methods_and_frames(args.methods.as_deref(), args.frames)?;
+        crate::options::check_orbit(args.orbit)?;
+        let size = crate::options::parse_size(&args.scene.size)?;
+        let border = args.border.unwrap_or_else(|| default_border(size));
+        if 2 * border >= size.0.min(size.1) {
+            return Err(BadInput(format!(
+                "--border {border}: leaves no pixel of a {}x{} image",
+                size.0, size.1
+            ))
+            .into());
+        }
+        let region = args
+            .region
+            .as_deref()
+            .map(|r| parse_region(r, size))
+            .transpose()?;
+        let params = args.technique.params()?;
+        let settings = args.technique.settings(size)?;
+        let reference_file = match &args.reference_file {
+            Some(p) => Some((read_reference(p, size)?, p.clone())),
+            None => None,
+        };
+        let images = read_images(&args.images, size)?;
+        args.far.precheck()?;
+        if let Some(p) = &args.strip {
+            if p.extension().and_then(|e| e.to_str()) != Some("png") {
+                return Err(
+                    BadInput(format!("--strip {}: must be a .png file", p.display())).into(),
+                );
+            }
+            crate::output::check_parent_dir(p)?;
+        }
+        Ok(Checked {
+            ref_aov,
+            gpu_aov,
+            methods,
+            size,
+            border,
+            region,
+            params,
+            settings,
+            reference_file,
+            images,
+        })
+    }
+}
+
+/// `--reference-file`: an EXR of the comparison's size.
+fn read_reference(p: &std::path::Path, size: (u32, u32)) -> Result<ReferenceImage> {
+    let img = exr_io::read(p).map_err(|e| BadInput(e.to_string()))?;
+    if (img.width, img.height) != size {
         return Err(BadInput(format!(
-            "--border {border}: leaves no pixel of a {}x{} image",
-            size.0, size.1
+            "{}: reference is {}x{}, the comparison is {}x{}",
+            p.display(),
+            img.width,
+            img.height,
+            size.0,
+            size.1
         ))
         .into());
     }
-    let region = args
-        .region
-        .as_deref()
-        .map(|r| parse_region(r, size))
-        .transpose()?;
-    let mut params = args.technique.params()?;
-    let settings = args.technique.settings(size)?;
-    let reference_file = match &args.reference_file {
-        Some(p) => {
-            let img = exr_io::read(p).map_err(|e| BadInput(e.to_string()))?;
-            if (img.width, img.height) != size {
-                return Err(BadInput(format!(
-                    "{}: reference is {}x{}, the comparison is {}x{}",
-                    p.display(),
-                    img.width,
-                    img.height,
-                    size.0,
-                    size.1
-                ))
-                .into());
-            }
-            Some((img, p.clone()))
-        }
-        None => None,
-    };
-    let images = read_images(&args.images, size)?;
-    args.far.precheck()?;
-    if let Some(p) = &args.strip {
-        if p.extension().and_then(|e| e.to_str()) != Some("png") {
-            return Err(BadInput(format!("--strip {}: must be a .png file", p.display())).into());
-        }
-        crate::output::check_parent_dir(p)?;
-    }
+    Ok(img)
+}
+
+pub fn run(args: CompareArgs) -> Result<()> {
+    let Checked {
+        ref_aov,
+        gpu_aov,
+        methods,
+        size,
+        border,
+        region,
+        mut params,
+        settings,
+        reference_file,
+        images,
+    } = Checked::new(&args)?;
     std::fs::create_dir_all(&args.out)
         .with_context(|| format!("cannot create {}", args.out.display()))?;
     let mut loaded = args.scene.load()?;
     let first_camera = loaded.camera;
     // The reference sees what the last frame sees.
     loaded.camera = first_camera.orbit(args.orbit * (args.frames - 1) as f32);
-    // One radius for both sides and one seed: `--radius`, or auto (the volume's spacing; under
-    // the sky the techniques' own, which must then agree). Every technique's settings are
-    // checked against it before anything is baked or traced.
     if args.footprint {
         crate::footprint::check(&args.scene, &loaded)?;
     }
     let plan = args.far.plan(&loaded, Some(args.aov.as_str()))?;
-    crate::far::apply_auto_radius(&mut params, &plan);
-    let radius = common_radius(&methods, &params)?;
-    params.radius = Some(radius);
-    for m in &methods {
-        nearfield_render::technique::check_spec(m, &params)?;
-    }
+    let radius = settle_radius(&methods, &mut params, &plan)?;
     let ref_settings = args
         .reference
         .settings(ref_aov, size, radius, args.technique.seed)?;
@@ -244,119 +288,23 @@ pub fn run(args: CompareArgs) -> Result<()> {
     // With --footprint: the truth's footprint, and the scene without its dynamic objects.
     let footprint = args
         .footprint
-        .then(|| {
-            crate::footprint::truth(
-                &args.scene,
-                &args.reference,
-                &loaded,
-                size,
-                radius,
-                args.technique.seed,
-            )
-            .map(|t| (t, crate::footprint::without_object(&loaded)))
-        })
+        .then(|| footprint_truth(&args, &loaded, size, radius))
         .transpose()?;
-    let (reference, ref_info): (ReferenceImage, ReferenceInfo) = match reference_file {
-        Some((img, p)) => (
-            img,
-            ReferenceInfo {
-                path: format!("file {}", file_name(&p)),
-                spp: None,
-                seed: None,
-                image: "reference.png".into(),
-            },
-        ),
-        None => {
-            let (img, cached) =
-                crate::reference::compute(&args.scene, &args.reference, &loaded, &ref_settings)?;
-            (
-                img,
-                ReferenceInfo {
-                    path: cached
-                        .map(|p| format!("reference cache entry {}", file_name(&p)))
-                        .unwrap_or_else(|| "computed, not cached".into()),
-                    spp: Some(ref_settings.spp),
-                    seed: Some(ref_settings.seed),
-                    image: "reference.png".into(),
-                },
-            )
-        }
-    };
-    let (w, h) = size;
-    let png = |img: image::RgbImage, path: std::path::PathBuf| {
-        crate::output::save_atomically(&path, |tmp| {
-            img.save_with_format(tmp, image::ImageFormat::Png)
-                .map_err(anyhow::Error::from)
-        })
-    };
-    // The PNGs, the strip and FLIP see the images at --exposure.
-    let gain = 2f32.powf(args.technique.exposure);
-    let ref_srgb = image_ops::tonemap_exposed(&reference.value, w, h, gain);
-    png(ref_srgb.clone(), args.out.join("reference.png"))?;
-    let ref_alpha: Vec<f32> = reference.value.iter().map(|p| p[3]).collect();
-    let mask_settings = MaskSettings {
-        border,
-        depth_tolerance: 0.01,
-    };
-    let mut reports = Vec::new();
-    let mut panels = Vec::new();
-    let mut last_mask = None;
+    let (reference, ref_info) = reference_of(&args, &loaded, &ref_settings, reference_file)?;
     let progress = nearfield_scene::progress::Progress::new(
         "compare",
         methods.len() as u64 * u64::from(args.frames),
         "frames",
         true,
     );
-    // One image's metrics, PNGs and strip panels: a technique's AOV or an --image.
-    let measure = |method: &str,
-                   pixels: &[[f32; 4]],
-                   mask: &Mask,
-                   convergence: Vec<ConvergencePoint>,
-                   panels: &mut Vec<Panel>|
-     -> Result<MethodReport> {
-        let mut m = metrics::metrics(pixels, &reference.value, mask);
-        let srgb = image_ops::tonemap_exposed(pixels, w, h, gain);
-        m.flip = Some(metrics::flip_mean(&srgb, &ref_srgb, mask));
-        if args.strip.is_some() {
-            panels.push(Panel {
-                image: srgb.clone(),
-                title: method.to_string(),
-                subtitle: format!("relative error {:.3}", m.relative_error),
-            });
-        }
-        let errors = metrics::signed_errors(pixels, &reference.value, mask);
-        let range = image_ops::error_range(&errors, &mask.valid);
-        let image = format!("{method}.png");
-        let heat = format!("{method}-error.png");
-        png(srgb, args.out.join(&image))?;
-        let heatmap = image_ops::heatmap(&errors, &mask.valid, w, h, range);
-        if args.strip_errors {
-            panels.push(Panel {
-                image: heatmap.clone(),
-                title: format!("{method} − reference"),
-                subtitle: format!("blue −{range:.3} … red +{range:.3}"),
-            });
-        }
-        png(heatmap, args.out.join(&heat))?;
-        progress.suspend(|| println!(
-            "{method:<10} pixels {:>8}  bias {:+.5}  mean {:.3}x  MAE {:.5}  RMSE {:.5}  rel {:.4}  FLIP {:.4}",
-            m.pixels,
-            m.bias,
-            m.mean_ratio,
-            m.mae,
-            m.rmse,
-            m.relative_error,
-            m.flip.unwrap_or(0.0)
-        ));
-        Ok(MethodReport {
-            name: method.to_string(),
-            metrics: m,
-            error_range: range,
-            image,
-            heatmap: heat,
-            convergence,
-            footprint: None,
-        })
+    let judge = Judge::new(&args, &reference, size, &progress)?;
+    let mask_settings = MaskSettings {
+        border,
+        depth_tolerance: 0.01,
+    };
+    let (ref_alpha, ref_depth) = (&judge.ref_alpha, &reference.depth);
+    let mask_of = |r: &mut Renderer, value: &nearfield_render::AovImage| {
+        gpu_mask(r, value, ref_alpha, ref_depth, mask_settings, region)
     };
     // One renderer of `method` over `scene`, with the far field every method shares.
     let renderer = |scene: &nearfield_scene::Scene, method: &str| -> Result<Renderer> {
@@ -370,134 +318,47 @@ pub fn run(args: CompareArgs) -> Result<()> {
             settings,
         )?)
     };
+    let mut reports = Vec::new();
+    let mut panels = Vec::new();
+    let mut last_mask = None;
     for method in &methods {
         progress.set_message(method);
         let mut r = renderer(&loaded.scene, method)?;
         loaded.report_sun();
-        let still = args.orbit == 0.0 && args.frames > 1;
-        let mut convergence = Vec::new();
-        let mut mask = None;
-        for i in 0..args.frames {
-            crate::options::orbit_frame(&mut r, i, args.orbit);
-            if i % 8 == 7 {
-                r.wait();
-            }
-            progress.inc(1);
-            let n = i + 1;
-            if still && (args.frames <= 64 || n.is_power_of_two() || n == args.frames) {
-                let value = r.read_aov(gpu_aov);
-                let mask = mask.get_or_insert_with(|| {
-                    gpu_mask(
-                        &mut r,
-                        &value,
-                        &ref_alpha,
-                        &reference.depth,
-                        mask_settings,
-                        region,
-                    )
-                });
-                let m = metrics::metrics(&value.pixels, &reference.value, mask);
-                convergence.push(ConvergencePoint {
-                    frames: n,
-                    rmse: m.rmse,
-                    relative_error: m.relative_error,
-                });
-            }
-        }
-        let value = r.read_aov(gpu_aov);
-        r.check_device()?;
-        let mask = match mask {
-            Some(m) => m,
-            None => gpu_mask(
-                &mut r,
-                &value,
-                &ref_alpha,
-                &reference.depth,
-                mask_settings,
-                region,
-            ),
-        };
-        let mut report = measure(method, &value.pixels, &mask, convergence, &mut panels)?;
+        let (value, mask, convergence) = frames(&mut r, &args, gpu_aov, &judge, &mask_of)?;
+        let mut report = judge.measure(method, &value.pixels, &mask, convergence, &mut panels)?;
         if let Some((truth, without)) = &footprint {
-            // The same frames over the scene without its dynamic objects.
-            let with = crate::footprint::ambient_of(&mut r);
-            let mut r2 = renderer(&without.scene, method)?;
-            for i in 0..args.frames {
-                crate::options::orbit_frame(&mut r2, i, args.orbit);
-            }
-            let without_ambient = crate::footprint::ambient_of(&mut r2);
-            let e = truth.error(&with, &without_ambient);
-            let (truth_map, map) = truth.heatmaps(&with, &without_ambient);
-            png(map, args.out.join(format!("{method}-footprint.png")))?;
-            png(truth_map, args.out.join("reference-footprint.png"))?;
-            progress.suspend(|| {
-                println!(
-                    "{method:<10} footprint {e:.4} over {} pixels",
-                    truth.pixels()
-                )
-            });
-            report.footprint = Some(e);
+            let mut without = renderer(&without.scene, method)?;
+            report.footprint = Some(judge.footprint(method, truth, &mut r, &mut without, &args)?);
         }
         reports.push(report);
         last_mask = Some(mask);
     }
     progress.finish();
+    let mask = last_mask.expect("at least one method");
     // The volume alone: its radiance through the exact visibility V_R, on the CPU (a row named
     // `volume`), so that its error shows apart from any technique's estimate of V_R.
-    if let (Some(mask), Some(v), Aov::FarIrradiance) = (&last_mask, &volume, gpu_aov) {
-        let img = nearfield_reference::render_volume_far(
-            &loaded.scene,
-            &loaded.env,
-            &loaded.camera,
-            &ref_settings,
-            v,
-            false,
-        );
-        reports.push(measure(
-            "volume",
-            &img.value,
-            mask,
-            Vec::new(),
-            &mut panels,
-        )?);
+    if let (Some(v), Aov::FarIrradiance) = (&volume, gpu_aov) {
+        let (scene, env, camera) = (&loaded.scene, &loaded.env, &loaded.camera);
+        let img =
+            nearfield_reference::render_volume_far(scene, env, camera, &ref_settings, v, false);
+        reports.push(judge.measure("volume", &img.value, &mask, Vec::new(), &mut panels)?);
     }
     // Images made elsewhere: the last technique's mask (same scene, camera and reference); in the
     // strip before the techniques.
-    if let Some(mask) = &last_mask {
-        let mut first = Vec::new();
-        for (name, pixels) in &images {
-            reports.push(measure(name, pixels, mask, Vec::new(), &mut first)?);
-        }
-        panels.splice(0..0, first);
+    let mut first = Vec::new();
+    for (name, pixels) in &images {
+        reports.push(judge.measure(name, pixels, &mask, Vec::new(), &mut first)?);
     }
+    panels.splice(0..0, first);
     if let Some(path) = &args.strip {
-        // The reference's panel also names the far field the techniques had (lengths to the
-        // centimetre).
-        let cm = |x: f32| {
-            let s = format!("{x:.2}");
-            s.trim_end_matches('0').trim_end_matches('.').to_string()
-        };
-        let far = match &volume {
-            Some(v) => format!("volume every {} m", cm(v.grid.spacing.max_element())),
-            None => "sky".into(),
-        };
-        let radius = cm(radius);
-        panels.push(Panel {
-            image: ref_srgb.clone(),
-            title: "reference".into(),
-            subtitle: match ref_info.spp {
-                Some(spp) => format!("ray traced, {spp} spp; {far}, R {radius} m"),
-                None => format!("ray traced; {far}, R {radius} m"),
-            },
-        });
-        png(strip(&panels), path.clone())?;
-        eprintln!("nearfield: wrote {}", path.display());
+        let far = volume.as_ref().map(|v| v.grid.spacing.max_element());
+        judge.strip(path, panels, &ref_info, far, radius)?;
     }
-    let mask = last_mask.expect("at least one method");
     let report = Report {
         scene: args.scene.scene.clone(),
         aov: args.aov.clone(),
-        size: [w, h],
+        size: [size.0, size.1],
         radius: radius.to_string(),
         adapter: nearfield_render::context::describe(&ctx.adapter_info()),
         reference: ref_info,
@@ -513,16 +374,115 @@ pub fn run(args: CompareArgs) -> Result<()> {
         ),
         methods: reports,
     };
+    write_report(&args.out, &report, border)
+}
+
+/// One radius for both sides and one seed: `--radius`, or auto (the volume's spacing; under the
+/// sky the techniques' own, which must then agree), set in `params`. Every technique's settings
+/// are checked against it before anything is baked or traced.
+fn settle_radius(
+    methods: &[String],
+    params: &mut TechniqueParams,
+    plan: &crate::far::FarPlan,
+) -> Result<f32> {
+    crate::far::apply_auto_radius(params, plan);
+    let radius = common_radius(methods, params)?;
+    params.radius = Some(radius);
+    for m in methods {
+        nearfield_render::technique::check_spec(m, params)?;
+    }
+    Ok(radius)
+}
+
+/// The truth's footprint of the dynamic objects, and the scene without them.
+fn footprint_truth(
+    args: &CompareArgs,
+    loaded: &crate::options::Loaded,
+    size: (u32, u32),
+    radius: f32,
+) -> Result<(crate::footprint::Truth, crate::options::Loaded)> {
+    let truth = crate::footprint::truth(
+        &args.scene,
+        &args.reference,
+        loaded,
+        size,
+        radius,
+        args.technique.seed,
+    )?;
+    Ok((truth, crate::footprint::without_object(loaded)))
+}
+
+/// The reference: read from `--reference-file`, or traced (from the cache where it is there).
+fn reference_of(
+    args: &CompareArgs,
+    loaded: &crate::options::Loaded,
+    settings: &nearfield_reference::ReferenceSettings,
+    file: Option<(ReferenceImage, PathBuf)>,
+) -> Result<(ReferenceImage, nearfield_eval::report::ReferenceInfo)> {
+    Ok(match file {
+        Some((img, p)) => (img, judge::file_info(&file_name(&p))),
+        None => {
+            let (img, cached) =
+                crate::reference::compute(&args.scene, &args.reference, loaded, settings)?;
+            let path = cached
+                .map(|p| format!("reference cache entry {}", file_name(&p)))
+                .unwrap_or_else(|| "computed, not cached".into());
+            (img, judge::traced_info(path, settings))
+        }
+    })
+}
+
+/// Runs `args.frames` frames of a technique, the convergence measured along the way (a still
+/// camera only); its last frame's AOV and mask.
+fn frames(
+    r: &mut Renderer,
+    args: &CompareArgs,
+    gpu_aov: Aov,
+    judge: &Judge,
+    mask_of: &dyn Fn(&mut Renderer, &nearfield_render::AovImage) -> Mask,
+) -> Result<(nearfield_render::AovImage, Mask, Vec<ConvergencePoint>)> {
+    let still = args.orbit == 0.0 && args.frames > 1;
+    let mut convergence = Vec::new();
+    let mut mask = None;
+    for i in 0..args.frames {
+        crate::options::orbit_frame(r, i, args.orbit);
+        if i % 8 == 7 {
+            r.wait();
+        }
+        judge.progress.inc(1);
+        let n = i + 1;
+        if still && (args.frames <= 64 || n.is_power_of_two() || n == args.frames) {
+            let value = r.read_aov(gpu_aov);
+            let mask = mask.get_or_insert_with(|| mask_of(r, &value));
+            let m = metrics::metrics(&value.pixels, &judge.reference.value, mask);
+            convergence.push(ConvergencePoint {
+                frames: n,
+                rmse: m.rmse,
+                relative_error: m.relative_error,
+            });
+        }
+    }
+    let value = r.read_aov(gpu_aov);
+    r.check_device()?;
+    let mask = match mask {
+        Some(m) => m,
+        None => mask_of(r, &value),
+    };
+    Ok((value, mask, convergence))
+}
+
+/// Writes the report and says where.
+fn write_report(out: &std::path::Path, report: &Report, border: u32) -> Result<()> {
     eprintln!(
         "nearfield: the reference's relative noise Σσ/Σref is {:.4}",
         report.reference_relative_noise
     );
-    nearfield_eval::report::write(&args.out, &report)
-        .with_context(|| format!("cannot write the report into {}", args.out.display()))?;
+    nearfield_eval::report::write(out, report)
+        .with_context(|| format!("cannot write the report into {}", out.display()))?;
     eprintln!(
         "nearfield: wrote {}/report.html and metrics.json (border {border} px, {} silhouette pixels excluded)",
-        args.out.display(),
-        mask.silhouette_pixels
+        out.display(),
+        report.silhouette_pixels
     );
     Ok(())
 }
