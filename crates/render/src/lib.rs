@@ -18,6 +18,7 @@ pub mod gpu_scene;
 pub mod passes;
 pub mod pipeline_cache;
 pub mod profiler;
+pub mod reflect;
 pub mod renderer;
 pub mod settings;
 pub mod targets;

@@ -8,53 +8,20 @@ use nearfield_render::{
 };
 use std::mem::size_of;
 
-fn module(source: &str) -> naga::Module {
-    naga::front::wgsl::parse_str(source).unwrap_or_else(|e| panic!("{}", e.emit_to_string(source)))
-}
-
 #[test]
 fn every_shader_validates() {
     let sources = nearfield_render::shader_sources();
     assert!(sources.len() >= 8);
     for (name, source) in sources {
-        let m = module(&source);
-        // pack2x16float (s3ho) needs SHADER_FLOAT16_IN_FLOAT32; the renderer checks the adapter's
-        // matching DownlevelFlags::SHADER_F16_IN_F32 before it builds s3ho.
-        let caps = naga::valid::Capabilities::default()
-            | naga::valid::Capabilities::SHADER_FLOAT16_IN_FLOAT32;
-        naga::valid::Validator::new(naga::valid::ValidationFlags::all(), caps)
-            .validate(&m)
-            .unwrap_or_else(|e| panic!("{name}: {}", e.emit_to_string(&source)));
-    }
-}
-
-/// (size, [(member name, offset)]) of a struct in a WGSL module.
-fn layout(source: &str, name: &str) -> (u32, Vec<(String, u32)>) {
-    let m = module(source);
-    for (_, ty) in m.types.iter() {
-        if ty.name.as_deref() == Some(name)
-            && let naga::TypeInner::Struct { members, span } = &ty.inner
-        {
-            return (
-                *span,
-                members
-                    .iter()
-                    .map(|mm| (mm.name.clone().unwrap_or_default(), mm.offset))
-                    .collect(),
-            );
+        if let Err(e) = nearfield_render::reflect::validate(&source) {
+            panic!("{name}: {e}");
         }
     }
-    panic!("struct {name} not found");
 }
 
-fn check(source: &str, name: &str, size: usize, offsets: &[(&str, usize)]) {
-    let (span, members) = layout(source, name);
-    assert_eq!(span as usize, size, "{name}: size");
-    assert_eq!(members.len(), offsets.len(), "{name}: member count");
-    for ((wgsl_name, wgsl_off), (rust_name, rust_off)) in members.iter().zip(offsets) {
-        assert_eq!(wgsl_name, rust_name, "{name}: member order");
-        assert_eq!(*wgsl_off as usize, *rust_off, "{name}.{wgsl_name}: offset");
-    }
+fn check(source: &str, name: &str, size: usize, fields: &[(&str, usize)]) {
+    let errors = nearfield_render::reflect::struct_mismatches(source, name, size, fields);
+    assert!(errors.is_empty(), "{}", errors.join("\n"));
 }
 
 #[test]
@@ -193,4 +160,28 @@ fn host_and_shader_structs_agree() {
         size_of::<RsmView>(),
         RsmView::FIELDS,
     );
+}
+
+#[test]
+fn the_struct_check_catches_a_moved_or_missing_member() {
+    use nearfield_render::passes::aov::AovSelection;
+    let source = nearfield_render::passes::aov::source();
+    let check = |wgsl: &str| {
+        nearfield_render::reflect::struct_mismatches(
+            wgsl,
+            "AovSelection",
+            size_of::<AovSelection>(),
+            AovSelection::FIELDS,
+        )
+    };
+    assert!(check(&source).is_empty());
+    let moved = source.replace(
+        "    aov: u32,\n    _pad0: u32,",
+        "    _pad0: u32,\n    aov: u32,",
+    );
+    assert_ne!(moved, source);
+    assert!(!check(&moved).is_empty());
+    let missing = source.replace("    _pad2: u32,\n}", "}");
+    assert_ne!(missing, source);
+    assert!(!check(&missing).is_empty());
 }

@@ -115,6 +115,9 @@ pub struct Bitmask {
 impl Settings {
     /// The horizon machinery's settings and the bitmask part (pure).
     pub fn split(&self) -> (horizon::Settings, Bitmask) {
+        // vbgi's own over the horizon family's defaults: a setting the family adds reaches vbgi
+        // at its default (today every field is named, which the lint reports).
+        #[allow(clippy::needless_update)]
         let h = horizon::Settings {
             march: self.march,
             far: match self.far {
@@ -126,6 +129,7 @@ impl Settings {
             falloff: 0.0,
             denoise: self.denoise,
             svgf: self.svgf,
+            ..horizon::Settings::default()
         };
         let b = Bitmask {
             params: VbgiParams {
