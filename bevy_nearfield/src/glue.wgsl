@@ -13,6 +13,9 @@ struct Glue {
     indirect_intensity: f32,
     // 0: Bevy's ambient light is not darkened (the ao written is 1).
     ambient_occlusion: u32,
+    _pad0: u32,
+    _pad1: u32,
+    _pad2: u32,
 }
 
 @group(0) @binding(0) var<uniform> glue: Glue;

@@ -59,9 +59,10 @@ impl NearFieldTechnique {
         }
     }
 
-    /// Whether it computes indirect light (gtao writes only ao).
+    /// Whether it computes indirect light (gtao writes only ao): what its registration declares.
     pub fn has_indirect(self) -> bool {
-        !matches!(self, NearFieldTechnique::Gtao)
+        technique::find(self.name())
+            .is_ok_and(|d| d.writes.contains(&technique::Output::IndirectIrradiance))
     }
 }
 

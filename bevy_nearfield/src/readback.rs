@@ -4,14 +4,11 @@
 //! submitted. The latest images of each camera are in [`NearFieldImages`]. For tests and tools:
 //! it waits for the GPU every frame.
 
-use crate::render::NearFieldView;
 use bevy::ecs::query::QueryItem;
 use bevy::prelude::*;
 use bevy::render::RenderApp;
 use bevy::render::extract_component::{ExtractComponent, ExtractComponentPlugin};
-use bevy::render::renderer::RenderDevice;
 use bevy::render::sync_component::SyncComponent;
-use bevy::render::sync_world::MainEntity;
 use nearfield_render::wgpu;
 use std::collections::HashMap;
 use std::sync::{Arc, Mutex};
@@ -39,6 +36,11 @@ pub struct ReadbackImages {
 pub struct NearFieldImages(Arc<Mutex<HashMap<Entity, ReadbackImages>>>);
 
 impl NearFieldImages {
+    /// Stores the latest images of `camera`.
+    pub(crate) fn insert(&self, camera: Entity, images: ReadbackImages) {
+        self.0.lock().unwrap().insert(camera, images);
+    }
+
     /// The latest images of `camera`, if any were read.
     pub fn get(&self, camera: Entity) -> Option<ReadbackImages> {
         self.0.lock().unwrap().get(&camera).cloned()
@@ -70,8 +72,6 @@ pub(crate) fn build(app: &mut App) {
         render_app.insert_resource(images);
     }
 }
-
-pub(crate) fn build_render(_render_app: &mut bevy::app::SubApp) {}
 
 /// Three mappable buffers of a view's size.
 pub struct ReadbackBuffers {
@@ -117,42 +117,67 @@ fn copy_to(
     );
 }
 
-/// Records the copies of the ao and the indirect irradiance (after the technique).
-pub(crate) fn copy(device: &wgpu::Device, encoder: &mut wgpu::CommandEncoder, nf: &NearFieldView) {
-    let mut slot = nf.readback.lock().unwrap();
-    let size = (nf.images.ao.texture.width(), nf.images.ao.texture.height());
-    if slot.as_ref().is_none_or(|b| b.size != size) {
-        let buffer = |label, bytes| {
-            device.create_buffer(&wgpu::BufferDescriptor {
-                label: Some(label),
-                size: (padded_row(size.0, bytes) * size.1) as u64,
-                usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
-                mapped_at_creation: false,
-            })
-        };
-        *slot = Some(ReadbackBuffers {
-            size,
-            ao: buffer("nearfield readback ao", 4),
-            indirect: buffer("nearfield readback indirect", 8),
-            radiance: buffer("nearfield readback radiance", 8),
-        });
+impl ReadbackBuffers {
+    /// Records the copies of the ao and the indirect irradiance (after the technique) into the
+    /// view's buffers, made (again) at the images' size.
+    pub(crate) fn copy(
+        slot: &Mutex<Option<ReadbackBuffers>>,
+        device: &wgpu::Device,
+        encoder: &mut wgpu::CommandEncoder,
+        ao: &wgpu::Texture,
+        indirect: Option<&wgpu::Texture>,
+    ) {
+        let mut slot = slot.lock().unwrap();
+        let size = (ao.width(), ao.height());
+        if slot.as_ref().is_none_or(|b| b.size != size) {
+            let buffer = |label, bytes| {
+                device.create_buffer(&wgpu::BufferDescriptor {
+                    label: Some(label),
+                    size: (padded_row(size.0, bytes) * size.1) as u64,
+                    usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+                    mapped_at_creation: false,
+                })
+            };
+            *slot = Some(ReadbackBuffers {
+                size,
+                ao: buffer("nearfield readback ao", 4),
+                indirect: buffer("nearfield readback indirect", 8),
+                radiance: buffer("nearfield readback radiance", 8),
+            });
+        }
+        let b = slot.as_ref().unwrap();
+        copy_to(encoder, ao, &b.ao, 4);
+        // gtao writes no indirect light: its buffer stays zero.
+        if let Some(indirect) = indirect {
+            copy_to(encoder, indirect, &b.indirect, 8);
+        }
     }
-    let b = slot.as_ref().unwrap();
-    copy_to(encoder, &nf.images.ao.texture, &b.ao, 4);
-    // gtao writes no indirect light: its buffer stays zero.
-    if let Some(indirect) = nf.images.indirect_irradiance.as_ref() {
-        copy_to(encoder, &indirect.texture, &b.indirect, 8);
-    }
-}
 
-/// Records the copy of the radiance kept for the next frame (after the capture).
-pub(crate) fn copy_radiance(
-    encoder: &mut wgpu::CommandEncoder,
-    nf: &NearFieldView,
-    texture: &wgpu::Texture,
-) {
-    if let Some(b) = nf.readback.lock().unwrap().as_ref() {
-        copy_to(encoder, texture, &b.radiance, 8);
+    /// Records the copy of the radiance kept for the next frame (after the capture).
+    pub(crate) fn copy_radiance(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        texture: &wgpu::Texture,
+    ) {
+        copy_to(encoder, texture, &self.radiance, 8);
+    }
+
+    /// Maps the copies (after the frame is submitted): the size, ao, indirect irradiance and
+    /// radiance.
+    #[allow(clippy::type_complexity)]
+    pub(crate) fn read(
+        &self,
+        device: &wgpu::Device,
+    ) -> ((u32, u32), Vec<f32>, Vec<[f32; 3]>, Vec<[f32; 3]>) {
+        let ao = read(device, &self.ao, self.size, 4);
+        let indirect = read(device, &self.indirect, self.size, 8);
+        let radiance = read(device, &self.radiance, self.size, 8);
+        (
+            self.size,
+            bytemuck::pod_collect_to_vec(&ao),
+            rgb_of_half(&indirect),
+            rgb_of_half(&radiance),
+        )
     }
 }
 
@@ -187,28 +212,4 @@ fn rgb_of_half(bytes: &[u8]) -> Vec<[f32; 3]> {
             [c(0), c(1), c(2)]
         })
         .collect()
-}
-
-/// After the frame is submitted: maps the copies and stores them by camera.
-pub(crate) fn collect(
-    device: Res<RenderDevice>,
-    images: Res<NearFieldImages>,
-    views: Query<(&MainEntity, &NearFieldView), With<ExtractedReadback>>,
-) {
-    for (main, nf) in &views {
-        let slot = nf.readback.lock().unwrap();
-        let Some(b) = slot.as_ref() else { continue };
-        let device = device.wgpu_device();
-        let ao = read(device, &b.ao, b.size, 4);
-        let indirect = read(device, &b.indirect, b.size, 8);
-        let radiance = read(device, &b.radiance, b.size, 8);
-        let out = ReadbackImages {
-            size: b.size,
-            frames: nf.frames(),
-            ao: bytemuck::pod_collect_to_vec(&ao),
-            indirect_irradiance: rgb_of_half(&indirect),
-            radiance: rgb_of_half(&radiance),
-        };
-        images.0.lock().unwrap().insert(main.id(), out);
-    }
 }

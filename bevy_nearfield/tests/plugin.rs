@@ -166,13 +166,14 @@ fn reference(
     frames: u32,
 ) -> Reference {
     let ctx = GpuContext::new(None).expect("an adapter (lavapipe in CI)");
+    let technique = nearfield_render::technique::Spec::resolve(method, params).unwrap();
     let mut r = Renderer::new(
         &ctx,
         scene,
         env,
+        None,
         scene.default_camera(),
-        method,
-        params,
+        &technique,
         RenderSettings {
             size: SIZE,
             ..Default::default()

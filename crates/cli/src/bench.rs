@@ -111,6 +111,58 @@ struct Report {
     overhead_from: String,
 }
 
+/// The report of a run: the adapter, the settings, each method's timings and its frame time
+/// relative to the first method's.
+fn report(
+    args: &BenchArgs,
+    ctx: &GpuContext,
+    loaded: &crate::options::Loaded,
+    settings: nearfield_render::RenderSettings,
+    methods: &[String],
+    results: BTreeMap<String, MethodResult>,
+) -> Report {
+    let info = ctx.adapter_info();
+    // A CPU adapter (lavapipe) runs dispatches on worker threads and writes timestamps out of
+    // step with them: its per-pass numbers (and their sum) are not trustworthy, its wall clock
+    // is. Frame-time ratios then come from the wall clock.
+    let cpu = info.device_type == nearfield_render::wgpu::DeviceType::Cpu;
+    let frame_ms = |m: &MethodResult| match (cpu, m.gpu_total) {
+        (false, Some(t)) => t.median_ms,
+        _ => m.wall.median_ms,
+    };
+    let first = frame_ms(&results[&methods[0]]);
+    let overhead = methods
+        .iter()
+        .map(|m| (m.clone(), 100.0 * (frame_ms(&results[m]) / first - 1.0)))
+        .collect();
+    Report {
+        adapter: Adapter {
+            name: info.name.clone(),
+            backend: format!("{:?}", info.backend),
+            device_type: format!("{:?}", info.device_type),
+            timestamps: ctx.timestamps,
+        },
+        settings: Settings {
+            scene: args.scene.scene.clone(),
+            triangles: loaded.scene.triangle_count(),
+            size: [settings.size.0, settings.size.1],
+            env: loaded.env_source.to_string(),
+            frames: args.frames,
+            warmup: args.warmup,
+            shadow_size: settings.shadows.size,
+        },
+        methods: results,
+        method_order: methods.to_vec(),
+        overhead_pct_vs_first: overhead,
+        overhead_from: if cpu || !ctx.timestamps {
+            "wall"
+        } else {
+            "gpu"
+        }
+        .into(),
+    }
+}
+
 /// A method's renderer and its timings so far.
 struct Timed {
     renderer: Renderer,
@@ -181,7 +233,6 @@ pub fn run(args: BenchArgs) -> Result<()> {
         nearfield_render::technique::check_spec(m, &params)?;
     }
     let volume = plan.volume(&args.scene, &loaded)?;
-    let info = ctx.adapter_info();
     if args.ablate {
         return ablate(
             &args,
@@ -244,45 +295,7 @@ pub fn run(args: BenchArgs) -> Result<()> {
         .zip(timed)
         .map(|(method, t)| (method.clone(), t.result(ctx.timestamps)))
         .collect();
-    // A CPU adapter (lavapipe) runs dispatches on worker threads and writes timestamps out of
-    // step with them: its per-pass numbers (and their sum) are not trustworthy, its wall clock
-    // is. Frame-time ratios then come from the wall clock.
-    let cpu = info.device_type == nearfield_render::wgpu::DeviceType::Cpu;
-    let frame_ms = |m: &MethodResult| match (cpu, m.gpu_total) {
-        (false, Some(t)) => t.median_ms,
-        _ => m.wall.median_ms,
-    };
-    let first = frame_ms(&results[&methods[0]]);
-    let overhead = methods
-        .iter()
-        .map(|m| (m.clone(), 100.0 * (frame_ms(&results[m]) / first - 1.0)))
-        .collect();
-    let report = Report {
-        adapter: Adapter {
-            name: info.name.clone(),
-            backend: format!("{:?}", info.backend),
-            device_type: format!("{:?}", info.device_type),
-            timestamps: ctx.timestamps,
-        },
-        settings: Settings {
-            scene: args.scene.scene.clone(),
-            triangles: loaded.scene.triangle_count(),
-            size: [size.0, size.1],
-            env: loaded.env_source.to_string(),
-            frames: args.frames,
-            warmup: args.warmup,
-            shadow_size: settings.shadows.size,
-        },
-        methods: results,
-        method_order: methods.clone(),
-        overhead_pct_vs_first: overhead,
-        overhead_from: if cpu || !ctx.timestamps {
-            "wall"
-        } else {
-            "gpu"
-        }
-        .into(),
-    };
+    let report = report(&args, &ctx, &loaded, settings, &methods, results);
     print_table(&report);
     if let Some(p) = &args.json {
         let text = serde_json::to_string_pretty(&report)?;

@@ -26,7 +26,10 @@ fn storage_format(f: naga::StorageFormat) -> Option<TextureFormat> {
     Some(match f {
         S::Rgba16Float => TextureFormat::Rgba16Float,
         S::Rgba32Float => TextureFormat::Rgba32Float,
+        S::R16Float => TextureFormat::R16Float,
+        S::Rg16Float => TextureFormat::Rg16Float,
         S::R32Float => TextureFormat::R32Float,
+        S::Rg32Float => TextureFormat::Rg32Float,
         S::Rgba8Unorm => TextureFormat::Rgba8Unorm,
         S::Rgba32Uint => TextureFormat::Rgba32Uint,
         S::R32Uint => TextureFormat::R32Uint,

@@ -1,0 +1,225 @@
+//! The glue's passes in Bevy's `Core3d` schedule: after the prepasses and after the main pass,
+//! and the readback of the images a test or a tool asked for.
+
+use super::pipelines::{AddBindings, AoBindings, CaptureBindings, GluePipelines, InputsBindings};
+use super::prepare::NearFieldView;
+use crate::ExtractedNearField;
+use crate::readback::{ExtractedReadback, NearFieldImages, ReadbackBuffers, ReadbackImages};
+use bevy::core_pipeline::prepass::ViewPrepassTextures;
+use bevy::pbr::ScreenSpaceAmbientOcclusionResources;
+use bevy::prelude::*;
+use bevy::render::renderer::{RenderContext, RenderDevice, ViewQuery};
+use bevy::render::sync_world::MainEntity;
+use bevy::render::view::ViewTarget;
+use nearfield_render::wgpu;
+
+/// Full-screen pass of `pipeline` with the glue's group and `group` into `targets`.
+fn fullscreen(
+    encoder: &mut wgpu::CommandEncoder,
+    label: &str,
+    pipeline: &wgpu::RenderPipeline,
+    glue: &wgpu::BindGroup,
+    group: &wgpu::BindGroup,
+    targets: &[&wgpu::TextureView],
+    load: wgpu::LoadOp<wgpu::Color>,
+) {
+    let attachments: Vec<Option<wgpu::RenderPassColorAttachment>> = targets
+        .iter()
+        .map(|view| {
+            Some(wgpu::RenderPassColorAttachment {
+                view,
+                depth_slice: None,
+                resolve_target: None,
+                ops: wgpu::Operations {
+                    load,
+                    store: wgpu::StoreOp::Store,
+                },
+            })
+        })
+        .collect();
+    let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+        label: Some(label),
+        color_attachments: &attachments,
+        depth_stencil_attachment: None,
+        timestamp_writes: None,
+        occlusion_query_set: None,
+        multiview_mask: None,
+    });
+    pass.set_pipeline(pipeline);
+    pass.set_bind_group(0, glue, &[]);
+    pass.set_bind_group(1, group, &[]);
+    pass.draw(0..3, 0..1);
+}
+
+/// After Bevy's prepasses: nearfield's inputs from them, the technique, its ao into Bevy's.
+#[allow(clippy::type_complexity)]
+pub(super) fn inputs_and_technique(
+    view: ViewQuery<(
+        &NearFieldView,
+        &ViewPrepassTextures,
+        Option<&ScreenSpaceAmbientOcclusionResources>,
+        Option<&ExtractedReadback>,
+    )>,
+    pipelines: Res<GluePipelines>,
+    device: Res<RenderDevice>,
+    mut ctx: RenderContext,
+) {
+    let (nf, prepass, bevy_ao, readback) = view.into_inner();
+    let (Some(depth), Some(normal)) = (prepass.depth_only_view(), prepass.normal.as_ref()) else {
+        return;
+    };
+    let device = device.wgpu_device();
+    let motion = prepass
+        .motion_vectors
+        .as_ref()
+        .map(|m| &*m.texture.default_view)
+        // Unbound motion reads a valid image the shader ignores (`has_motion` = 0).
+        .unwrap_or(&nf.images.direct[0].view);
+    let inputs_group = InputsBindings {
+        bevy_depth: depth,
+        bevy_normal: &normal.texture.default_view,
+        bevy_motion: motion,
+    }
+    .bind_group(device, &pipelines.inputs_layout);
+    let info = *nf.info.lock().unwrap();
+    let encoder = ctx.command_encoder();
+    encoder.push_debug_group("nearfield");
+    fullscreen(
+        encoder,
+        "nearfield inputs",
+        &pipelines.inputs,
+        &nf.glue_group,
+        &inputs_group,
+        &[
+            &nf.images.view_depth.view,
+            &nf.images.normal.view,
+            &nf.images.motion.view,
+        ],
+        wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
+    );
+    {
+        let mut state = nf.state.lock().unwrap();
+        state.profiler.begin_frame();
+        nf.technique.encode(encoder, &mut state.profiler, info);
+    }
+    if let Some(bevy_ao) = bevy_ao {
+        let target = &bevy_ao.screen_space_ambient_occlusion_texture;
+        let ao_group = AoBindings {
+            near_field_ao: &nf.images.ao.view,
+            bevy_ao: &target.default_view,
+        }
+        .bind_group(device, &pipelines.ao_layout);
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some("nearfield ao into Bevy's"),
+            timestamp_writes: None,
+        });
+        pass.set_pipeline(&pipelines.ao);
+        pass.set_bind_group(0, &nf.glue_group, &[]);
+        pass.set_bind_group(1, &ao_group, &[]);
+        pass.dispatch_workgroups(nf.size.x.div_ceil(8), nf.size.y.div_ceil(8), 1);
+    }
+    if readback.is_some() {
+        let indirect = nf.images.indirect_irradiance.as_ref().map(|i| &i.texture);
+        ReadbackBuffers::copy(
+            &nf.readback,
+            device,
+            encoder,
+            &nf.images.ao.texture,
+            indirect,
+        );
+    }
+    encoder.pop_debug_group();
+}
+
+/// After Bevy's main pass: its colour is kept as the radiance the next frame gathers (before
+/// anything is added), then the indirect light is added where Bevy's deferred G-buffer gives
+/// the base colour.
+pub(super) fn capture_and_add(
+    view: ViewQuery<(
+        &NearFieldView,
+        &ViewTarget,
+        &ViewPrepassTextures,
+        &ExtractedNearField,
+        Option<&ExtractedReadback>,
+    )>,
+    pipelines: Res<GluePipelines>,
+    device: Res<RenderDevice>,
+    mut ctx: RenderContext,
+) {
+    let (nf, target, prepass, near_field, readback) = view.into_inner();
+    let device = device.wgpu_device();
+    let info = *nf.info.lock().unwrap();
+    // Frame i reads radiance[i % 2] as this frame's and the other as last frame's: Bevy's colour
+    // of frame i is next frame's.
+    let next = &nf.images.direct[(info.side() + 1) % 2].view;
+    let capture_group = CaptureBindings {
+        bevy_colour: target.main_texture_view(),
+    }
+    .bind_group(device, &pipelines.capture_layout);
+    let encoder = ctx.command_encoder();
+    fullscreen(
+        encoder,
+        "nearfield capture radiance",
+        &pipelines.capture,
+        &nf.glue_group,
+        &capture_group,
+        &[next],
+        wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
+    );
+    if readback.is_some()
+        && let Some(b) = nf.readback.lock().unwrap().as_ref()
+    {
+        b.copy_radiance(encoder, &nf.images.direct[(info.side() + 1) % 2].texture);
+    }
+    if !near_field.technique.has_indirect() || near_field.indirect_intensity == 0.0 {
+        return;
+    }
+    let Some(gbuffer) = prepass.deferred.as_ref() else {
+        return;
+    };
+    let Some(indirect) = nf.images.indirect_irradiance.as_ref() else {
+        return;
+    };
+    let Some((_, add)) = pipelines
+        .add
+        .iter()
+        .find(|(f, _)| *f == target.main_texture_format())
+    else {
+        return;
+    };
+    let add_group = AddBindings {
+        bevy_gbuffer: &gbuffer.texture.default_view,
+        indirect_irradiance: &indirect.view,
+    }
+    .bind_group(device, &pipelines.add_layout);
+    fullscreen(
+        encoder,
+        "nearfield add indirect",
+        add,
+        &nf.glue_group,
+        &add_group,
+        &[target.main_texture_view()],
+        wgpu::LoadOp::Load,
+    );
+}
+
+/// After the frame is submitted: maps the copies and stores them by camera.
+pub(super) fn collect(
+    device: Res<RenderDevice>,
+    images: Res<NearFieldImages>,
+    views: Query<(&MainEntity, &NearFieldView), With<ExtractedReadback>>,
+) {
+    for (main, nf) in &views {
+        let slot = nf.readback.lock().unwrap();
+        let Some(b) = slot.as_ref() else { continue };
+        let (size, ao, indirect_irradiance, radiance) = b.read(device.wgpu_device());
+        let out = ReadbackImages {
+            size,
+            frames: nf.frames(),
+            ao,
+            indirect_irradiance,
+            radiance,
+        };
+        images.insert(main.id(), out);
+    }
+}
