@@ -118,6 +118,11 @@ fn make_raster_pipeline(device: &wgpu::Device, p: &RasterPipeline) -> wgpu::Rend
     })
 }
 
+/// The default view of `t` (all of it, its own format and dimension).
+pub fn view(t: &wgpu::Texture) -> wgpu::TextureView {
+    t.create_view(&Default::default())
+}
+
 /// Workgroup counts for an 8×8 compute kernel over `size` pixels.
 pub fn groups_8x8(size: (u32, u32)) -> (u32, u32) {
     (size.0.div_ceil(8), size.1.div_ceil(8))

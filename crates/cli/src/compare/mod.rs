@@ -103,19 +103,7 @@ fn read_images(specs: &[String], size: (u32, u32)) -> Result<Vec<(String, Vec<[f
             ))
             .into());
         }
-        let path = std::path::Path::new(path.trim());
-        let img = exr_io::read(path).map_err(|e| BadInput(e.to_string()))?;
-        if (img.width, img.height) != size {
-            return Err(BadInput(format!(
-                "{}: image is {}x{}, the comparison is {}x{}",
-                path.display(),
-                img.width,
-                img.height,
-                size.0,
-                size.1
-            ))
-            .into());
-        }
+        let img = read_exr(std::path::Path::new(path.trim()), size, "image")?;
         out.push((name, img.value));
     }
     Ok(out)
@@ -211,7 +199,7 @@ impl Checked {
         let params = args.technique.params()?;
         let settings = args.technique.settings(size)?;
         let reference_file = match &args.reference_file {
-            Some(p) => Some((read_reference(p, size)?, p.clone())),
+            Some(p) => Some((read_exr(p, size, "reference")?, p.clone())),
             None => None,
         };
         let images = read_images(&args.images, size)?;
@@ -239,12 +227,12 @@ impl Checked {
     }
 }
 
-/// `--reference-file`: an EXR of the comparison's size.
-fn read_reference(p: &std::path::Path, size: (u32, u32)) -> Result<ReferenceImage> {
+/// An EXR of the comparison's size (`what` names it in the error).
+fn read_exr(p: &std::path::Path, size: (u32, u32), what: &str) -> Result<ReferenceImage> {
     let img = exr_io::read(p).map_err(|e| BadInput(e.to_string()))?;
     if (img.width, img.height) != size {
         return Err(BadInput(format!(
-            "{}: reference is {}x{}, the comparison is {}x{}",
+            "{}: {what} is {}x{}, the comparison is {}x{}",
             p.display(),
             img.width,
             img.height,

@@ -12,6 +12,28 @@ pub const SENDERS_WGSL: &str = include_str!("senders.wgsl");
 /// indexes the pass's `layer_views` storage array (ssdo direct and bounce, s3ho sample).
 pub const LAYERS_GLUE_WGSL: &str = include_str!("layers_glue.wgsl");
 
+/// A sampling technique's parameters' uniform (`params`, its bytes) and the interleaved sample
+/// sets of `samples` directions ([`interleaved_sets`]), labelled by `technique`.
+pub fn buffers(
+    device: &wgpu::Device,
+    technique: &str,
+    params: &[u8],
+    samples: u32,
+) -> (wgpu::Buffer, wgpu::Buffer) {
+    use wgpu::util::DeviceExt;
+    let params = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some(&format!("{technique} params")),
+        contents: params,
+        usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+    });
+    let sample_sets = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some(&format!("{technique} sample sets")),
+        contents: bytemuck::cast_slice(&interleaved_sets(samples)),
+        usage: wgpu::BufferUsages::STORAGE,
+    });
+    (params, sample_sets)
+}
+
 /// The paper's M×N sample texture with M = 4×4 sets: set m, sample i has a stratified elevation
 /// cos θ = 1 − (i + ½)/N (uniform solid angle, so every sample stands for Δω = 2π/N), an azimuth
 /// from the base-2 radical inverse and a length λ/R = v^(1/3) (points uniform in the hemisphere's

@@ -45,7 +45,7 @@ use crate::contract::technique::{
 use crate::passes::{ComputeStep, PingPong};
 use crate::profiler::GpuProfiler;
 pub use crate::settings::denoise::{Denoise, SvgfConfig, SvgfSettings};
-use crate::util;
+use crate::util::{self, view};
 use wgpu::util::DeviceExt;
 
 /// Composes a denoise kernel's source.
@@ -295,10 +295,6 @@ impl SvgfImages {
         textures.extend(self.spare.into_iter().flatten());
         textures
     }
-}
-
-fn view(t: &wgpu::Texture) -> wgpu::TextureView {
-    t.create_view(&Default::default())
 }
 
 /// Temporal accumulation's groups, per frame parity: the raw AOVs and last frame's means in,

@@ -12,6 +12,7 @@ use crate::contract::technique::{TechniqueContext, layered_texture, screen_textu
 use crate::passes::bilateral_blur::{BilateralBlur, BlurChain, BlurSettings};
 use crate::passes::reproject::{History, ReprojectParams, Reprojection};
 use crate::passes::{ComputeStep, PingPong};
+use crate::util::view;
 
 /// The compute steps of the machine, each with its constants.
 pub(super) struct Steps {
@@ -281,11 +282,6 @@ impl Images {
             .chain(self.upsampled.into_iter().flatten())
             .chain(pairs.into_iter().flatten())
     }
-}
-
-/// The default view of `t`.
-pub(super) fn view(t: &wgpu::Texture) -> wgpu::TextureView {
-    t.create_view(&Default::default())
 }
 
 /// Accumulate's bind groups, one per frame parity: the blurred (or raw) results in, last frame's

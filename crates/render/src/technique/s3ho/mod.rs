@@ -63,9 +63,7 @@ use crate::passes::shadow::NoLights;
 use crate::profiler::GpuProfiler;
 use crate::settings::Declared;
 use crate::targets::HDR_FORMAT;
-use crate::technique::samples::interleaved_sets;
 use groups::{Shared, filter_group, sample_group, shade_group};
-use wgpu::util::DeviceExt;
 
 pub use params::S3hoParams;
 pub use settings::Settings;
@@ -166,25 +164,6 @@ const IMAGES: [(&str, wgpu::TextureFormat); 10] = [
     ("s3ho scratch", HDR_FORMAT),
 ];
 
-/// The parameters' uniform and the interleaved sample sets of `samples` directions.
-fn buffers(
-    device: &wgpu::Device,
-    params: &S3hoParams,
-    samples: u32,
-) -> (wgpu::Buffer, wgpu::Buffer) {
-    let params = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-        label: Some("s3ho params"),
-        contents: bytemuck::bytes_of(params),
-        usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-    });
-    let sample_sets = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-        label: Some("s3ho sample sets"),
-        contents: bytemuck::cast_slice(&interleaved_sets(samples)),
-        usage: wgpu::BufferUsages::STORAGE,
-    });
-    (params, sample_sets)
-}
-
 fn create(
     ctx: &TechniqueContext,
     tp: &TechniqueParams,
@@ -207,7 +186,12 @@ fn create(
     let v = textures
         .each_ref()
         .map(|t| t.create_view(&Default::default()));
-    let (params, sample_sets) = buffers(device, &settings.params(ssbn), settings.samples);
+    let (params, sample_sets) = crate::technique::samples::buffers(
+        device,
+        "s3ho",
+        bytemuck::bytes_of(&settings.params(ssbn)),
+        settings.samples,
+    );
     let stack = LayerStack::new(device, i, ctx.scene, frame, settings.layers)
         .map_err(RenderError::setting(name))?;
     let no_lights = ctx.scene.is_none().then(|| NoLights::new(device));

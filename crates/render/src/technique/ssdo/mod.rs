@@ -56,10 +56,8 @@ use crate::passes::shadow::NoLights;
 use crate::profiler::GpuProfiler;
 use crate::settings::Declared;
 use crate::targets::HDR_FORMAT;
-use crate::technique::samples::interleaved_sets;
 use groups::{Shared, bounce_group, direct_group, resolve_group};
 use vpls::Vpls;
-use wgpu::util::DeviceExt;
 
 pub use params::SsdoParams;
 pub use settings::{LightSegment, Mode, PRESETS, Pattern, Settings};
@@ -217,9 +215,11 @@ fn create(
     let [raw_a, raw_b, scratch, blurred_a, blurred_b, raw_indirect] = &textures
         .each_ref()
         .map(|t| t.create_view(&Default::default()));
-    let (params, sample_sets) = buffers(
+    let gpu_params = variant.params(&settings, vpls.as_ref().map_or(0, |v| v.count));
+    let (params, sample_sets) = crate::technique::samples::buffers(
         device,
-        &variant.params(&settings, vpls.as_ref().map_or(0, |v| v.count)),
+        "ssdo",
+        bytemuck::bytes_of(&gpu_params),
         settings.samples,
     );
     let stack = LayerStack::new(device, i, ctx.scene, ctx.frame_group, settings.layers)
@@ -315,25 +315,6 @@ fn create(
         vpls,
         _textures: textures.into(),
     }))
-}
-
-/// The parameters' uniform and the interleaved sample sets of `samples` directions.
-fn buffers(
-    device: &wgpu::Device,
-    params: &SsdoParams,
-    samples: u32,
-) -> (wgpu::Buffer, wgpu::Buffer) {
-    let params = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-        label: Some("ssdo params"),
-        contents: bytemuck::bytes_of(params),
-        usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-    });
-    let sample_sets = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-        label: Some("ssdo sample sets"),
-        contents: bytemuck::cast_slice(&interleaved_sets(samples)),
-        usage: wgpu::BufferUsages::STORAGE,
-    });
-    (params, sample_sets)
 }
 
 /// The virtual point lights of ssdo-vpl (the environment's) and instant-radiosity (the lights'
