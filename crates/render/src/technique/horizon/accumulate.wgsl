@@ -1,5 +1,5 @@
 // accumulate.wgsl — the temporal running mean with disocclusion rejection, and the AOVs from it.
-// Derivations and sources: technique/horizon/mod.rs.
+// Sources: technique/horizon/mod.rs; the derivations sit beside the code (slice.wgsl, march.wgsl).
 
 // accumulate: running mean over up to `max_history` frames of the bent cone (xyz bent normal,
 // w ao), the near-field irradiance (w = frames in the mean) and the far field. Last frame's

@@ -6,7 +6,27 @@
 // search.wgsl's `out_cone`, `out_near`, `out_far`, one texel per 2×2 block) and the far field's
 // probes (`probes`, `visibility`, `atlas`, `smp`: far.wgsl's far_irradiance_here). accumulate.wgsl upsamples on its
 // way in; upsample.wgsl writes full-resolution images where the bilateral blur comes first.
-// Derivations and sources: technique/horizon/mod.rs.
+//
+// Half resolution (`resolution=half`, gtao, hbil and vbgi, half.wgsl): the search runs at one pixel
+// of each 2×2 block, the block's four in turn over frames ((0,0), (1,1), (1,0), (0,1)), reading
+// the full-resolution G-buffer; slice angles and step jitter follow the block grid, so that the
+// blocks around a pixel bring different directions. Every pixel then takes the four searched
+// pixels around it with the bilinear weights of its position, each times
+// (n·n_s)⁸ / (1 + (d/(0.01 depth))²), d the searched point's distance from the pixel's tangent
+// plane: a tap on another surface (across a silhouette or a crease) hardly counts, and a pixel
+// whose nearest taps all lie on other surfaces takes the likeliest of them. The bilinear weights
+// carry a floor of 10⁻³ for that case, the normals' term one of 10⁻¹² for a pixel whose every
+// tap faces 90° or more away (a roof's edge over a wall, one pixel wide). A pixel none of whose
+// taps sees a surface (a ledge one pixel wide against the sky, on the three frames of four whose
+// searched rows or columns miss it) is taken as open: ao 1, its own normal as the bent normal,
+// no near field, and the far field of an open hemisphere (the probe volume's irradiance, or the
+// sky's). Left dark, such pixels read a quarter of their light in the running mean. The far field (the environment through the visible arcs
+// or sectors) is a cosine-weighted integral at the searched pixel's normal n_s; each tap's is
+// carried to the pixel's normal n by E_sky(n)/E_sky(n_s), the open sky's SH irradiance at the two
+// (per channel; not where E_sky(n_s) is below 5 % of E_sky(n)): the visibility is shared by
+// neighbours, the normal is not where a normal map varies it. Accumulate upsamples on its way in;
+// with the bilateral blur the `upsample` pass writes full-resolution images first, which the blur
+// reads.
 
 // The upsample's tolerance: a tap counts half when its surface point lies this far (relative to
 // the pixel's view depth) from the pixel's tangent plane.

@@ -5,7 +5,7 @@
 // search.wgsl's `in_depth`, `in_normal`, `in_radiance`), the environment's radiance map, the far
 // field's probes and visibility, their sampler, the view (`cam`), the environment's uniform
 // (`e`) and the pass's `HorizonParams` (`p`) that they read.
-// Derivations and sources: technique/horizon/mod.rs.
+// The derivations sit beside the functions that compute them; sources: technique/horizon/mod.rs.
 
 // What one side of a slice march needs.
 struct March {
@@ -22,6 +22,16 @@ struct March {
 }
 
 // The side's horizon angle (x) and its near-field irradiance (yzw, NEAR only).
+// Only samples within the near-field radius R count
+// (V_R of docs/src/aovs.md); over the last `falloff`·R their rise fades out (GTAO's falloff).
+// Steps: t_j = r_px ((j + ξ)/steps)^power along the screen line, r_px the screen length of R at
+// the point (capped by `max_pixels`), ξ a per-pixel, per-frame jitter; with 4×4 interleaving the
+// march reads the pixel's own quarter-resolution layer, so offsets are multiples of 4 pixels.
+// Near field (Sec. 2.3, 3.4): L_d(x′) is read from the source radiance (this frame's direct
+// radiance on the first frame, else last frame's diffuse radiance reprojected); a sample whose
+// normal faces away from x is replaced by the last accepted one:
+// L ← mix(L, L(x′), smoothstep(a, b, −n′·ω)), ω = normalize(x′ − x). Eq. 19's (1 − F0) is the
+// receiver's, so it is applied once per pixel in `outputs`.
 fn march_side(depth_layers: texture_2d_array<f32>, normal_layers: texture_2d_array<f32>, radiance_layers: texture_2d_array<f32>, cam: View, p: HorizonParams, m: March, side_sign: f32, theta_init: f32, cos_init: f32) -> vec4<f32> {
     let layer_size = vec2<i32>(i32(p.layer_width), i32(p.layer_height));
     var cos_max = cos_init;
@@ -80,6 +90,12 @@ fn march_side(depth_layers: texture_2d_array<f32>, normal_layers: texture_2d_arr
     return vec4<f32>(theta, near);
 }
 
+// AO = Σ_i AO_i / Σ_i U_i and E_near = Σ_i Σ ΔE / Σ_i U_i
+// (both carry the 1/π of docs/src/aovs.md), bent normal = normalize(Σ_i D ñx + ω_o ñy), where
+// U_i = G(θ_front,init) + G(θ_back,init) is slice i's value for an open hemisphere. The paper's
+// mean (1/S) Σ AO_i is unbiased only over uniformly spread φ — a single tilted slice of an open
+// plane gives |n′| (cos γ + γ sin γ) ≠ 1 — so with 2 slices per pixel a plane would read as
+// noise around 1; the ratio (same expectation, since E[U_i] = 1) is exactly 1 there.
 // One pixel's results: bent cone (xyz world bent normal, w ao), near-field irradiance, far field.
 struct Horizon {
     cone: vec4<f32>,

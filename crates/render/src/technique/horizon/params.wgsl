@@ -1,5 +1,5 @@
 // params.wgsl — `HorizonParams` and the per-pixel noise shared by the horizon passes
-// (technique/horizon/mod.rs holds the derivations). A library: it declares no bindings (each
+// (the derivations: slice.wgsl, march.wgsl). A library: it declares no bindings (each
 // pass binds its `HorizonParams` in group 1 and passes it to the functions that read it).
 
 struct HorizonParams {
@@ -44,7 +44,7 @@ const FAR_SH: u32 = 1u;
 const FAR_ENVMAP: u32 = 2u;
 const FAR_SLICES: u32 = 3u;
 
-// Counts, fixed per pipeline (WGSL override constants; technique/horizon/mod.rs sets them).
+// Counts, fixed per pipeline (WGSL override constants; technique/horizon/stages.rs sets them).
 // Slices per pixel S.
 override SLICES: u32 = 2u;
 // Samples per side of a slice.

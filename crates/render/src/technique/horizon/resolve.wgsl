@@ -3,7 +3,7 @@
 // the history and the AOVs: accumulate.wgsl). A library (after common.wgsl, env.wgsl, far.wgsl
 // and params.wgsl): it declares no bindings; its functions take the textures, the sampler, the
 // view (`cam`), the environment's uniform (`e`) and the pass's `HorizonParams` (`p`) they read.
-// Derivations: technique/horizon/mod.rs and accumulate.wgsl.
+// Derivations: slice.wgsl, march.wgsl and accumulate.wgsl.
 
 fn energy_compensation(a: f32) -> f32 {
     return a * (1.0 + pow(max(1.0 - a, 0.0), 0.75) * 0.5);

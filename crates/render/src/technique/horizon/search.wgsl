@@ -1,5 +1,5 @@
 // search.wgsl — the horizon search in slices (the `horizon` kernel): ao, bent cone, near-field light and the far field through each slice's visible arcs.
-// Derivations and sources: technique/horizon/mod.rs.
+// Sources: technique/horizon/mod.rs; the derivations sit beside the code (slice.wgsl, march.wgsl).
 
 // horizon: one invocation per pixel of one layer. The 16 layers are stacked vertically in one
 // 2D dispatch (rows of workgroups [l·G, (l+1)·G) with G = ⌈layer height / 8⌉ serve layer l);

@@ -14,7 +14,7 @@ choice! {
         /// Pre-convolved diffuse map at the bent normal × F0(ao) (HBIL Sec. 2.2.3).
         Envmap = "envmap",
         /// The environment integrated over every slice's visible arcs (directional; beyond the
-        /// paper, see technique/horizon/mod.rs).
+        /// paper, see technique/horizon/march.wgsl).
         Slices = "slices",
     }
 }
@@ -24,7 +24,7 @@ choice! {
     pub enum Aperture {
         /// cos α = 1 − ao (HBIL Eq. 12).
         Eq12 = "eq12",
-        /// cos α = √(1 − ao): the cone whose cosine-weighted visibility is ao (see technique/horizon/mod.rs).
+        /// cos α = √(1 − ao): the cone whose cosine-weighted visibility is ao (see technique/horizon/accumulate.wgsl).
         Matched = "matched",
     }
 }

@@ -4,7 +4,7 @@
 // functions take the view (`cam`), the pass's `HorizonParams` (`p`) and the layer textures they
 // read (`depth_layers`, `normal_layers`: search.wgsl's `in_depth` and `in_normal`, described
 // there).
-// Derivations and sources: technique/horizon/mod.rs.
+// The derivations sit beside the functions that compute them; sources: technique/horizon/mod.rs.
 
 // What one invocation of a slice march (search.wgsl's `horizon`, vbgi's `bitmask`) works on:
 // the pixel it searches, where its results go, its layer texel and layer, and the position that
@@ -72,14 +72,35 @@ fn on_slice_line(cam: View, p: HorizonParams, pos: vec2<f32>, layer: u32, centre
     return vec4<f32>(eye + r * along, 1.0);
 }
 
-// The projected normal n′ = (n·d, n·ω_o) of slice direction `d`, a normal facing away from the
-// eye taken at the eye's horizon (n′y ≥ 0: technique/horizon/mod.rs), in world or view space
-// alike.
+// The projected normal n′ = (n·d, n·ω_o) of slice direction `d`, in world or view space alike.
+// Horizons are initialised from the normal (Sec. 2.1): with the projected normal
+// n′ = (n·D, n·ω_o) at slice angle γ = atan2(n′x, n′y), θ_front = γ + π/2 and θ_back = γ − π/2,
+// so they never fall below the tangent plane. A shading normal may face away from the eye (a
+// normal map's, or one interpolated across a silhouette: n·ω_o < 0). Its hemisphere then
+// reaches past the slice's half circle θ ∈ [−π, π]: the initial horizons cross (θ_back > 0),
+// the open hemisphere's weight U (below) can vanish or turn negative while the visible arcs'
+// weights do not, and the ratio estimators blow up (hbil with one slice wrote irradiance of
+// 8000 on Crytek Sponza's normal-mapped arcade). Such a normal is taken at the eye's horizon,
+// n′y = max(n·ω_o, 0) in every slice, which is the normal with its ω_o part removed (the
+// common length cancels in every ratio below): γ ∈ [−π/2, π/2], both horizons stay on their
+// sides, and every weight is ≥ 0. XeGTAO clamps the projected normal's angle the same way.
 fn projected_normal(n: vec3<f32>, d: vec3<f32>, omega_o: vec3<f32>) -> vec2<f32> {
     return vec2<f32>(dot(n, d), max(dot(n, omega_o), 0.0));
 }
 
-// ½ nx (θ − sin θ cos θ) + ½ ny sin² θ.
+// Slice integrals. For one slice with horizons θ0 ≤ 0 ≤ θ1 and n′ = (nx, ny) (unnormalised, so
+// that slices weigh by the projected normal's length as in GTAO), every quantity is an integral
+// ∫ f(θ) |sin θ| dθ over [θ0, θ1], and with
+//     G(θ) = ½ nx (θ − sin θ cos θ) + ½ ny sin² θ
+// (one antiderivative serves both sides because θ − sin θ cos θ is odd and sin² θ even):
+//   AO_i   = G(θ1) + G(θ0)                                            (HBIL Eq. 10–11)
+//   ñ′     = (Gx(θ1) + Gx(θ0), Gy(θ1) + Gy(θ0)),  Gx: n′ = (1, 0), Gy: n′ = (0, 1)   (Eq. 4–6)
+//   ΔE     = L_d(x′) (G(θ_old) − G(θ_new)) when a sample raises a horizon from θ_old to θ_new
+//                                                                       (Eq. 18, both sides)
+// Deviation: the paper prints Eq. 6 and Eq. 11 as ½ nx [θ1 − θ0 + sin θ0 cos θ0 − sin θ1 cos θ1];
+// with θ0 ≤ 0 that is not the integral of sin θ |sin θ| (it gives ñx = π/2 for the symmetric
+// horizons ±π/2, where the true value is 0); the G form above is the exact integral and agrees
+// with Jimenez et al.'s per-side â(h).
 fn slice_g(theta: f32, n: vec2<f32>) -> f32 {
     return slice_g_at(theta, vec2<f32>(cos(theta), sin(theta)), n);
 }
@@ -94,8 +115,15 @@ fn rotate_angle(c: vec2<f32>, r: vec2<f32>) -> vec2<f32> {
     return vec2<f32>(c.x * r.x - c.y * r.y, c.y * r.x + c.x * r.y);
 }
 
-// The local camera frame at x (technique/horizon/mod.rs): ω_o towards the eye,
-// ω_x = normalize(Y × ω_o) with Y the camera's up vector, ω_y = ω_o × ω_x.
+// Horizon search (HBIL Sec. 1.1–1.3, 2.1). At the surface point x (normal n) the local camera
+// frame is ω_o = normalize(eye − x), ω_x = normalize(Y × ω_o) with Y the camera's up vector,
+// ω_y = ω_o × ω_x. Slice φ has the tangent direction D(φ) = cos φ ω_x + sin φ ω_y; the plane
+// spanned by ω_o and D contains the eye, so it projects to a straight screen line through x,
+// which is marched both ways. A sample s on it lies in the slice (up to the snap to a texel
+// centre, removed by projecting s − x onto the slice plane), and its angle from ω_o is
+// exactly cos θ = (s − x)·ω_o / |s − x| — the local-camera horizon angle that Sec. 1.3 obtains
+// from the camera-space angle β by cos θ = (cos α z + sin α r)/√(r² + z²); computing it from the
+// vector in the local frame is the same correction without the intermediate angles.
 struct LocalFrame {
     o: vec3<f32>,
     x: vec3<f32>,

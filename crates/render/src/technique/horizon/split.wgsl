@@ -1,5 +1,5 @@
 // split.wgsl — the 4×4 deinterleave (HBIL Sec. 3.3): full-resolution geometry and radiance into 16 quarter-resolution layers.
-// Derivations and sources: technique/horizon/mod.rs.
+// Sources: technique/horizon/mod.rs; the derivations sit beside the code (slice.wgsl, march.wgsl).
 
 // split: full resolution → 16 layers (layer = (x % 4) + 4 (y % 4), texel = (x / 4, y / 4)).
 

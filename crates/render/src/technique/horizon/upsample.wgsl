@@ -1,7 +1,7 @@
 // upsample.wgsl — `resolution=half` with the bilateral blur (the `upsample` kernel): the
 // search's results, one texel per 2×2 block, brought to every pixel (half.wgsl) before the blur.
 // Without the blur accumulate.wgsl upsamples on its way in and this pass does not run.
-// Derivations and sources: technique/horizon/mod.rs.
+// Sources: technique/horizon/mod.rs; the derivations sit beside the code (slice.wgsl, march.wgsl).
 
 @group(1) @binding(0) var<uniform> params: HorizonParams;
 @group(1) @binding(1) var gb_normal: texture_2d<f32>;
