@@ -153,33 +153,31 @@ impl Spec {
     /// The near-field radius R (m): its `radius` setting (`--radius`, `--set radius=`, a preset,
     /// the spec), else the technique's default; `None` for a technique without one (`none`).
     pub fn radius(&self) -> Option<f32> {
-        let setting = self.desc.settings.iter().find(|s| s.key == "radius")?;
-        let typed = self
-            .params
-            .set
-            .iter()
-            .rev()
-            .find(|(k, _)| k == "radius")
-            .map(|(_, v)| v.as_str());
-        match (typed, self.params.radius) {
-            (Some(v), _) => v.parse().ok(),
-            (None, Some(r)) => Some(r),
-            (None, None) => setting.default.parse().ok(),
-        }
+        radius_in(self.desc, &self.params)
     }
 }
 
-/// The near-field radius R (m) a spec resolves to ([`Spec::radius`]).
-/// Unlike [`Spec::resolve`] it does not check the other settings.
+/// The radius of `desc` under resolved `params` ([`Spec::radius`]).
+fn radius_in(desc: &TechniqueDesc, params: &TechniqueParams) -> Option<f32> {
+    let setting = desc.settings.iter().find(|s| s.key == "radius")?;
+    let typed = params
+        .set
+        .iter()
+        .rev()
+        .find(|(k, _)| k == "radius")
+        .map(|(_, v)| v.as_str());
+    match (typed, params.radius) {
+        (Some(v), _) => v.parse().ok(),
+        (None, Some(r)) => Some(r),
+        (None, None) => setting.default.parse().ok(),
+    }
+}
+
+/// The near-field radius R (m) a spec resolves to ([`Spec::radius`]). Unlike [`Spec::resolve`]
+/// it does not check the other settings.
 pub fn radius_of(spec: &str, given: &TechniqueParams) -> Result<Option<f32>, RenderError> {
     let (desc, params) = resolve_params(spec, given)?;
-    let spec = Spec {
-        desc,
-        spec: spec.to_string(),
-        given: given.clone(),
-        params,
-    };
-    Ok(spec.radius())
+    Ok(radius_in(desc, &params))
 }
 
 /// Resolves a spec against the command line's parameters and parses its settings without a
