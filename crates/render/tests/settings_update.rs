@@ -102,3 +102,92 @@ fn uniform_settings_apply_in_place_and_match_a_rebuilt_technique() {
         assert_eq!(updated.rebuilds(), 1);
     }
 }
+
+/// A value of `s` other than its default, within its range.
+fn other_value(s: &nearfield_render::technique::Setting) -> String {
+    use nearfield_render::technique::SettingKind;
+    match s.kind {
+        SettingKind::Number {
+            lo, hi, integer, ..
+        } => {
+            let d: f32 = s.default.parse().unwrap();
+            // Halfway to a bound (a count's neighbour), so that the frame stays cheap.
+            let v = if integer {
+                if d + 1.0 <= hi { d + 1.0 } else { d - 1.0 }
+            } else if d != lo {
+                (d + lo) / 2.0
+            } else {
+                (d + hi.min(d.abs().max(1.0) * 4.0)) / 2.0
+            };
+            assert!((lo..=hi).contains(&v), "{}: {v} outside {lo}..={hi}", s.key);
+            if integer {
+                format!("{}", v as i64)
+            } else {
+                format!("{v}")
+            }
+        }
+        SettingKind::Toggle => if s.default == "on" { "off" } else { "on" }.into(),
+        SettingKind::Choice(words) => words.iter().find(|w| **w != s.default).unwrap().to_string(),
+    }
+}
+
+/// What rebuilds is what the declarations say: for every registered technique, each setting
+/// that applies to it, changed alone from the defaults, rebuilds the technique exactly when its
+/// role does (`Role::rebuilds`: counts, structure, the denoiser's shape) and is written in place
+/// otherwise (uniforms, filters). No family keeps a list of its own.
+#[test]
+fn a_setting_rebuilds_exactly_when_its_role_says() {
+    let Some(ctx) = common::context() else { return };
+    let scene = nearfield_scene::builtin::scene("boxes").unwrap();
+    let env = scene.default_env.load().unwrap();
+    let settings = nearfield_render::RenderSettings {
+        size: (16, 16),
+        ..Default::default()
+    };
+    let (mut checked, mut refused) = (0, Vec::new());
+    for desc in nearfield_render::technique::REGISTRY {
+        let mut r = Renderer::new(
+            &ctx,
+            &scene,
+            &env,
+            None,
+            scene.default_camera(),
+            &nearfield_render::technique::Spec::resolve(desc.name, &TechniqueParams::default())
+                .unwrap(),
+            settings,
+        )
+        .unwrap();
+        for s in desc.settings.iter().filter(|s| s.applies(desc.name)) {
+            let value = other_value(s);
+            let before = r.rebuilds();
+            if let Err(e) = r.set_technique(desc.name, &params(&[(s.key, &value)])) {
+                // A value another setting constrains (vpl_clamp ≤ R with the bounce on).
+                refused.push(format!("{} {}={value}: {e}", desc.name, s.key));
+                continue;
+            }
+            let rebuilt = r.rebuilds() > before;
+            assert_eq!(
+                rebuilt,
+                s.role.rebuilds(),
+                "{} {}={value} (role {}): rebuilt {rebuilt}",
+                desc.name,
+                s.key,
+                s.role.word()
+            );
+            // Back to the defaults, rebuilt or not as the same role says.
+            let before = r.rebuilds();
+            r.set_technique(desc.name, &TechniqueParams::default())
+                .unwrap();
+            assert_eq!(
+                r.rebuilds() > before,
+                s.role.rebuilds(),
+                "{} {}",
+                desc.name,
+                s.key
+            );
+            checked += 1;
+        }
+    }
+    assert!(checked > 150, "{checked} settings checked");
+    assert!(refused.len() <= 3, "refused: {refused:#?}");
+}

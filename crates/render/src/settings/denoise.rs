@@ -20,9 +20,9 @@ declare_settings! {
     /// Settings of the `svgf` denoiser (used where `denoise=svgf`).
     pub struct SvgfSettings {
         svgf_iterations: u32 = "4", integer(1, 6), denoiser, "", "svgf: à-trous iterations; iteration k spaces its 3×3 taps 2^k pixels apart (4: ±15 pixels)";
-        svgf_luminance: f32 = "4", number(0, 64), denoiser, "", "svgf: σ_l, a tap's value may differ from the centre's by this many standard deviations before its weight falls by e (0: no value term)";
-        svgf_depth: f32 = "0.02", log(1e-4, 10), denoiser, "", "svgf: tangent-plane distance, relative to view depth, at which a tap's weight falls by e";
-        svgf_normal: f32 = "64", number(0, 256), denoiser, "", "svgf: exponent σ_n on the normals' cosine";
+        svgf_luminance: f32 = "4", number(0, 64), filter, "", "svgf: σ_l, a tap's value may differ from the centre's by this many standard deviations before its weight falls by e (0: no value term)";
+        svgf_depth: f32 = "0.02", log(1e-4, 10), filter, "", "svgf: tangent-plane distance, relative to view depth, at which a tap's weight falls by e";
+        svgf_normal: f32 = "64", number(0, 256), filter, "", "svgf: exponent σ_n on the normals' cosine";
     }
 }
 

@@ -46,13 +46,13 @@ declare_settings! {
         reprojection: ReprojectMode = "scatter", choice, structural("hbil", "vbgi"), "", "`scatter` (forward, atomic depth test) then push/pull, or `gather` through motion vectors then push/pull";
         source: Source = "previous", choice, structural("hbil", "vbgi"), "", "near-field radiance: `previous` last frame's diffuse radiance, reprojected (bounces add up, Eq. 17); `direct` this frame's direct radiance (exactly one bounce)";
         temporal: bool = "on", toggle, denoiser, "", "running mean over frames, disocclusion-rejected (in svgf with `denoise=svgf`)";
-        history: u32 = "32", integer(1, 1024), denoiser, "", "frames in the running mean at most";
+        history: u32 = "32", integer(1, 1024), filter, "", "frames in the running mean at most";
         fresnel: bool = "on", toggle, uniform("hbil", "vbgi"), "", "(1 − F0) of the receiver on near-field light (Eq. 19)";
         step_power: f32 = "2", number(1, 4), uniform, "", "step distribution t_j ∝ ((j + ξ)/steps)^p (denser near the pixel)";
         max_pixels: f32 = "256", log(1, 8192), uniform, "pixels", "longest march (full resolution)";
         reject_a: f32 = "-0.1", number(-1, 1), uniform("hbil", "vbgi"), "", "sender rejection (HBIL Sec. 3.4): lower smoothstep edge on −n′·ω (< `reject_b`)";
         reject_b: f32 = "0.1", number(-1, 1), uniform("hbil", "vbgi"), "", "sender rejection: upper smoothstep edge";
-        blur_radius: u32 = "4", integer(0, 16), denoiser, "pixels", "blur half width with `denoise=bilateral` (Gaussian σ = radius/2; 4 weighs a 4×4 block nearly evenly)";
+        blur_radius: u32 = "4", integer(0, 16), filter, "pixels", "blur half width with `denoise=bilateral` (Gaussian σ = radius/2; 4 weighs a 4×4 block nearly evenly)";
         reject_depth: f32 = "0.02", log(1e-4, 1), uniform, "", "history/reprojection: largest distance from the current tangent plane, relative to view depth";
         reject_normal: f32 = "0.9", number(-1, 1), uniform, "", "history/reprojection: smallest cosine between the normals";
     }

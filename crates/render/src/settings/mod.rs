@@ -60,8 +60,12 @@ pub enum Role {
     /// A value the kernels read from a uniform buffer: written in place, no rebuild (`fit`
     /// fits these).
     Uniform,
-    /// Chooses or tunes the denoising (the denoiser, the running mean, the blur, svgf).
+    /// Chooses or shapes the denoising (the denoiser, the running mean, svgf's passes): a
+    /// change rebuilds the technique; `pareto` tries every value of a toggle or choice.
     Denoiser,
+    /// Tunes a denoising filter from a uniform (a blur's width and edge weights, the running
+    /// mean's length): written in place, neither fitted nor swept.
+    Filter,
 }
 
 impl Role {
@@ -72,7 +76,15 @@ impl Role {
             Role::Structural => "structural",
             Role::Uniform => "uniform",
             Role::Denoiser => "denoiser",
+            Role::Filter => "filter",
         }
+    }
+
+    /// Whether a change rebuilds the technique's pipelines and resources (what
+    /// [`Declared::same_build`] compares): counts, structure and the denoiser's shape do;
+    /// uniforms and filters are written in place.
+    pub const fn rebuilds(self) -> bool {
+        matches!(self, Role::Count | Role::Structural | Role::Denoiser)
     }
 }
 
@@ -173,6 +185,10 @@ pub struct Preset {
 /// A value a setting holds: parsed from what follows `key=` under its kind.
 pub trait SettingValue: Sized + Copy {
     fn parse(key: &str, value: &str, kind: &SettingKind) -> Result<Self, String>;
+    /// The value as a number, where it is one (what a count specialises a kernel with).
+    fn number(self) -> Option<f64> {
+        None
+    }
 }
 
 impl SettingValue for f32 {
@@ -181,6 +197,9 @@ impl SettingValue for f32 {
             SettingKind::Number { lo, hi, .. } => parse_number(key, value, lo, hi),
             _ => Err(format!("{key}: not a number setting")),
         }
+    }
+    fn number(self) -> Option<f64> {
+        Some(self.into())
     }
 }
 
@@ -197,6 +216,9 @@ impl SettingValue for u32 {
             }
             SettingKind::Toggle => Err(format!("{key}: not a number setting")),
         }
+    }
+    fn number(self) -> Option<f64> {
+        Some(self.into())
     }
 }
 
@@ -262,6 +284,22 @@ pub trait Declared: Default {
     const TABLE: &'static [Setting];
     /// Parses `key=value` into the field of that name; `Ok(false)` for a key it does not have.
     fn set(&mut self, key: &str, value: &str) -> Result<bool, String>;
+    /// Whether `other` builds the same pipelines and resources: every setting whose role
+    /// [`Role::rebuilds`] is equal (a technique's `update` rebuilds otherwise).
+    fn same_build(&self, other: &Self) -> bool;
+    /// Every count that is a number, by key, in declaration order: a kernel that declares
+    /// `override KEY` (the key in capitals) is specialised with it ([`count_constants`]).
+    fn counts(&self) -> Vec<(&'static str, f64)>;
+}
+
+/// The `override` constants of the kernel `source` among `counts` ([`Declared::counts`]):
+/// each count whose key, in capitals, the kernel declares as `override KEY`.
+pub fn count_constants(source: &str, counts: &[(&'static str, f64)]) -> Vec<(String, f64)> {
+    counts
+        .iter()
+        .map(|&(key, v)| (key.to_uppercase(), v))
+        .filter(|(name, _)| source.contains(&format!("override {name}:")))
+        .collect()
 }
 
 /// The [`Role`] of a declaration line.
@@ -278,6 +316,9 @@ macro_rules! setting_role {
     };
     (denoiser) => {
         $crate::settings::Role::Denoiser
+    };
+    (filter) => {
+        $crate::settings::Role::Filter
     };
 }
 
@@ -308,7 +349,7 @@ macro_rules! setting_kind {
 /// `key: Type = "default", kind(range), role("technique", …), "unit", "doc line";` where kind is
 /// `integer(lo, hi)`, `number(lo, hi)`, `log(lo, hi)` (a number best shown on a log scale),
 /// `toggle` (on | off), `choice` (an enum of [`choice!`]) or `values("1", "2")` (whole numbers
-/// from a list), and role is `count`, `structural`, `uniform` or `denoiser` ([`Role`]), with the
+/// from a list), and role is `count`, `structural`, `uniform`, `denoiser` or `filter` ([`Role`]), with the
 /// techniques it applies to in parentheses where it is not all of the family's.
 /// `flatten { field: Type, ... }` embeds other declared structs, whose keys join this one's
 /// (after its own; `@first { field: Type }` before the struct's lines puts a group first).
@@ -408,6 +449,28 @@ macro_rules! declare_settings {
                         Ok(false)
                     }
                 }
+            }
+
+            fn same_build(&self, other: &Self) -> bool {
+                true
+                $(&& (!$crate::setting_role!($role).rebuilds() || self.$field == other.$field))*
+                $($(&& $crate::settings::Declared::same_build(&self.$pfield, &other.$pfield))*)?
+                $($(&& $crate::settings::Declared::same_build(&self.$ffield, &other.$ffield))*)?
+            }
+
+            fn counts(&self) -> Vec<(&'static str, f64)> {
+                #[allow(unused_mut)]
+                let mut out: Vec<(&'static str, f64)> = Vec::new();
+                $($(out.extend($crate::settings::Declared::counts(&self.$pfield));)*)?
+                $(
+                    if $crate::setting_role!($role) == $crate::settings::Role::Count
+                        && let Some(v) = $crate::settings::SettingValue::number(self.$field)
+                    {
+                        out.push((stringify!($field), v));
+                    }
+                )*
+                $($(out.extend($crate::settings::Declared::counts(&self.$ffield));)*)?
+                out
             }
         }
     };

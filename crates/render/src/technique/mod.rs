@@ -270,9 +270,10 @@ pub fn book_pages() -> Vec<(String, String)> {
                      Settings of {}: `--set key=value` on the command line, `technique:key=value` \
                      (joined by `+`) in `--methods`, the panel in the viewer. The role says what a \
                      setting is for: a `count` scales the work (`pareto` sweeps it), a \
-                     `structural` setting shapes the passes (a change rebuilds the technique), a \
-                     `uniform` is written in place (`fit` fits these), a `denoiser` setting \
-                     chooses or tunes the denoising.\n\n{}",
+                     `structural` setting shapes the passes, a `denoiser` setting chooses or \
+                     shapes the denoising (a change of any of these three rebuilds the \
+                     technique); a `uniform` is written in place (`fit` fits these), and so is \
+                     a `filter`, a denoising filter's tuning.\n\n{}",
                     names.join(", "),
                     crate::settings::markdown_table(first.settings, &presets)
                 ),

@@ -3,7 +3,6 @@
 
 use super::{Panel, Requests};
 use crate::view::session::{Change, Side};
-use nearfield_render::settings::Role;
 use nearfield_render::technique::{self, SettingKind};
 
 impl Panel {
@@ -77,15 +76,15 @@ impl Panel {
 }
 
 /// A setting's hover text: its doc line, for numbers its unit, and whether a change rebuilds
-/// the technique (its role: counts and structural settings do; the history starts over).
+/// the technique (its role says: counts, structure and the denoiser's shape do; the history
+/// starts over).
 fn hover_text(setting: &technique::Setting) -> String {
     let mut text = setting.doc.to_string();
     if !setting.unit.is_empty() {
         text += &format!(" ({})", setting.unit);
     }
-    match setting.role {
-        Role::Count | Role::Structural => text += "; a change rebuilds the technique",
-        Role::Uniform | Role::Denoiser => {}
+    if setting.role.rebuilds() {
+        text += "; a change rebuilds the technique";
     }
     text
 }

@@ -44,6 +44,7 @@ use crate::contract::technique::{
 };
 use crate::passes::{ComputeStep, PingPong};
 use crate::profiler::GpuProfiler;
+use crate::settings::Declared;
 pub use crate::settings::denoise::{Denoise, SvgfConfig, SvgfSettings};
 use crate::util::{self, view};
 use wgpu::util::DeviceExt;
@@ -422,9 +423,7 @@ impl Technique for Denoised {
     fn update(&mut self, queue: &wgpu::Queue, tp: &TechniqueParams) -> Result<bool, RenderError> {
         let (denoise, config) =
             (self.config_fn)(tp).map_err(RenderError::setting(self.inner.name()))?;
-        if denoise != Denoise::Svgf
-            || config.svgf.svgf_iterations != self.config.svgf.svgf_iterations
-        {
+        if denoise != Denoise::Svgf || !config.svgf.same_build(&self.config.svgf) {
             return Ok(false);
         }
         if !self.inner.update(queue, tp)? {

@@ -4,7 +4,6 @@
 
 use super::march::{Flavor, March, MarchContext};
 use super::params::FAR_SLICES;
-use super::settings::Far;
 use super::stages::{
     Images, Split, StandIns, accumulate_groups, blur_settings, blur_stage, reproject_params,
     reprojection_stage, search_groups, steps, upsample_group,
@@ -17,6 +16,7 @@ use crate::passes::denoise::Denoise;
 use crate::passes::reproject::Reprojection;
 use crate::passes::{ComputeStep, PingPong};
 use crate::profiler::GpuProfiler;
+use crate::settings::Declared;
 use crate::util;
 use wgpu::util::DeviceExt;
 
@@ -176,21 +176,6 @@ fn search_size(half: bool, size: (u32, u32)) -> (u32, u32) {
     }
 }
 
-/// What shapes the passes' pipelines and resources: a change of any of these rebuilds.
-fn structure(s: &Settings) -> impl PartialEq + use<> {
-    (
-        s.march.temporal,
-        s.march.slices,
-        s.march.steps,
-        s.march.interleaved,
-        s.march.resolution,
-        s.march.reprojection,
-        s.march.source,
-        s.denoise,
-        s.far == Far::Slices,
-    )
-}
-
 impl Technique for Horizon {
     fn name(&self) -> &'static str {
         self.name
@@ -266,7 +251,7 @@ impl Technique for Horizon {
 
     fn update(&mut self, queue: &wgpu::Queue, tp: &TechniqueParams) -> Result<bool, RenderError> {
         let settings = (self.flavor.settings)(tp).map_err(RenderError::setting(self.name))?;
-        if structure(&settings) != structure(&self.settings)
+        if !settings.same_build(&self.settings)
             || !self
                 .march
                 .update(queue, tp)

@@ -52,9 +52,9 @@ pub trait March: Send + Sync {
     /// Group 1 of the kernel.
     fn layout(&self) -> &wgpu::BindGroupLayout;
     fn bind_group(&self, device: &wgpu::Device, io: MarchIo) -> wgpu::BindGroup;
-    /// The kernel's WGSL, its entry point, and its override constants besides `SLICES` and
-    /// `STEPS`.
-    fn kernel(&self) -> (String, &'static str, Vec<(&'static str, f64)>);
+    /// The kernel's WGSL, its entry point, and its override constants besides the machinery's
+    /// counts (`SLICES`, `STEPS`) and `HALF`.
+    fn kernel(&self) -> (String, &'static str, Vec<(String, f64)>);
     /// Uploads per-frame data before the frame is recorded (the peeled layer's cameras).
     fn prepare(&self, _queue: &wgpu::Queue, _camera: &nearfield_scene::Camera) {}
     /// Records passes the march needs before the split (vbgi's second depth layer).
@@ -109,7 +109,8 @@ impl March for HorizonMarch {
         .bind_group(device, &self.layout)
     }
 
-    fn kernel(&self) -> (String, &'static str, Vec<(&'static str, f64)>) {
-        (search::source(), "horizon", self.work.to_vec())
+    fn kernel(&self) -> (String, &'static str, Vec<(String, f64)>) {
+        let work = self.work.iter().map(|&(k, v)| (k.to_string(), v));
+        (search::source(), "horizon", work.collect())
     }
 }

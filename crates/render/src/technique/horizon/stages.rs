@@ -12,6 +12,7 @@ use crate::contract::technique::{TechniqueContext, layered_texture, screen_textu
 use crate::passes::bilateral_blur::{BilateralBlur, BlurChain, BlurSettings};
 use crate::passes::reproject::{History, ReprojectParams, Reprojection};
 use crate::passes::{ComputeStep, PingPong};
+use crate::settings::{Declared, count_constants};
 use crate::util::view;
 
 /// The compute steps of the machine, each with its constants.
@@ -37,16 +38,15 @@ pub(super) fn steps(
 ) -> Steps {
     let (device, frame) = (ctx.device, ctx.frame_group);
     let near = p.indirect != 0;
-    let (search_source, search_entry, march_counts) = march.kernel();
-    let mut counts = vec![
-        ("SLICES", settings.march.slices as f64),
-        ("STEPS", settings.march.steps as f64),
-    ];
-    counts.extend(march_counts);
+    let (search_source, search_entry, march_constants) = march.kernel();
+    let far_field = frame.far_field_constant();
+    // The counts the search kernel declares (`SLICES`, `STEPS`), the march's own, and the rest.
+    let mut owned = count_constants(&search_source, &settings.counts());
+    owned.extend(march_constants);
+    let mut counts: Vec<(&str, f64)> = owned.iter().map(|(k, v)| (k.as_str(), *v)).collect();
     if half {
         counts.push(("HALF", 1.0));
     }
-    let far_field = frame.far_field_constant();
     counts.push(far_field);
     let work = work(near, p);
     let step = |label: &'static str, source: String, entry: &str, layout, constants: &[_]| {

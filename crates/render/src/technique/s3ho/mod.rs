@@ -61,7 +61,7 @@ use crate::passes::denoise::{Denoise, SvgfConfig};
 use crate::passes::layers::LayerStack;
 use crate::passes::shadow::NoLights;
 use crate::profiler::GpuProfiler;
-use crate::settings::Declared;
+use crate::settings::{Declared, count_constants};
 use crate::targets::HDR_FORMAT;
 use groups::{Shared, filter_group, sample_group, shade_group};
 
@@ -232,18 +232,18 @@ fn create(
         },
     );
     let far_field = frame.far_field_constant();
-    let counts = [
-        ("SAMPLES", settings.samples as f64),
-        ("STEPS", settings.steps as f64),
-        far_field,
-    ];
-    // A compute step over a (layout, group) pair: the step and its group.
-    let pass =
-        |label: &'static str, source: String, entry: &str, (layout, group), constants: &[_]| {
-            let module = crate::pipeline_cache::shader_module(device, label, &source);
-            let step = ComputeStep::new(device, label, &module, entry, frame, &layout, constants);
-            (step, group)
-        };
+    let counts = settings.counts();
+    // A compute step over a (layout, group) pair, specialised by the counts its kernel declares
+    // (`SAMPLES`, `STEPS`) and `extra`: the step and its group.
+    let pass = |label: &'static str, source: String, entry: &str, (layout, group), extra: &[_]| {
+        let module = crate::pipeline_cache::shader_module(device, label, &source);
+        let counted = count_constants(&source, &counts);
+        let mut constants: Vec<(&str, f64)> =
+            counted.iter().map(|(k, v)| (k.as_str(), *v)).collect();
+        constants.extend_from_slice(extra);
+        let step = ComputeStep::new(device, label, &module, entry, frame, &layout, &constants);
+        (step, group)
+    };
     Ok(Box::new(S3ho {
         name,
         settings,
@@ -252,7 +252,13 @@ fn create(
         ssbn,
         indirect: !ssbn && settings.indirect,
         blur_on: blurred,
-        sample: pass(name, sample::source(), "sample_pass", sample_pass, &counts),
+        sample: pass(
+            name,
+            sample::source(),
+            "sample_pass",
+            sample_pass,
+            &[far_field],
+        ),
         filter: pass(
             "sh filter",
             filter::source(),
@@ -282,11 +288,6 @@ fn create(
     }))
 }
 
-/// What shapes the passes' pipelines and resources: a change of any of these rebuilds.
-fn structure(s: &Settings) -> impl PartialEq + use<> {
-    (s.samples, s.steps, s.layers, s.denoise)
-}
-
 impl Technique for S3ho {
     fn name(&self) -> &'static str {
         self.name
@@ -294,7 +295,7 @@ impl Technique for S3ho {
 
     fn update(&mut self, queue: &wgpu::Queue, tp: &TechniqueParams) -> Result<bool, RenderError> {
         let settings = Settings::from_params(tp).map_err(RenderError::setting(self.name))?;
-        if structure(&settings) != structure(&self.settings) {
+        if !settings.same_build(&self.settings) {
             return Ok(false);
         }
         let p = settings.params(self.ssbn);

@@ -54,7 +54,7 @@ use crate::passes::denoise::{Denoise, SvgfConfig};
 use crate::passes::layers::LayerStack;
 use crate::passes::shadow::NoLights;
 use crate::profiler::GpuProfiler;
-use crate::settings::Declared;
+use crate::settings::{Declared, count_constants};
 use crate::targets::HDR_FORMAT;
 use groups::{Shared, bounce_group, direct_group, resolve_group};
 use vpls::Vpls;
@@ -257,15 +257,16 @@ fn create(
     );
     let blur = BilateralBlur::new(device, frame, blur_settings(&settings));
     let far_field = frame.far_field_constant();
-    let counts = [
-        ("SAMPLES", settings.samples as f64),
-        ("STEPS", settings.steps as f64),
-        far_field,
-    ];
-    // (step label, entry point), (shader label, source).
-    let step = |(label, entry), (module, source): (&str, String), layout, constants: &[_]| {
-        let module = crate::pipeline_cache::shader_module(device, module, &source);
-        ComputeStep::new(device, label, &module, entry, frame, layout, constants)
+    let counts = settings.counts();
+    // (step label, entry point), (shader label, source); specialised by the counts the kernel
+    // declares (`SAMPLES`, `STEPS`).
+    let step = |(label, entry), (module, source): (&str, String), layout| {
+        let shader = crate::pipeline_cache::shader_module(device, module, &source);
+        let counted = count_constants(&source, &counts);
+        let mut constants: Vec<(&str, f64)> =
+            counted.iter().map(|(k, v)| (k.as_str(), *v)).collect();
+        constants.push(far_field);
+        ComputeStep::new(device, label, &shader, entry, frame, layout, &constants)
     };
     Ok(Box::new(Ssdo {
         name,
@@ -279,7 +280,6 @@ fn create(
                 (name, "direct"),
                 ("ssdo direct", direct::source()),
                 &direct_layout,
-                &counts,
             ),
             direct_bg,
         ),
@@ -288,7 +288,6 @@ fn create(
                 ("resolve", "resolve"),
                 ("ssdo resolve", resolve::source()),
                 &resolve_layout,
-                &[far_field],
             ),
             resolve_bg,
         ),
@@ -297,7 +296,6 @@ fn create(
                 ("bounce", "bounce"),
                 ("ssdo bounce", bounce::source()),
                 &bounce_layout,
-                &counts,
             ),
             bounce_bg,
         ),
@@ -419,13 +417,6 @@ fn blur_settings(settings: &Settings) -> BlurSettings {
     }
 }
 
-/// What shapes the passes' pipelines and resources: a change of any of these rebuilds.
-fn structure(s: &Settings) -> impl PartialEq + use<> {
-    (
-        s.samples, s.steps, s.layers, s.vpls, s.vpl_map, s.rsm, s.denoise,
-    )
-}
-
 impl Technique for Ssdo {
     fn name(&self) -> &'static str {
         self.name
@@ -433,7 +424,7 @@ impl Technique for Ssdo {
 
     fn update(&mut self, queue: &wgpu::Queue, tp: &TechniqueParams) -> Result<bool, RenderError> {
         let settings = self.variant.settings(tp)?;
-        if structure(&settings) != structure(&self.settings) {
+        if !settings.same_build(&self.settings) {
             return Ok(false);
         }
         let vpl_count = self.vpls.as_ref().map_or(0, |v| v.count);

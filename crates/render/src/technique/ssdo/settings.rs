@@ -64,9 +64,9 @@ declare_settings! {
         rsm: u32 = "256", integer(16, 1024), structural("instant-radiosity"), "", "reflective-shadow-map side per light view (instant-radiosity)";
         vpl_clamp: f32 = "0.5", log(0, 1e6), uniform("instant-radiosity"), "m", "smallest distance in a virtual point light's 1/d² (instant-radiosity); with `bounce=on` it must be ≤ R, since the screen-space bounce adds back what it removes (the default becomes R where R is smaller)";
         denoise: Denoise = "bilateral", choice, denoiser, "", "`bilateral` geometry-aware blur of visibility, direct and indirect radiance; `svgf` the shared spatio-temporal denoiser on the AOVs; `off` none";
-        blur_radius: u32 = "4", integer(0, 16), denoiser, "pixels", "blur half width (≥ 4 hides the 4×4 interleaving)";
-        blur_depth: f32 = "0.01", log(1e-4, 10), denoiser, "", "tangent-plane distance, relative to view depth, at which a tap's weight falls by e";
-        blur_normal: f32 = "8", number(0, 128), denoiser, "", "exponent on the normals' cosine in the blur";
+        blur_radius: u32 = "4", integer(0, 16), filter, "pixels", "blur half width (≥ 4 hides the 4×4 interleaving)";
+        blur_depth: f32 = "0.01", log(1e-4, 10), filter, "", "tangent-plane distance, relative to view depth, at which a tap's weight falls by e";
+        blur_normal: f32 = "8", number(0, 128), filter, "", "exponent on the normals' cosine in the blur";
     }
     flatten { layers: LayerSettings, svgf: SvgfSettings }
 }

@@ -2,12 +2,13 @@
 //! kernel ([`super::bitmask`]), its uniforms, and the second depth layer it reads the thickness
 //! from (depth peeling, deinterleaved by [`super::back`] with interleaving).
 
-use super::{Bitmask, Settings, back, bitmask};
+use super::{Settings, back, bitmask};
 use crate::RenderError;
 use crate::contract::technique::{TechniqueParams, layered_texture, screen_texture};
 use crate::passes::ComputeStep;
 use crate::passes::layers::{LayerSettings, LayerStack};
 use crate::profiler::GpuProfiler;
+use crate::settings::{Declared, count_constants};
 use crate::technique::horizon::{March, MarchContext, MarchIo};
 use crate::util;
 use wgpu::util::DeviceExt;
@@ -15,7 +16,8 @@ use wgpu::util::DeviceExt;
 /// The bitmask march and what it owns.
 pub struct BitmaskMarch {
     layout: wgpu::BindGroupLayout,
-    bitmask: Bitmask,
+    /// vbgi's settings it was made with.
+    settings: Settings,
     /// `VbgiParams`.
     params: wgpu::Buffer,
     /// With `thickness=layer`: the second depth layer.
@@ -41,9 +43,8 @@ fn array_view(t: &wgpu::Texture) -> wgpu::TextureView {
 pub fn create(m: &MarchContext) -> Result<Box<dyn March>, RenderError> {
     let ctx = m.ctx;
     let device = ctx.device;
-    let (_, b) = Settings::from_params(m.tp)
-        .map_err(RenderError::setting(m.name))?
-        .split();
+    let settings = Settings::from_params(m.tp).map_err(RenderError::setting(m.name))?;
+    let (_, b) = settings.split();
     let p = m.params;
     let params = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
         label: Some("vbgi params"),
@@ -116,7 +117,7 @@ pub fn create(m: &MarchContext) -> Result<Box<dyn March>, RenderError> {
     textures.extend(split_back);
     Ok(Box::new(BitmaskMarch {
         layout: bitmask::BitmaskBindings::layout(device),
-        bitmask: b,
+        settings,
         params,
         layers,
         back_view,
@@ -146,16 +147,16 @@ impl March for BitmaskMarch {
         .bind_group(device, &self.layout)
     }
 
-    fn kernel(&self) -> (String, &'static str, Vec<(&'static str, f64)>) {
-        (
-            bitmask::source(),
-            "bitmask",
-            [
-                vec![("SECTORS", self.bitmask.sectors as f64)],
-                self.work.to_vec(),
-            ]
-            .concat(),
-        )
+    fn kernel(&self) -> (String, &'static str, Vec<(String, f64)>) {
+        let source = bitmask::source();
+        // vbgi's own counts (`SECTORS`); the machinery specialises its shared ones.
+        let shared = self.settings.march.counts();
+        let own: Vec<_> = (self.settings.counts().into_iter())
+            .filter(|c| !shared.contains(c))
+            .collect();
+        let mut constants = count_constants(&source, &own);
+        constants.extend(self.work.iter().map(|&(k, v)| (k.to_string(), v)));
+        (source, "bitmask", constants)
     }
 
     fn prepare(&self, queue: &wgpu::Queue, camera: &nearfield_scene::Camera) {
@@ -177,12 +178,13 @@ impl March for BitmaskMarch {
     }
 
     fn update(&mut self, queue: &wgpu::Queue, tp: &TechniqueParams) -> Result<bool, String> {
-        let (_, b) = Settings::from_params(tp)?.split();
-        if (b.sectors, b.layer) != (self.bitmask.sectors, self.bitmask.layer) {
+        let settings = Settings::from_params(tp)?;
+        if !settings.same_build(&self.settings) {
             return Ok(false);
         }
+        let (_, b) = settings.split();
         queue.write_buffer(&self.params, 0, bytemuck::bytes_of(&b.params));
-        self.bitmask = b;
+        self.settings = settings;
         Ok(true)
     }
 }
