@@ -353,13 +353,14 @@ macro_rules! setting_kind {
 /// techniques it applies to in parentheses where it is not all of the family's.
 /// `flatten { field: Type, ... }` embeds other declared structs, whose keys join this one's
 /// (after its own; `@first { field: Type }` before the struct's lines puts a group first).
+/// Attributes before a line (`#[cfg(…)]`) apply to everything it declares.
 #[macro_export]
 macro_rules! declare_settings {
     (
         $(#[$meta:meta])*
         pub struct $name:ident {
             $(@first { $($pfield:ident : $pty:ty),* $(,)? })?
-            $($field:ident : $ty:ty = $default:literal, $kind:ident $(($($arg:tt)*))?, $role:ident $(($($only:literal),+))?, $unit:literal, $doc:literal;)*
+            $($(#[$fattr:meta])* $field:ident : $ty:ty = $default:literal, $kind:ident $(($($arg:tt)*))?, $role:ident $(($($only:literal),+))?, $unit:literal, $doc:literal;)*
         }
         $(flatten { $($ffield:ident : $fty:ty),* $(,)? })?
     ) => {
@@ -371,6 +372,7 @@ macro_rules! declare_settings {
                 pub $pfield: $pty,
             )*)?
             $(
+                $(#[$fattr])*
                 #[doc = concat!("`", stringify!($field), "`: ", $doc, ". Default ", $default, ".")]
                 pub $field: $ty,
             )*
@@ -383,6 +385,7 @@ macro_rules! declare_settings {
         impl $name {
             /// This struct's own lines of the table (without flattened groups).
             const OWN: &'static [$crate::settings::Setting] = &[$(
+                $(#[$fattr])*
                 $crate::settings::Setting {
                     key: stringify!($field),
                     kind: $crate::setting_kind!($kind $(($($arg)*))?, $ty),
@@ -408,6 +411,7 @@ macro_rules! declare_settings {
                 $name {
                     $($($pfield: <$pty>::default(),)*)?
                     $(
+                        $(#[$fattr])*
                         $field: <$ty as $crate::settings::SettingValue>::parse(
                             stringify!($field),
                             $default,
@@ -426,6 +430,7 @@ macro_rules! declare_settings {
             fn set(&mut self, key: &str, value: &str) -> Result<bool, String> {
                 match key {
                     $(
+                        $(#[$fattr])*
                         stringify!($field) => {
                             self.$field = <$ty as $crate::settings::SettingValue>::parse(
                                 key,
@@ -452,8 +457,13 @@ macro_rules! declare_settings {
             }
 
             fn same_build(&self, other: &Self) -> bool {
+                $(
+                    $(#[$fattr])*
+                    if $crate::setting_role!($role).rebuilds() && self.$field != other.$field {
+                        return false;
+                    }
+                )*
                 true
-                $(&& (!$crate::setting_role!($role).rebuilds() || self.$field == other.$field))*
                 $($(&& $crate::settings::Declared::same_build(&self.$pfield, &other.$pfield))*)?
                 $($(&& $crate::settings::Declared::same_build(&self.$ffield, &other.$ffield))*)?
             }
@@ -463,6 +473,7 @@ macro_rules! declare_settings {
                 let mut out: Vec<(&'static str, f64)> = Vec::new();
                 $($(out.extend($crate::settings::Declared::counts(&self.$pfield));)*)?
                 $(
+                    $(#[$fattr])*
                     if $crate::setting_role!($role) == $crate::settings::Role::Count
                         && let Some(v) = $crate::settings::SettingValue::number(self.$field)
                     {

@@ -10,6 +10,8 @@ pub mod horizon;
 pub mod none;
 pub mod s3ho;
 pub mod samples;
+#[cfg(feature = "scratch")]
+pub mod scratch;
 pub mod ssdo;
 pub mod vbgi;
 
@@ -86,6 +88,8 @@ pub const REGISTRY: &[TechniqueDesc] = &[
     horizon::GTAO,
     horizon::HBIL,
     vbgi::VBGI,
+    #[cfg(feature = "scratch")]
+    scratch::DESC,
 ];
 
 /// Names of all registered techniques.

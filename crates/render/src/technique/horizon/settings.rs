@@ -36,6 +36,8 @@ declare_settings! {
         far: Far = "slices", choice, structural("hbil"), "", "hbil's far field: `sh` SH irradiance through the bent cone (Sec. 2.2.4); `envmap` pre-convolved diffuse map at the bent normal × F0(ao) (Sec. 2.2.3); `slices` the environment integrated over each slice's visible arcs";
         aperture: Aperture = "matched", choice, uniform("hbil"), "", "hbil, `far=sh`: cone aperture `eq12` cos α = 1 − ao, or `matched` cos α = √(1 − ao)";
         falloff: f32 = "0.1", number(0, 1), uniform, "", "an occluder's rise fades out over the last `falloff`·R";
+        #[cfg(feature = "scratch")]
+        scratch: f32 = "0", number(0, 1), uniform("gtao"), "", "the test build's scratch setting (tests/scratch.rs)";
         denoise: Denoise = "bilateral", choice, denoiser, "", "`bilateral` geometry-aware blur of the raw results (merges a 4×4 block's directions) then the running mean; `svgf` the shared spatio-temporal denoiser on the AOVs; `off` raw results (with the running mean)";
     }
     flatten { svgf: SvgfSettings }
