@@ -4,7 +4,6 @@ technique's `quality=fitted` preset, every value commented with the fit that pro
 training and held-out errors. A test (crates/cli/tests/book.rs) checks that they agree."""
 import json, pathlib
 root = pathlib.Path(__file__).resolve().parent.parent
-order = ["ssao", "ssdo", "ssdo-vpl", "instant-radiosity", "s3ho", "ssbn", "gtao", "hbil", "vbgi"]
 out = ['''//! The `quality=fitted` preset of every technique: its free constants fitted against the
 //! reference by `nearfield fit` (scripts/fits.sh; the runs are docs/src/fits/TECHNIQUE.json and
 //! the book's results page). Written by scripts/fitted-presets.py from those runs: each preset
@@ -24,10 +23,13 @@ pub const fn with_fitted<const N: usize>(base: &[Preset], fitted: Preset) -> [Pr
     }
     assert!(base.len() + 1 == N, "one fitted preset after the family's");
     out
-}
-''']
-for t in order:
-    f = json.loads((root / f"docs/src/fits/{t}.json").read_text())
+}''']
+# Every fit run (docs/src/fits/TECHNIQUE.json; other files there, such as cameras, have no
+# "params"), by technique name.
+fits = [(p.stem, json.loads(p.read_text())) for p in sorted((root / "docs/src/fits").glob("*.json"))]
+for t, f in fits:
+    if "params" not in f or "command" not in f:
+        continue
     name = t.upper().replace("-", "_")
     tr, ho = f["train"], f["holdout"]
     change = 100 * (ho["after"] / ho["before"] - 1)
