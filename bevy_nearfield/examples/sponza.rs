@@ -316,16 +316,16 @@ fn configure(commands: &mut Commands, camera: Entity, name: &str, options: &Opti
     )>();
     let mut settings = Vec::new();
     let technique = match name {
-        "gtao" => NearFieldTechnique::Gtao,
+        "gtao" => NearFieldTechnique::GTAO,
         "gtao-budget" => {
             settings = GTAO_BUDGET
                 .iter()
                 .map(|(k, v)| (k.to_string(), v.to_string()))
                 .collect();
-            NearFieldTechnique::Gtao
+            NearFieldTechnique::GTAO
         }
-        "hbil" => NearFieldTechnique::Hbil,
-        "vbgi" => NearFieldTechnique::Vbgi,
+        "hbil" => NearFieldTechnique::HBIL,
+        "vbgi" => NearFieldTechnique::VBGI,
         "bevy-ssao" => {
             c.insert(ScreenSpaceAmbientOcclusion {
                 quality_level: ScreenSpaceAmbientOcclusionQualityLevel::High,

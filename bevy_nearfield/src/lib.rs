@@ -37,33 +37,84 @@ use std::sync::{Arc, Mutex};
 
 pub use readback::{NearFieldImages, NearFieldReadback, ReadbackImages};
 
-/// The technique a [`NearField`] runs (nearfield's names).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Reflect)]
-pub enum NearFieldTechnique {
-    /// Ground-truth-based ambient occlusion (Jimenez et al. 2016): ao only.
-    Gtao,
-    /// Horizon-based indirect lighting (Mayaux 2018): ao and one bounce from last frame's colour.
-    Hbil,
-    /// Visibility-bitmask GI (horizon slices with thickness): ao and one bounce, denoised.
-    #[default]
-    Vbgi,
-}
+/// The technique a [`NearField`] runs: a name from nearfield's registry
+/// (`nearfield_render::technique::REGISTRY`), checked with the rest of the settings. `GTAO`,
+/// `HBIL` and `VBGI` are the ones the book measures in Bevy; every registered technique that
+/// needs no nearfield scene (its lights and geometry) runs, the others are refused with one line.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Reflect)]
+pub struct NearFieldTechnique(&'static str);
 
 impl NearFieldTechnique {
-    /// nearfield's name of the technique (`nearfield render --method NAME`).
-    pub fn name(self) -> &'static str {
-        match self {
-            NearFieldTechnique::Gtao => "gtao",
-            NearFieldTechnique::Hbil => "hbil",
-            NearFieldTechnique::Vbgi => "vbgi",
+    /// Ground-truth-based ambient occlusion (Jimenez et al. 2016): ao only.
+    pub const GTAO: Self = Self::registered("gtao");
+    /// Horizon-based indirect lighting (Mayaux 2018): ao and one bounce from last frame's colour.
+    pub const HBIL: Self = Self::registered("hbil");
+    /// Visibility-bitmask GI (horizon slices with thickness): ao and one bounce, denoised.
+    pub const VBGI: Self = Self::registered("vbgi");
+
+    /// The technique registered as `name`; a name the registry does not hold fails to compile
+    /// where it is a constant.
+    pub const fn registered(name: &'static str) -> Self {
+        let mut i = 0;
+        while i < technique::REGISTRY.len() {
+            if str_eq(technique::REGISTRY[i].name, name) {
+                return NearFieldTechnique(technique::REGISTRY[i].name);
+            }
+            i += 1;
         }
+        panic!("not a registered technique");
+    }
+
+    /// The technique named `name` (`nearfield render --method NAME`), or the registry's error.
+    pub fn named(name: &str) -> Result<Self, String> {
+        technique::find(name)
+            .map(|d| NearFieldTechnique(d.name))
+            .map_err(|e| e.to_string())
+    }
+
+    /// Every registered technique.
+    pub fn all() -> impl Iterator<Item = Self> {
+        technique::REGISTRY
+            .iter()
+            .map(|d| NearFieldTechnique(d.name))
+    }
+
+    /// nearfield's name of the technique.
+    pub fn name(self) -> &'static str {
+        self.0
     }
 
     /// Whether it computes indirect light (gtao writes only ao): what its registration declares.
     pub fn has_indirect(self) -> bool {
-        technique::find(self.name())
+        technique::find(self.0)
             .is_ok_and(|d| d.writes.contains(&technique::Output::IndirectIrradiance))
     }
+
+    /// Whether it has the setting `key`.
+    fn has_setting(self, key: &str) -> bool {
+        technique::find(self.0).is_ok_and(|d| d.settings.iter().any(|s| s.key == key))
+    }
+}
+
+impl Default for NearFieldTechnique {
+    fn default() -> Self {
+        NearFieldTechnique::VBGI
+    }
+}
+
+const fn str_eq(a: &str, b: &str) -> bool {
+    let (a, b) = (a.as_bytes(), b.as_bytes());
+    if a.len() != b.len() {
+        return false;
+    }
+    let mut i = 0;
+    while i < a.len() {
+        if a[i] != b[i] {
+            return false;
+        }
+        i += 1;
+    }
+    true
 }
 
 /// Quality presets in Bevy's style: nearfield's `quality=low|medium|high|ultra` (slices and steps
@@ -144,9 +195,9 @@ impl NearField {
         if let Some(q) = self.quality.preset() {
             set.push(("quality".to_string(), q.to_string()));
         }
-        // vbgi's default thickness comes from a second depth layer, which Bevy does not render:
+        // A default thickness from a second depth layer (vbgi's), which Bevy does not render:
         // the plugin's default is the thickness proportional to depth.
-        if self.technique == NearFieldTechnique::Vbgi
+        if self.technique.has_setting("thickness")
             && !self.settings.iter().any(|(k, _)| k == "thickness")
         {
             set.push(("thickness".to_string(), "adaptive".to_string()));
@@ -154,7 +205,8 @@ impl NearField {
         // The radiance gathered is Bevy's lit colour of the frame before, which the plugin hands
         // in as the technique's direct radiance: nearfield's own feedback (`source=previous`)
         // would rebuild it from albedo, which Bevy's prepasses do not give.
-        if self.technique.has_indirect() && !self.settings.iter().any(|(k, _)| k == "source") {
+        if self.technique.has_setting("source") && !self.settings.iter().any(|(k, _)| k == "source")
+        {
             set.push(("source".to_string(), "direct".to_string()));
         }
         set.extend(self.settings.iter().cloned());

@@ -233,9 +233,10 @@ fn the_plugin_matches_nearfield_render() {
 
     // 1. ao of each technique at the High preset: MAE ≤ 0.01 over the surface pixels.
     for technique in [
-        NearFieldTechnique::Gtao,
-        NearFieldTechnique::Hbil,
-        NearFieldTechnique::Vbgi,
+        NearFieldTechnique::GTAO,
+        NearFieldTechnique::HBIL,
+        NearFieldTechnique::VBGI,
+        NearFieldTechnique::named("ssao").unwrap(),
     ] {
         let near_field = NearField {
             technique,
@@ -276,7 +277,7 @@ fn the_plugin_matches_nearfield_render() {
         m.emissive_texture = None;
     }
     let white = nearfield_scene::Environment::constant(glam::Vec3::ONE);
-    for technique in [NearFieldTechnique::Hbil, NearFieldTechnique::Vbgi] {
+    for technique in [NearFieldTechnique::HBIL, NearFieldTechnique::VBGI] {
         let near_field = NearField {
             technique,
             quality: NearFieldQuality::High,
@@ -316,6 +317,11 @@ fn the_plugin_matches_nearfield_render() {
         // Valid settings the render world cannot make: a second depth layer Bevy does not have.
         NearField {
             settings: vec![("thickness".into(), "layer".into())],
+            ..default()
+        },
+        // A registered technique that needs nearfield's scene (its virtual point lights).
+        NearField {
+            technique: NearFieldTechnique::named("ssdo-vpl").unwrap(),
             ..default()
         },
     ] {
