@@ -1,5 +1,8 @@
 // filter.wgsl — s3ho `filter_pass`: the paper's geometry-aware 8×8 bilateral filter on the
-// packed coefficients. See technique/s3ho/mod.rs.
+// packed coefficients. technique/s3ho/mod.rs has the overview.
+//
+// `filter_pass`: the paper's geometry-aware 8×8 bilateral filter (offsets −3..4) on the coefficients,
+//   weights from the distance to the centre's tangent plane and the normals' agreement.
 
 @group(1) @binding(0) var gb_normal: texture_2d<f32>;
 @group(1) @binding(1) var gb_view_depth: texture_2d<f32>;

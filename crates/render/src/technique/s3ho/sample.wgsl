@@ -1,6 +1,23 @@
 // sample.wgsl — s3ho/ssbn `sample_pass`: N hemisphere samples per pixel against the screen-space
 // visibility test → 16 SH coefficients of visibility × cosine (Eq. 2; ssbn: bent normal and cone)
-// and the raw indirect light of the occluding pixels (Eq. 5). See technique/s3ho/mod.rs.
+// and the raw indirect light of the occluding pixels (Eq. 5). technique/s3ho/mod.rs has the overview.
+//
+// `sample_pass` (s3ho): c[S3HO]_i(p) = (4π/2N) Σ_j V_SS(p, p_j, d_max) y_i(s_j)(n·s_j)   (Eq. 2),
+//   written as c[cos n] − (2π/N) Σ_j (1 − V_j) y_i(s_j)(n·s_j): the unoccluded part, the SH of the
+//   clamped cosine about n, is exact (Funk–Hecke: A_l y_i(n), A = π, 2π/3, π/4, 0), and only the
+//   occluded part is sampled. Same expectation as Eq. 2 with less noise, and exact (no false
+//   occlusion) on a plane. V_j: `steps` ray-marching points along each direction at λ_j·k/steps;
+//   an occluded direction keeps 1 − 1/(1 + lambda·d) of its weight (d: blocker distance) when
+//   `lambda` > 0. Storage: 16 half floats, pack2x16float into two rgba32uint targets (the WGSL
+//   form of the paper's pack_half into two 32-bit-per-channel targets).
+// Indirect (Eq. 5): every occluded sample's pixel is a patch with form factor f (SSDO's: πR²/N ·
+//   cos θ_s cos θ_r / max(d, distance_clamp)², falloff 1 − d/R) and radiance (ρ_o/π)·(c[cos n_o]·
+//   c[Lin]); the sum is computed per colour channel directly (the dot with c[Lin] is linear, so
+//   this equals storing 3×16 coefficients and dotting after the filter) and blurred.
+// `ssbn`: bent normal b = normalised mean of unoccluded directions, cone cos α = 1 − (visible
+//   fraction); env-irradiance = Σ c[env]_lm λ_l(α) y_lm(b)/π with the cone-limited cosine kernel
+//   λ_l(α) = 2π ∫_{cos α}^1 t P_l(t) dt; lights weighted by a soft cone test around b. Known
+//   failure: the two faces of a 90° corner get the same bent normal and cone, hence one colour.
 
 @group(1) @binding(0) var<uniform> params: S3hoParams;
 @group(1) @binding(1) var<storage, read> sample_sets: array<vec4<f32>>;

@@ -1,6 +1,10 @@
 // sh.wgsl — `S3hoParams` and the SH helpers shared by the s3ho passes: clamped-cosine lobes,
-// half-float packing of the 16 coefficients (technique/s3ho/mod.rs holds the derivations). A
+// half-float packing of the 16 coefficients (technique/s3ho/mod.rs has the overview). A
 // library (after env.wgsl): it declares no bindings; the passes bind `params: S3hoParams`.
+//
+// SH: real basis of nearfield_scene::sh (Sloan's "Stupid SH Tricks" polynomials without the
+// Condon–Shortley phase, polar axis world z, index l(l+1)+m, orthonormality tested there), 4
+// bands = 16 coefficients.
 
 struct S3hoParams {
     radius: f32,

@@ -1,6 +1,34 @@
 // shade.wgsl — s3ho/ssbn `shade_pass`: SH lighting of the environment and the lights with the
 // (filtered) coefficients (Eq. 3–4; ssbn: through the bent cone) → env-irradiance,
-// light-irradiance and ao. See technique/s3ho/mod.rs.
+// light-irradiance and ao. technique/s3ho/mod.rs has the overview.
+//
+// `shade_pass` (env-irradiance, light-irradiance, ao) → s3ho indirect: bilateral blur →
+// `indirect-irradiance`.
+//
+// The derivations. Screen-space spherical-harmonic occlusion (`s3ho`, Herholz, Schairer,
+// Schilling & Straßer, "Screen Space Spherical Harmonic Occlusion", seed 002/000: Eq. 2–5) and
+// screen-space bent normals and cones (`ssbn`, Klehm et al. 2011) as its baseline. Both use the samples and
+// visibility test of technique/samples.wgsl.
+//
+// SH: real basis of nearfield_scene::sh (Sloan's "Stupid SH Tricks" polynomials without the
+// Condon–Shortley phase, polar axis world z, index l(l+1)+m, orthonormality tested there), 4
+// bands = 16 coefficients.
+//
+// `sample_pass` (s3ho): c[S3HO]_i(p) = (4π/2N) Σ_j V_SS(p, p_j, d_max) y_i(s_j)(n·s_j)   (Eq. 2),
+//   written as c[cos n] − (2π/N) Σ_j (1 − V_j) y_i(s_j)(n·s_j): the unoccluded part, the SH of the
+//   clamped cosine about n, is exact (Funk–Hecke: A_l y_i(n), A = π, 2π/3, π/4, 0), and only the
+//   occluded part is sampled. Same expectation as Eq. 2 with less noise, and exact (no false
+//   occlusion) on a plane. V_j: `steps` ray-marching points along each direction at λ_j·k/steps;
+//   an occluded direction keeps 1 − 1/(1 + lambda·d) of its weight (d: blocker distance) when
+//   `lambda` > 0. Storage: 16 half floats, pack2x16float into two rgba32uint targets (the WGSL
+//   form of the paper's pack_half into two 32-bit-per-channel targets).
+// `filter_pass`: the paper's geometry-aware 8×8 bilateral filter (offsets −3..4) on the coefficients,
+//   weights from the distance to the centre's tangent plane and the normals' agreement.
+// `shade_pass`: c[Lin] = c[env] + Σ_l c[l] (Eq. 4), E_diff = c[Lin]·c[S3HO] (Eq. 3):
+//   env-irradiance = c[env]·c[S3HO]/π; light-irradiance = Σ_l E_l/π · (n·l − h·c_occ(l)) · shadow
+//   where c_occ = c[cos n] − c[S3HO] and h(l) is the light's Hanning-windowed SH lobe (Sloan 2008,
+//   window (1 + cos(π l/4))/2): the unoccluded part exact, the occluded part through the SH lobe;
+//   ao = c[S3HO]_0 / (π y_0) (the DC term is y_0 ∫V cos dω).
 
 @group(1) @binding(0) var<uniform> params: S3hoParams;
 @group(1) @binding(1) var gb_normal: texture_2d<f32>;

@@ -1,6 +1,7 @@
 // bitmask.wgsl — vbgi's slice march with a visibility bitmask per slice (the `bitmask` kernel):
 // ao, bent normal, near-field light from the newly occupied sectors, the far field through the
-// unoccupied ones. Derivations and sources: technique/vbgi/mod.rs.
+// unoccupied ones (after Therrien et al. 2023; overview and sources: technique/vbgi/mod.rs).
+// Each derivation stands at the lines that compute it.
 
 // bitmask: one invocation per pixel of one layer, the 16 layers stacked vertically as in
 // search.wgsl (technique/horizon). Inputs as there, and `in_back`: the view depth of the second
@@ -33,7 +34,15 @@ const CONTINUITY: f32 = 0.25;
 @group(1) @binding(7) var out_near: texture_storage_2d<rgba16float, write>;
 @group(1) @binding(8) var out_far: texture_storage_2d<rgba16float, write>;
 
-// S(θ) = ∫_0^θ (n′·ω(t)) |sin t| dt = sign(θ) G(θ) (G: slice_g).
+// Cosine weighting (`ao` is (1/π) ∫ V cos θ dω, docs/src/aovs.md). In the slice the measure of
+// the hemisphere integral is |sin θ| dθ dφ/… and the integrand n·ω = n′·ω(θ) with the projected
+// normal n′ = (n·D, n·ω_o) (unnormalised: slices weigh by its length, as in GTAO). With G of
+// technique/horizon (slice_g), the weight of the angles [a, b] is W(a, b) = S(b) − S(a),
+//     S(θ) = ∫_0^θ (n′·ω(t)) |sin t| dt = sign(θ) G(θ),
+// exact on either side of ω_o and across it (G's first term is odd, its second even).
+// Uniformly counted sectors (popcount / N, the peers' estimator) give the uniformly weighted
+// visibility instead: a wall meeting the floor at 90° reads 0.5 at its base either way, but
+// along the floor the uniform count is off the cosine-weighted curve.
 fn slice_s(theta: f32, np: vec2<f32>) -> f32 {
     return sign(theta) * slice_g(theta, np);
 }
@@ -104,7 +113,15 @@ fn chord(p: vec3<f32>, tau: f32, x: vec3<f32>, eye: vec3<f32>, slice_normal: vec
     return vec3<f32>(min(front, back), max(front, back), 1.0);
 }
 
-// The sectors an angle range covers, its ends rounded with `jitter` (stochastic rounding).
+// Sectors. In slice φ (plane of ω_o and D(φ), angles θ from ω_o, positive towards D, as in
+// technique/horizon) the hemisphere above the tangent plane is θ ∈ [γ − π/2, γ + π/2], γ the
+// projected normal's angle. It is cut into N = SECTORS sectors of equal angle, sector b covering
+// [θ_b, θ_b+1], θ_b = γ − π/2 + π b/N; a u32 per slice holds which are occupied. A march sample
+// x′ (within R) with front direction v = x′ − x and back v_b = v + τ r̂ (r̂ the camera ray
+// through x′, τ its thickness along the ray: `chord`) occupies the sectors between its angles.
+// The sectors an angle range covers, its ends rounded with `jitter` (stochastic rounding: the
+// same for all samples of a pixel, so that adjacent ranges tile without gaps; a sector's
+// expected coverage is the exact fraction of it in the range).
 fn range_bits(range: vec2<f32>, base: f32, jitter: f32) -> u32 {
     let sectors = f32(SECTORS);
     let lo = floor((range.x - base) / PI * sectors + jitter);
@@ -227,7 +244,15 @@ fn bitmask(@builtin(global_invocation_id) id: vec3<u32>) {
                     continue;
                 }
                 // The sample's back: along the camera ray through it, `tau` behind its front
-                // (tau < 0: no finite thickness, the back is at infinity).
+                // (tau < 0: no finite thickness, the back is at infinity). `thickness`:
+                //   layer     τ = (z₂ − z₁)/(r̂·forward), z₂ the second depth layer's view depth
+                //             (depth peeling: the nearest surface behind the first); none there or
+                //             none behind: a solid to infinity (what gtao and hbil assume). A
+                //             closed object is exactly as thick as it is, light passes behind it,
+                //             and a lone wall never leaks.
+                //   constant  τ = `thickness_m` (the peers' single constant)
+                //   adaptive  τ = `thickness_ratio` × z₁ (for engines without a second layer: a
+                //             thickness that grows with distance, as the depth's resolution does)
                 var tau = -1.0;
                 switch vbgi.thickness {
                     case 0u: {
@@ -250,7 +275,13 @@ fn bitmask(@builtin(global_invocation_id) id: vec3<u32>) {
                 }
                 let own = clipped.xy;
                 var range = own;
-                // The sender's radiance, read only where it lights a newly occupied sector.
+                // The sender's radiance, read only where it lights a newly occupied sector:
+                // E_near += a(x′) L(x′) W(newly occupied by x′). L from the radiance source (last
+                // frame's diffuse radiance, reprojected, or this frame's direct: `source`) holds
+                // emission, so emissive surfaces light their surroundings as area lights; over
+                // frames the bounces add up (HBIL Eq. 17). The sender's cosine is in the sectors
+                // (a sender seen edge-on covers few); a(x′) = smoothstep(a, b, −n_x′·v̂) rejects
+                // back-facing senders (HBIL Sec. 3.4), which still occupy their sectors.
                 let accept = smoothstep(params.reject_a, params.reject_b, -dot(qn, v / dist));
                 if prev_valid {
                     let step_v = on_line.xyz - prev_point;
@@ -345,6 +376,10 @@ fn bitmask(@builtin(global_invocation_id) id: vec3<u32>) {
     if volume {
         far = far_apply(far_sh_here(far_probes, far_visibility, env_sampler, view, x, n), moments);
     }
+    // Ratio estimators over the slices, as hbil's (U = cum[N], the open hemisphere's weight):
+    // ao = Σ W(unoccupied) / Σ U, E_near = Σ a L W(newly occupied) / Σ U, far = Σ L_env(ω_g)
+    // W(unoccupied in group g) / Σ U (`far=sectors`, 16 groups, ω_g at the group's middle),
+    // bent = normalize(Σ ω_g W(unoccupied in g)).
     let norm = max(unoccluded, 1e-6);
     ao = clamp(ao / norm, 0.0, 1.0);
     let b = select(n, normalize(bent), dot(bent, bent) > 1e-12);
