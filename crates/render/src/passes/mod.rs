@@ -108,6 +108,24 @@ impl ComputeStep {
         }
     }
 
+    /// The kernel `entry` of the WGSL `source` (its module labelled `label`), specialised by the
+    /// counts it declares (`override KEY`: [`crate::settings::count_constants`] of `counts`, a
+    /// family's [`crate::settings::Declared::counts`]) and by `constants`.
+    pub fn counted(
+        device: &wgpu::Device,
+        frame: &FrameGroup,
+        (label, source, entry_point): (&'static str, &str, &str),
+        layout: &wgpu::BindGroupLayout,
+        counts: &[(&'static str, f64)],
+        constants: &[(&str, f64)],
+    ) -> Self {
+        let module = crate::pipeline_cache::shader_module(device, label, source);
+        let counted = crate::settings::count_constants(source, counts);
+        let mut all: Vec<(&str, f64)> = counted.iter().map(|(k, v)| (k.as_str(), *v)).collect();
+        all.extend_from_slice(constants);
+        Self::new(device, label, &module, entry_point, frame, layout, &all)
+    }
+
     /// Records this kernel over `size` pixels (8×8 groups) as its own timed pass.
     pub fn encode(
         &self,

@@ -32,7 +32,7 @@ use crate::passes::denoise::{Denoise, SvgfConfig};
 use crate::passes::layers::LayerStack;
 use crate::passes::shadow::NoLights;
 use crate::profiler::GpuProfiler;
-use crate::settings::{Declared, count_constants};
+use crate::settings::Declared;
 use crate::targets::HDR_FORMAT;
 use groups::{Shared, filter_group, sample_group, shade_group};
 
@@ -207,12 +207,8 @@ fn create(
     // A compute step over a (layout, group) pair, specialised by the counts its kernel declares
     // (`SAMPLES`, `STEPS`) and `extra`: the step and its group.
     let pass = |label: &'static str, source: String, entry: &str, (layout, group), extra: &[_]| {
-        let module = crate::pipeline_cache::shader_module(device, label, &source);
-        let counted = count_constants(&source, &counts);
-        let mut constants: Vec<(&str, f64)> =
-            counted.iter().map(|(k, v)| (k.as_str(), *v)).collect();
-        constants.extend_from_slice(extra);
-        let step = ComputeStep::new(device, label, &module, entry, frame, &layout, &constants);
+        let kernel = (label, source.as_str(), entry);
+        let step = ComputeStep::counted(device, frame, kernel, &layout, &counts, extra);
         (step, group)
     };
     Ok(Box::new(S3ho {

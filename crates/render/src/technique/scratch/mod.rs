@@ -11,7 +11,7 @@ use crate::contract::technique::{
 };
 use crate::passes::{ComputeStep, ScreenPass};
 use crate::profiler::GpuProfiler;
-use crate::settings::{Declared, count_constants};
+use crate::settings::Declared;
 use crate::targets::{AO_FORMAT, HDR_FORMAT};
 use crate::util;
 use wgpu::util::DeviceExt;
@@ -121,17 +121,14 @@ fn create(ctx: &TechniqueContext, tp: &TechniqueParams) -> Result<Box<dyn Techni
     }
     .bind_group(device, &layout);
     let source = source();
-    let module = crate::pipeline_cache::shader_module(device, "scratch", &source);
-    let counts = count_constants(&source, &settings.counts());
-    let constants: Vec<(&str, f64)> = counts.iter().map(|(k, v)| (k.as_str(), *v)).collect();
-    let step = ComputeStep::new(
+    let kernel = ("scratch", source.as_str(), "main");
+    let step = ComputeStep::counted(
         device,
-        "scratch",
-        &module,
-        "main",
         ctx.frame_group,
+        kernel,
         &layout,
-        &constants,
+        &settings.counts(),
+        &[],
     );
     Ok(Box::new(Scratch {
         pass: ScreenPass::single(step, group),

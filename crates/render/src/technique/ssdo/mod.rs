@@ -54,7 +54,7 @@ use crate::passes::denoise::{Denoise, SvgfConfig};
 use crate::passes::layers::LayerStack;
 use crate::passes::shadow::NoLights;
 use crate::profiler::GpuProfiler;
-use crate::settings::{Declared, count_constants};
+use crate::settings::Declared;
 use crate::targets::HDR_FORMAT;
 use groups::{Shared, bounce_group, direct_group, resolve_group};
 use vpls::Vpls;
@@ -258,15 +258,11 @@ fn create(
     let blur = BilateralBlur::new(device, frame, blur_settings(&settings));
     let far_field = frame.far_field_constant();
     let counts = settings.counts();
-    // (step label, entry point), (shader label, source); specialised by the counts the kernel
-    // declares (`SAMPLES`, `STEPS`).
-    let step = |(label, entry), (module, source): (&str, String), layout| {
-        let shader = crate::pipeline_cache::shader_module(device, module, &source);
-        let counted = count_constants(&source, &counts);
-        let mut constants: Vec<(&str, f64)> =
-            counted.iter().map(|(k, v)| (k.as_str(), *v)).collect();
-        constants.push(far_field);
-        ComputeStep::new(device, label, &shader, entry, frame, layout, &constants)
+    // (label, entry point), the kernel's WGSL; specialised by the counts it declares (`SAMPLES`,
+    // `STEPS`) and the far field.
+    let step = |(label, entry), source: String, layout| {
+        let kernel = (label, source.as_str(), entry);
+        ComputeStep::counted(device, frame, kernel, layout, &counts, &[far_field])
     };
     Ok(Box::new(Ssdo {
         name,
@@ -276,27 +272,15 @@ fn create(
         size: i.size,
         bounce_on: variant.bounce_on(&settings),
         direct: (
-            step(
-                (name, "direct"),
-                ("ssdo direct", direct::source()),
-                &direct_layout,
-            ),
+            step((name, "direct"), direct::source(), &direct_layout),
             direct_bg,
         ),
         resolve: (
-            step(
-                ("resolve", "resolve"),
-                ("ssdo resolve", resolve::source()),
-                &resolve_layout,
-            ),
+            step(("resolve", "resolve"), resolve::source(), &resolve_layout),
             resolve_bg,
         ),
         bounce: (
-            step(
-                ("bounce", "bounce"),
-                ("ssdo bounce", bounce::source()),
-                &bounce_layout,
-            ),
+            step(("bounce", "bounce"), bounce::source(), &bounce_layout),
             bounce_bg,
         ),
         blur_a: blur.chain(device, i, raw_a, scratch, blurred_a),
