@@ -376,6 +376,109 @@ pub fn check_orbit(orbit: f32) -> Result<()> {
     Ok(())
 }
 
+/// Camera motion over the frames: `--path FILE` or `--walk` (the book's conventions, "Camera
+/// paths"), played at `--fps`.
+#[derive(Args, Debug, Clone)]
+pub struct MotionOpts {
+    /// Camera path: a JSON file of keyframes with times ({"fps": 30, "keyframes": [{"t": 0,
+    /// "eye": [x,y,z], "target": [x,y,z], "yfov_deg": 60}, …]}); frame i is the camera at
+    /// t₀ + i/fps, and the run renders the path's frames unless --frames says otherwise.
+    #[arg(long, conflicts_with = "walk")]
+    pub path: Option<std::path::PathBuf>,
+    /// The scene's walk from its camera: four seconds stepping a third of the way to the
+    /// target while swaying and turning a little (121 frames at 30 fps).
+    #[arg(long)]
+    pub walk: bool,
+    /// Frames per second of --walk (a path file states its own).
+    #[arg(long, default_value_t = 30.0)]
+    pub fps: f32,
+}
+
+impl MotionOpts {
+    /// Checks the options against `orbit` (`--orbit DEG`, which a path excludes) and reads the
+    /// path file: what can be refused before the scene loads.
+    pub fn check(&self, orbit: f32) -> Result<Option<nearfield_scene::CameraPath>> {
+        check_orbit(orbit)?;
+        if !(self.fps.is_finite() && self.fps > 0.0 && self.fps <= 1000.0) {
+            let msg = format!("--fps {}: must be a number in (0, 1000]", self.fps);
+            return Err(BadInput(msg).into());
+        }
+        if (self.path.is_some() || self.walk) && orbit != 0.0 {
+            let msg = "--orbit: a camera path (--path, --walk) moves the camera already";
+            return Err(BadInput(msg.into()).into());
+        }
+        self.path
+            .as_deref()
+            .map(|p| {
+                nearfield_scene::CameraPath::load(p).map_err(|e| BadInput(e.to_string()).into())
+            })
+            .transpose()
+    }
+
+    /// The motion: the path file read by [`Self::check`], or the scene's walk from `loaded`'s
+    /// camera, or `orbit`. The loaded camera becomes the path's first.
+    pub fn motion(
+        &self,
+        file: Option<nearfield_scene::CameraPath>,
+        loaded: &mut Loaded,
+        orbit: f32,
+    ) -> Result<Motion> {
+        let path = match file {
+            Some(p) => Some(p),
+            None if self.walk => Some(
+                nearfield_scene::CameraPath::walk(loaded.camera, loaded.scene.bounds(), self.fps)
+                    .map_err(|e| BadInput(format!("--walk: {e}")))?,
+            ),
+            None => None,
+        };
+        Ok(match path {
+            Some(p) => {
+                loaded.camera = p.camera(0);
+                Motion::Path(p)
+            }
+            None => Motion::Orbit(orbit),
+        })
+    }
+}
+
+/// How the camera moves from frame to frame: turned about its target, or along a path.
+#[derive(Clone, Debug)]
+pub enum Motion {
+    /// `--orbit DEG` (0: a still camera).
+    Orbit(f32),
+    /// `--path`, `--walk`.
+    Path(nearfield_scene::CameraPath),
+}
+
+impl Motion {
+    /// The camera of frame `index` of a run that starts at `start`.
+    pub fn camera(&self, start: nearfield_scene::Camera, index: u32) -> nearfield_scene::Camera {
+        match self {
+            Motion::Orbit(deg) => start.orbit(deg * index as f32),
+            Motion::Path(p) => p.camera(index),
+        }
+    }
+
+    /// Whether the camera stays where it is.
+    pub fn still(&self) -> bool {
+        matches!(self, Motion::Orbit(d) if *d == 0.0)
+    }
+
+    /// Renders frame `index`, the camera moved to its place first (the renderer was made with
+    /// frame 0's).
+    pub fn frame(&self, renderer: &mut nearfield_render::Renderer, index: u32) {
+        match self {
+            Motion::Orbit(deg) => orbit_frame(renderer, index, *deg),
+            Motion::Path(p) => {
+                if index > 0 {
+                    renderer.set_camera(p.camera(index));
+                }
+                renderer.render_frame();
+            }
+        }
+    }
+}
+
 /// Renders one frame, first turning the camera by `orbit` degrees about its target unless it is
 /// the first frame (`index` 0): what `--frames N --orbit DEG` means everywhere.
 pub fn orbit_frame(renderer: &mut nearfield_render::Renderer, index: u32, orbit: f32) {

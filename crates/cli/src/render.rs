@@ -20,12 +20,15 @@ pub struct RenderArgs {
     #[arg(long, default_value = "none")]
     pub method: String,
     /// Frames to render before output (temporal techniques converge over frames; ≥ 1).
-    #[arg(long, default_value_t = 1)]
-    pub frames: u32,
+    /// Default: 1, or a camera path's frames.
+    #[arg(long)]
+    pub frames: Option<u32>,
     /// Degrees the camera turns about its target (around its up axis) before every frame after
     /// the first.
     #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
     pub orbit: f32,
+    #[command(flatten)]
+    pub motion: crate::options::MotionOpts,
     /// What to write: final (PNG) or a float AOV (EXR): radiance, albedo, normal, depth, ao,
     /// env-irradiance, light-irradiance, indirect-irradiance, diffuse, lambertian, motion,
     /// specular, direct-radiance, or one of the technique's own images (e.g. hbil's
@@ -41,10 +44,12 @@ pub fn run(args: RenderArgs) -> Result<()> {
     // An unknown name may still be one of the technique's own images, checked once it exists.
     let aov = Aov::parse(&args.aov);
     nearfield_render::technique::find(&args.method)?;
-    if args.frames == 0 || args.frames > 100_000 {
-        return Err(BadInput(format!("--frames {}: must be in 1..=100000", args.frames)).into());
+    if let Some(n) = args.frames
+        && (n == 0 || n > 100_000)
+    {
+        return Err(BadInput(format!("--frames {n}: must be in 1..=100000")).into());
     }
-    crate::options::check_orbit(args.orbit)?;
+    let path_file = args.motion.check(args.orbit)?;
     let output = args.output.clone().unwrap_or_else(|| {
         PathBuf::from(if aov == Some(Aov::Final) {
             "final.png".to_string()
@@ -57,7 +62,12 @@ pub fn run(args: RenderArgs) -> Result<()> {
     let size = crate::options::parse_size(&args.scene.size)?;
     let settings = args.technique.settings(size)?;
     args.far.precheck()?;
-    let loaded = args.scene.load()?;
+    let mut loaded = args.scene.load()?;
+    let motion = args.motion.motion(path_file, &mut loaded, args.orbit)?;
+    let frames = args.frames.unwrap_or(match &motion {
+        crate::options::Motion::Path(p) => p.frames(),
+        crate::options::Motion::Orbit(_) => 1,
+    });
     let far_aov = (aov != Some(Aov::Final)).then_some(args.aov.as_str());
     let plan = args.far.plan(&loaded, far_aov)?;
     crate::far::apply_auto_radius(&mut params, &plan);
@@ -99,12 +109,12 @@ pub fn run(args: RenderArgs) -> Result<()> {
     loaded.report_sun();
     let progress = nearfield_scene::progress::Progress::new(
         &format!("render {}", args.method),
-        u64::from(args.frames),
+        u64::from(frames),
         "frames",
-        args.frames > 1,
+        frames > 1,
     );
-    for i in 0..args.frames {
-        crate::options::orbit_frame(&mut renderer, i, args.orbit);
+    for i in 0..frames {
+        motion.frame(&mut renderer, i);
         // Progress counts finished frames, not queued ones.
         if i % 8 == 7 {
             renderer.wait();

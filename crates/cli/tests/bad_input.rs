@@ -304,6 +304,15 @@ fn every_bad_input_exits_2_with_one_line() {
         (args(&["bake", "builtin:cornell", "--format", "bevy", "--out", "/tmp/v.nfv"]), "written as .ktx2"),
         (args(&["bake", "builtin:cornell", "--format", "nfv", "--out", "/tmp/v.ktx2"]), "written as .nfv"),
         (args(&["render", "builtin:cornell", "--size", "16x16", "--volume", "/nonexistent/v.nfv"]), "no such file"),
+        // Camera paths: unreadable, no keyframes, times out of order, NaN, absurd rates.
+        (vec!["render".into(), "--path".into(), d.join("nopath.json").to_str().unwrap().into()], "no such file"),
+        (vec!["render".into(), "--path".into(), write(&d, "p0.json", br#"{"fps":30,"keyframes":[]}"#)], "no keyframes"),
+        (vec!["compare".into(), "--path".into(), write(&d, "p1.json", br#"{"fps":30,"keyframes":[{"t":1,"eye":[0,1,4],"target":[0,1,0],"yfov_deg":45},{"t":0,"eye":[1,1,4],"target":[0,1,0],"yfov_deg":45}]}"#)], "does not come after"),
+        (vec!["render".into(), "--path".into(), write(&d, "p2.json", br#"{"fps":30,"keyframes":[{"t":0,"eye":[0,1,4],"target":[0,1,0],"yfov_deg":NaN}]}"#)], "invalid camera path"),
+        (vec!["render".into(), "--path".into(), write(&d, "p3.json", b"\xff\xfe")], "invalid camera path"),
+        (args(&["render", "--walk", "--fps", "0"]), "--fps 0"),
+        (args(&["render", "--walk", "--orbit", "2"]), "moves the camera already"),
+        (args(&["compare", "--walk", "--every", "0"]), "--every 0"),
     ];
     for (args, needle) in cases {
         let args: Vec<&str> = args.iter().map(String::as_str).collect();

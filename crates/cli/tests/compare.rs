@@ -496,3 +496,54 @@ fn export_writes_gltf_that_loads_back() {
     assert!(worst < 1e-3, "depth differs by up to {worst} m");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// `compare --walk`: each technique runs the walk's frames with its history carried over, and
+/// every `--every`-th frame (and the last) is measured against the reference traced from that
+/// frame's camera. On the lone plane ao = 1 for `none` and the truth, so every frame's error is
+/// exactly zero; one reference per measured camera lands in the cache.
+#[test]
+fn compare_along_a_walk_measures_every_kth_frame_against_its_own_reference() {
+    let dir = std::env::temp_dir().join(format!("nearfield-walk-{}", std::process::id()));
+    let cache = dir.join("cache");
+    let out = dir.join("walk");
+    std::fs::create_dir_all(&dir).unwrap();
+    let args = [
+        "compare",
+        "builtin:plane",
+        "--walk",
+        "--every",
+        "40",
+        "--size",
+        "32x24",
+        "--aov",
+        "ao",
+        "--radius",
+        "2",
+        "--spp",
+        "8",
+        "--methods",
+        "none",
+        "--out",
+        out.to_str().unwrap(),
+    ];
+    let (code, stdout, err) = run(&args, &cache);
+    if !gpu_available(&err) {
+        return;
+    }
+    assert_eq!(code, 0, "{err}");
+    let report: nearfield_eval::report::Report =
+        serde_json::from_str(&std::fs::read_to_string(out.join("metrics.json")).unwrap()).unwrap();
+    let path = &report.methods[0].path;
+    // 121 frames at 30 fps: frames 40, 80 and 120, and the last.
+    let frames: Vec<u32> = path.iter().map(|p| p.frames).collect();
+    assert_eq!(frames, vec![40, 80, 120, 121]);
+    for p in path {
+        assert_eq!(p.relative_error, 0.0, "frame {}", p.frames);
+    }
+    assert!(stdout.contains("along the path: 4 frames"), "{stdout}");
+    let html = std::fs::read_to_string(out.join("report.html")).unwrap();
+    assert!(html.contains("Error along the camera path"));
+    let cached = std::fs::read_dir(cache.join("reference")).unwrap().count();
+    assert!(cached >= 4, "{cached} references cached for 4 cameras");
+    let _ = std::fs::remove_dir_all(&dir);
+}

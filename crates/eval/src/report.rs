@@ -25,6 +25,23 @@ pub struct MethodReport {
     /// to the ambient light around them, against the path tracer's (none adds nothing: 1).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub footprint: Option<f64>,
+    /// Along a camera path (`--path`, `--walk`): the error of every measured frame (`frames`:
+    /// the frame's number from 1) against the reference from that frame's camera.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub path: Vec<ConvergencePoint>,
+}
+
+/// Mean, 95th percentile and largest relative error over a path's measured frames (0 for none).
+pub fn path_summary(points: &[ConvergencePoint]) -> (f64, f64, f64) {
+    if points.is_empty() {
+        return (0.0, 0.0, 0.0);
+    }
+    let mut e: Vec<f64> = points.iter().map(|p| p.relative_error).collect();
+    e.sort_by(f64::total_cmp);
+    let mean = e.iter().sum::<f64>() / e.len() as f64;
+    // Nearest rank.
+    let p95 = e[((0.95 * e.len() as f64).ceil() as usize).clamp(1, e.len()) - 1];
+    (mean, p95, e[e.len() - 1])
 }
 
 /// The error after `frames` frames.
@@ -42,32 +59,53 @@ const CURVE_COLOURS: [&str; 6] = [
 /// An inline SVG of relative error against frame count (log2 frame axis) for every method that
 /// has a curve; empty when none has.
 pub fn convergence_svg(methods: &[MethodReport]) -> String {
-    let curves: Vec<&MethodReport> = methods
-        .iter()
-        .filter(|m| !m.convergence.is_empty())
-        .collect();
+    curves_svg(methods, |m| &m.convergence, true)
+}
+
+/// An inline SVG of relative error over the frames of a camera path for every method measured
+/// along one; empty when none was.
+pub fn path_svg(methods: &[MethodReport]) -> String {
+    curves_svg(methods, |m| &m.path, false)
+}
+
+/// Relative error against frames, one curve per method that has points (`log`: a log2 frame
+/// axis with ticks at powers of two, else linear with five ticks).
+fn curves_svg(
+    methods: &[MethodReport],
+    points: fn(&MethodReport) -> &[ConvergencePoint],
+    log: bool,
+) -> String {
+    let curves: Vec<&MethodReport> = methods.iter().filter(|m| !points(m).is_empty()).collect();
     if curves.is_empty() {
         return String::new();
     }
     let (w, h, left, bottom, top, right) = (560.0, 300.0, 60.0, 40.0, 12.0, 130.0);
     let max_frames = curves
         .iter()
-        .flat_map(|m| m.convergence.iter().map(|p| p.frames))
+        .flat_map(|m| points(m).iter().map(|p| p.frames))
         .max()
         .unwrap_or(1)
         .max(2) as f64;
     let max_err = curves
         .iter()
-        .flat_map(|m| m.convergence.iter().map(|p| p.relative_error))
+        .flat_map(|m| points(m).iter().map(|p| p.relative_error))
         .fold(0.0f64, f64::max)
         .max(1e-6)
         * 1.1;
-    let x = |f: u32| left + (f as f64).log2() / max_frames.log2() * (w - left - right);
+    let x = |f: u32| {
+        let t = if log {
+            (f as f64).log2() / max_frames.log2()
+        } else {
+            (f as f64 - 1.0) / (max_frames - 1.0)
+        };
+        left + t * (w - left - right)
+    };
     let y = |e: f64| top + (1.0 - e / max_err) * (h - top - bottom);
+    let label = if log { "frames (log scale)" } else { "frame" };
     let mut svg = format!(
         r##"<svg width="{w}" height="{h}" style="background:#fff;border:1px solid #ccc">
 <line x1="{left}" y1="{y0}" x2="{x1}" y2="{y0}" stroke="#000"/><line x1="{left}" y1="{top}" x2="{left}" y2="{y0}" stroke="#000"/>
-<text x="{xm}" y="{yl}" text-anchor="middle" font-size="12">frames (log scale)</text>
+<text x="{xm}" y="{yl}" text-anchor="middle" font-size="12">{label}</text>
 <text x="14" y="{ym}" font-size="12" transform="rotate(-90 14 {ym})" text-anchor="middle">relative error</text>"##,
         y0 = h - bottom,
         x1 = w - right,
@@ -75,15 +113,23 @@ pub fn convergence_svg(methods: &[MethodReport]) -> String {
         yl = h - 6.0,
         ym = (top + h - bottom) / 2.0,
     );
-    let mut f = 1u32;
-    while f as f64 <= max_frames {
+    let ticks: Vec<u32> = if log {
+        (0..32)
+            .map(|k| 1u32 << k)
+            .take_while(|&f| f as f64 <= max_frames)
+            .collect()
+    } else {
+        (0..=4)
+            .map(|k| 1 + ((max_frames - 1.0) * k as f64 / 4.0).round() as u32)
+            .collect()
+    };
+    for f in ticks {
         let _ = write!(
             svg,
             r##"<text x="{:.1}" y="{:.1}" font-size="11" text-anchor="middle">{f}</text>"##,
             x(f),
             h - bottom + 14.0
         );
-        f *= 2;
     }
     for i in 0..=4 {
         let e = max_err * i as f64 / 4.0;
@@ -96,8 +142,7 @@ pub fn convergence_svg(methods: &[MethodReport]) -> String {
     }
     for (i, m) in curves.iter().enumerate() {
         let colour = CURVE_COLOURS[i % CURVE_COLOURS.len()];
-        let points: Vec<String> = m
-            .convergence
+        let points: Vec<String> = points(m)
             .iter()
             .map(|p| format!("{:.1},{:.1}", x(p.frames), y(p.relative_error)))
             .collect();
@@ -344,6 +389,7 @@ the reference, Σσ/Σref = {rel_noise:.4}.</p>
     );
     metrics_rows(&mut h, report);
     convergence(&mut h, report);
+    path(&mut h, report);
     for m in &report.methods {
         method_section(&mut h, report, m);
     }
@@ -403,6 +449,29 @@ fn convergence(h: &mut String, report: &Report) {
         }
         h.push_str("</table>");
     }
+}
+
+/// The error over a camera path's frames and its summary, where any method was measured along
+/// one.
+fn path(h: &mut String, report: &Report) {
+    let curve = path_svg(&report.methods);
+    if curve.is_empty() {
+        return;
+    }
+    let _ = write!(
+        h,
+        "<h2>Error along the camera path</h2><p>Relative error of each measured frame against the reference from that frame's camera, each technique's history carried from frame to frame.</p>{curve}<table><tr><th>method</th><th>frames measured</th><th>mean</th><th>95th percentile</th><th>largest</th></tr>"
+    );
+    for m in report.methods.iter().filter(|m| !m.path.is_empty()) {
+        let (mean, p95, max) = path_summary(&m.path);
+        let _ = write!(
+            h,
+            "<tr><th>{}</th><td>{}</td><td>{mean:.4}</td><td>{p95:.4}</td><td>{max:.4}</td></tr>",
+            escape(&m.name),
+            m.path.len()
+        );
+    }
+    h.push_str("</table>");
 }
 
 /// A method's section: its image, the reference and the signed error, flipped in place.

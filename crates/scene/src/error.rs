@@ -45,6 +45,8 @@ pub enum SceneError {
     Environment { path: PathBuf, msg: String },
     #[error("{}: invalid camera file: {}", one_line(&path.display().to_string()), one_line(msg))]
     CameraFile { path: PathBuf, msg: String },
+    #[error("{}: invalid camera path: {}", one_line(&path.display().to_string()), one_line(msg))]
+    PathFile { path: PathBuf, msg: String },
     #[error("unknown built-in scene '{}' (known: {known})", one_line(name))]
     UnknownBuiltin { name: String, known: String },
     #[error("{}", one_line(.0))]

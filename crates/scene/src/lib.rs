@@ -23,6 +23,7 @@ pub mod limits;
 pub mod load;
 pub mod material;
 pub mod mesh;
+pub mod path;
 pub mod probes;
 pub mod progress;
 pub mod sh;
@@ -37,6 +38,7 @@ pub use error::{SceneError, one_line};
 pub use light::{Light, LightKind};
 pub use material::{AlphaMode, Material, Texture, TextureColorSpace};
 pub use mesh::{Aabb, Mesh};
+pub use path::CameraPath;
 pub use sun::{Sun, SunMode};
 
 use std::path::{Path, PathBuf};

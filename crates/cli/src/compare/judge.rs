@@ -135,6 +135,7 @@ impl<'a> Judge<'a> {
             heatmap: heat,
             convergence,
             footprint: None,
+            path: Vec::new(),
         })
     }
 
@@ -146,11 +147,11 @@ impl<'a> Judge<'a> {
         truth: &crate::footprint::Truth,
         with: &mut Renderer,
         without: &mut Renderer,
-        args: &CompareArgs,
+        run: &super::frames::Run,
     ) -> Result<f64> {
         let with = crate::footprint::ambient_of(with);
-        for i in 0..args.frames {
-            crate::options::orbit_frame(without, i, args.orbit);
+        for i in 0..run.frames {
+            run.motion.frame(without, i);
         }
         let without_ambient = crate::footprint::ambient_of(without);
         let e = truth.error(&with, &without_ambient);

@@ -8,12 +8,13 @@ use anyhow::{Context, Result};
 use clap::Args;
 use judge::Judge;
 use nearfield_eval::metrics::{self, Mask, MaskSettings};
-use nearfield_eval::report::{ConvergencePoint, Report};
+use nearfield_eval::report::Report;
 use nearfield_reference::ReferenceAov;
 use nearfield_reference::{ReferenceImage, exr_io};
 use nearfield_render::{Aov, GpuContext, RenderSettings, Renderer, TechniqueParams};
 use std::path::PathBuf;
 
+mod frames;
 mod judge;
 
 #[derive(Args, Debug)]
@@ -34,15 +35,21 @@ pub struct CompareArgs {
     /// which has Lambertian surfaces), albedo, normal, depth.
     #[arg(long, default_value = "ao")]
     pub aov: String,
-    /// Frames each technique renders before its AOV is read (≥ 1). With more than one frame and
-    /// a still camera the report also plots the error after every frame (up to 64 frames;
-    /// beyond, after powers of two and the last).
-    #[arg(long, default_value_t = 1)]
-    pub frames: u32,
+    /// Frames each technique renders before its AOV is read (≥ 1; default 1, or a camera path's
+    /// frames). With more than one frame and a still camera the report also plots the error
+    /// after every frame (up to 64 frames; beyond, after powers of two and the last).
+    #[arg(long)]
+    pub frames: Option<u32>,
     /// Degrees the camera turns about its target before every frame after the first; the
     /// reference is rendered from the last frame's camera.
     #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
     pub orbit: f32,
+    #[command(flatten)]
+    pub motion: crate::options::MotionOpts,
+    /// With a camera path: measure every K-th frame (and the last), each against the reference
+    /// from that frame's camera (traced per frame, cached).
+    #[arg(long, default_value_t = 1)]
+    pub every: u32,
     /// Use this reference EXR instead of rendering (or loading from the cache) one; it must have
     /// the image size.
     #[arg(long = "reference")]
@@ -168,6 +175,8 @@ struct Checked {
     reference_file: Option<(ReferenceImage, PathBuf)>,
     /// `--image NAME=FILE`: images made elsewhere.
     images: Vec<(String, Vec<[f32; 4]>)>,
+    /// `--path FILE`: the camera path, read.
+    path_file: Option<nearfield_scene::CameraPath>,
 }
 
 impl Checked {
@@ -180,8 +189,12 @@ impl Checked {
         };
         let ref_aov = parse_aov(ref_name)?;
         let gpu_aov = Aov::parse(&args.aov).expect("every reference AOV is a renderer AOV");
-        let methods = crate::options::methods_and_frames(args.methods.as_deref(), args.frames)?;
-        crate::options::check_orbit(args.orbit)?;
+        let frames = args.frames.unwrap_or(1);
+        let methods = crate::options::methods_and_frames(args.methods.as_deref(), frames)?;
+        let path_file = args.motion.check(args.orbit)?;
+        if args.every == 0 {
+            return Err(BadInput("--every 0: must be at least 1".into()).into());
+        }
         let size = crate::options::parse_size(&args.scene.size)?;
         let border = args.border.unwrap_or_else(|| default_border(size));
         if 2 * border >= size.0.min(size.1) {
@@ -223,6 +236,7 @@ impl Checked {
             settings,
             reference_file,
             images,
+            path_file,
         })
     }
 }
@@ -256,13 +270,15 @@ pub fn run(args: CompareArgs) -> Result<()> {
         settings,
         reference_file,
         images,
+        path_file,
     } = Checked::new(&args)?;
     std::fs::create_dir_all(&args.out)
         .with_context(|| format!("cannot create {}", args.out.display()))?;
     let mut loaded = args.scene.load()?;
-    let first_camera = loaded.camera;
+    let motion = args.motion.motion(path_file, &mut loaded, args.orbit)?;
+    let run = frames::Run::new(motion, args.frames, loaded.camera);
     // The reference sees what the last frame sees.
-    loaded.camera = first_camera.orbit(args.orbit * (args.frames - 1) as f32);
+    loaded.camera = run.camera(run.frames - 1);
     if args.footprint {
         crate::footprint::check(&args.scene, &loaded)?;
     }
@@ -279,9 +295,10 @@ pub fn run(args: CompareArgs) -> Result<()> {
         .then(|| footprint_truth(&args, &loaded, size, radius))
         .transpose()?;
     let (reference, ref_info) = reference_of(&args, &loaded, &ref_settings, reference_file)?;
+    let along = frames::path_truth(&args, &mut loaded, &run, &ref_settings)?;
     let progress = nearfield_scene::progress::Progress::new(
         "compare",
-        methods.len() as u64 * u64::from(args.frames),
+        methods.len() as u64 * u64::from(run.frames),
         "frames",
         true,
     );
@@ -294,6 +311,12 @@ pub fn run(args: CompareArgs) -> Result<()> {
     let mask_of = |r: &mut Renderer, value: &nearfield_render::AovImage| {
         gpu_mask(r, value, ref_alpha, ref_depth, mask_settings, region)
     };
+    // Along a path: the mask against the reference of that frame.
+    let mask_against =
+        |r: &mut Renderer, value: &nearfield_render::AovImage, truth: &ReferenceImage| {
+            let alpha: Vec<f32> = truth.value.iter().map(|p| p[3]).collect();
+            gpu_mask(r, value, &alpha, &truth.depth, mask_settings, region)
+        };
     // One renderer of `method` over `scene`, with the far field every method shares.
     let renderer = |scene: &nearfield_scene::Scene, method: &str| -> Result<Renderer> {
         Ok(Renderer::new(
@@ -301,7 +324,7 @@ pub fn run(args: CompareArgs) -> Result<()> {
             scene,
             &loaded.env,
             volume.as_ref(),
-            first_camera,
+            run.camera(0),
             &nearfield_render::technique::Spec::resolve(method, &params)?,
             settings,
         )?)
@@ -313,11 +336,20 @@ pub fn run(args: CompareArgs) -> Result<()> {
         progress.set_message(method);
         let mut r = renderer(&loaded.scene, method)?;
         loaded.report_sun();
-        let (value, mask, convergence) = frames(&mut r, &args, gpu_aov, &judge, &mask_of)?;
+        let (value, mask, convergence, path) =
+            run.frames(&mut r, gpu_aov, &judge, &mask_of, (&along, &mask_against))?;
         let mut report = judge.measure(method, &value.pixels, &mask, convergence, &mut panels)?;
+        if !path.is_empty() {
+            let (mean, p95, max) = nearfield_eval::report::path_summary(&path);
+            let n = path.len();
+            progress.suspend(|| {
+                println!("{method:<10} along the path: {n} frames, relative error mean {mean:.4}, 95th percentile {p95:.4}, largest {max:.4}")
+            });
+            report.path = path;
+        }
         if let Some((truth, without)) = &footprint {
             let mut without = renderer(&without.scene, method)?;
-            report.footprint = Some(judge.footprint(method, truth, &mut r, &mut without, &args)?);
+            report.footprint = Some(judge.footprint(method, truth, &mut r, &mut without, &run)?);
         }
         reports.push(report);
         last_mask = Some(mask);
@@ -418,45 +450,6 @@ fn reference_of(
             (img, judge::traced_info(path, settings))
         }
     })
-}
-
-/// Runs `args.frames` frames of a technique, the convergence measured along the way (a still
-/// camera only); its last frame's AOV and mask.
-fn frames(
-    r: &mut Renderer,
-    args: &CompareArgs,
-    gpu_aov: Aov,
-    judge: &Judge,
-    mask_of: &dyn Fn(&mut Renderer, &nearfield_render::AovImage) -> Mask,
-) -> Result<(nearfield_render::AovImage, Mask, Vec<ConvergencePoint>)> {
-    let still = args.orbit == 0.0 && args.frames > 1;
-    let mut convergence = Vec::new();
-    let mut mask = None;
-    for i in 0..args.frames {
-        crate::options::orbit_frame(r, i, args.orbit);
-        if i % 8 == 7 {
-            r.wait();
-        }
-        judge.progress.inc(1);
-        let n = i + 1;
-        if still && (args.frames <= 64 || n.is_power_of_two() || n == args.frames) {
-            let value = r.read_aov(gpu_aov);
-            let mask = mask.get_or_insert_with(|| mask_of(r, &value));
-            let m = metrics::metrics(&value.pixels, &judge.reference.value, mask);
-            convergence.push(ConvergencePoint {
-                frames: n,
-                rmse: m.rmse,
-                relative_error: m.relative_error,
-            });
-        }
-    }
-    let value = r.read_aov(gpu_aov);
-    r.check_device()?;
-    let mask = match mask {
-        Some(m) => m,
-        None => mask_of(r, &value),
-    };
-    Ok((value, mask, convergence))
 }
 
 /// Writes the report and says where.
