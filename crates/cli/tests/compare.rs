@@ -541,9 +541,35 @@ fn compare_along_a_walk_measures_every_kth_frame_against_its_own_reference() {
         assert_eq!(p.relative_error, 0.0, "frame {}", p.frames);
     }
     assert!(stdout.contains("along the path: 4 frames"), "{stdout}");
+    // A still camera at those views is exact too; frames 120 and 121 are consecutive, and
+    // neither `none` nor the truth changes between them (ao = 1): an instability of 1.
+    assert_eq!(report.methods[0].path_still, Some(0.0));
+    assert_eq!(report.methods[0].instability, Some(1.0));
     let html = std::fs::read_to_string(out.join("report.html")).unwrap();
     assert!(html.contains("Error along the camera path"));
     let cached = std::fs::read_dir(cache.join("reference")).unwrap().count();
     assert!(cached >= 4, "{cached} references cached for 4 cameras");
+    // A path file of three frames, each measured.
+    let file = dir.join("path.json");
+    std::fs::write(
+        &file,
+        r#"{"fps": 2, "keyframes": [
+            {"t": 0, "eye": [0, 1.5, 3], "target": [0, 0, 0], "yfov_deg": 50},
+            {"t": 1, "eye": [0.3, 1.5, 2.9], "target": [0, 0, 0], "yfov_deg": 50}]}"#,
+    )
+    .unwrap();
+    let file = file.to_str().unwrap();
+    let mut args: Vec<&str> = args.to_vec();
+    args.splice(2..5, ["--path", file, "--every", "1"]);
+    let (code, _, err) = run(&args, &cache);
+    assert_eq!(code, 0, "{err}");
+    let report: nearfield_eval::report::Report =
+        serde_json::from_str(&std::fs::read_to_string(out.join("metrics.json")).unwrap()).unwrap();
+    let m = &report.methods[0];
+    assert_eq!(
+        m.path.iter().map(|p| p.frames).collect::<Vec<_>>(),
+        vec![1, 2, 3]
+    );
+    assert_eq!(m.instability, Some(1.0));
     let _ = std::fs::remove_dir_all(&dir);
 }

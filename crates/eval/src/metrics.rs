@@ -174,6 +174,84 @@ pub fn metrics(test: &[[f32; 4]], reference: &[[f32; 4]], mask: &Mask) -> Metric
     }
 }
 
+/// One frame of a sequence against the frame before it, motion-compensated: where the surface
+/// point at pixel p was a frame earlier (p + `motion`(p), the `motion` AOV: previous − current,
+/// pixels, rounded to the nearest pixel) and both frames' masks hold it, the squared change of the
+/// value (mean of RGB). Summed over a sequence for a technique and for the reference, the ratio
+/// of their roots is the instability figure (the book, "In motion").
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct FrameChange {
+    /// Σ (X_t(p) − X_{t−1}(p + m))² over the compared pixels.
+    pub sum_sq: f64,
+    /// With the frames' standard errors given (the reference's): Σ (σ_t(p)² + σ_{t−1}(p + m)²),
+    /// the part of `sum_sq` that independent noise alone adds, to be subtracted.
+    pub noise_sq: f64,
+    pub pixels: usize,
+}
+
+impl std::ops::AddAssign for FrameChange {
+    fn add_assign(&mut self, o: Self) {
+        self.sum_sq += o.sum_sq;
+        self.noise_sq += o.noise_sq;
+        self.pixels += o.pixels;
+    }
+}
+
+/// The motion-compensated change from `prev` to `cur` ([`FrameChange`]); `stderr`: both frames'
+/// per-pixel standard errors (current, previous), for the reference.
+pub fn frame_change(
+    (cur, cur_mask): (&[[f32; 4]], &Mask),
+    (prev, prev_mask): (&[[f32; 4]], &Mask),
+    motion: &[[f32; 4]],
+    stderr: Option<(&[[f32; 3]], &[[f32; 3]])>,
+) -> FrameChange {
+    let (w, h) = (cur_mask.width as i64, cur_mask.height as i64);
+    let var = |s: &[f32; 3]| {
+        let m = (s[0] as f64 + s[1] as f64 + s[2] as f64) / 3.0;
+        m * m
+    };
+    let mut out = FrameChange::default();
+    for y in 0..h {
+        for x in 0..w {
+            let i = (y * w + x) as usize;
+            if !cur_mask.valid[i] {
+                continue;
+            }
+            let px = x + motion[i][0].round() as i64;
+            let py = y + motion[i][1].round() as i64;
+            if !(0..w).contains(&px) || !(0..h).contains(&py) {
+                continue;
+            }
+            let j = (py * w + px) as usize;
+            if !prev_mask.valid[j] {
+                continue;
+            }
+            let d = mean_rgb(&cur[i]) - mean_rgb(&prev[j]);
+            out.sum_sq += d * d;
+            if let Some((sc, sp)) = stderr {
+                out.noise_sq += var(&sc[i]) + var(&sp[j]);
+            }
+            out.pixels += 1;
+        }
+    }
+    out
+}
+
+/// The instability figure: the technique's motion-compensated change over the reference's, each
+/// the root of its summed squared change, the reference's less what its noise alone adds (at
+/// least a tenth of it is kept, so that a noise-dominated reference gives a finite ratio).
+pub fn instability(technique: FrameChange, reference: FrameChange) -> f64 {
+    let truth = (reference.sum_sq - reference.noise_sq).max(0.1 * reference.sum_sq);
+    if truth <= 0.0 {
+        return if technique.sum_sq > 0.0 {
+            f64::INFINITY
+        } else {
+            1.0
+        };
+    }
+    (technique.sum_sq / truth).sqrt()
+}
+
 /// The amplitude of the `period`-periodic part of the error (mean of RGB) against `reference`:
 /// the masked mean error of each of the period² pixel phases (x mod period, y mod period), and
 /// the RMS of those means about their overall mean. A technique's 4×4 interleaving pattern left
@@ -373,5 +451,39 @@ mod tests {
             p.0[0] = 255 - p.0[0];
         }
         assert!(flip_mean(&other, &img, &mask) > 0.1);
+    }
+
+    #[test]
+    fn motion_compensated_change_follows_the_motion_and_subtracts_noise() {
+        // A ramp moved one pixel to the right: with the motion vectors there is no change.
+        let (w, h) = (8u32, 4u32);
+        let ramp = |shift: i32| -> Vec<[f32; 4]> {
+            (0..w * h)
+                .map(|i| {
+                    let v = ((i % w) as i32 - shift) as f32;
+                    [v, v, v, 1.0]
+                })
+                .collect()
+        };
+        let mask = Mask {
+            width: w,
+            height: h,
+            valid: vec![true; (w * h) as usize],
+            silhouette_pixels: 0,
+            depth_checked: true,
+        };
+        let (prev, cur) = (ramp(0), ramp(1));
+        let motion = vec![[-1.0, 0.0, 0.0, 0.0]; (w * h) as usize];
+        let c = frame_change((&cur, &mask), (&prev, &mask), &motion, None);
+        assert_eq!((c.sum_sq, c.pixels), (0.0, ((w - 1) * h) as usize));
+        // Without them every pixel changes by 1.
+        let still = vec![[0.0; 4]; (w * h) as usize];
+        let c = frame_change((&cur, &mask), (&prev, &mask), &still, None);
+        assert_eq!((c.sum_sq, c.pixels), ((w * h) as f64, (w * h) as usize));
+        // Noise: σ = 0.5 per frame adds 0.5 per pixel, which the figure removes.
+        let s = vec![[0.5f32; 3]; (w * h) as usize];
+        let r = frame_change((&cur, &mask), (&prev, &mask), &still, Some((&s, &s)));
+        assert!((r.noise_sq - 0.5 * (w * h) as f64).abs() < 1e-9);
+        assert!((instability(c, r) - (1.0f64 / 0.5).sqrt()).abs() < 1e-9);
     }
 }

@@ -29,6 +29,27 @@ pub struct MethodReport {
     /// the frame's number from 1) against the reference from that frame's camera.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub path: Vec<ConvergencePoint>,
+    /// Along a path: the mean error of a still camera at up to eight of the measured frames'
+    /// views after 16 frames there (the error the path's frames are held to).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub path_still: Option<f64>,
+    /// Along a path measured at consecutive frames: the motion-compensated frame-to-frame change
+    /// over the reference's own, its noise subtracted (`metrics::instability`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub instability: Option<f64>,
+}
+
+/// The frames after which a path's frames are held to the still camera's error: a technique's
+/// history needs them to fill (the book, "In motion").
+pub const SETTLE_FRAMES: u32 = 16;
+
+/// The largest relative error of a path's measured frames after the first [`SETTLE_FRAMES`].
+pub fn path_largest_settled(points: &[ConvergencePoint]) -> f64 {
+    points
+        .iter()
+        .filter(|p| p.frames > SETTLE_FRAMES)
+        .map(|p| p.relative_error)
+        .fold(0.0, f64::max)
 }
 
 /// Mean, 95th percentile and largest relative error over a path's measured frames (0 for none).
@@ -460,15 +481,18 @@ fn path(h: &mut String, report: &Report) {
     }
     let _ = write!(
         h,
-        "<h2>Error along the camera path</h2><p>Relative error of each measured frame against the reference from that frame's camera, each technique's history carried from frame to frame.</p>{curve}<table><tr><th>method</th><th>frames measured</th><th>mean</th><th>95th percentile</th><th>largest</th></tr>"
+        "<h2>Error along the camera path</h2><p>Relative error of each measured frame against the reference from that frame's camera, each technique's history carried from frame to frame. Still: the mean error a still camera reaches after 16 frames at up to eight of those views. Instability: the motion-compensated change from frame to frame over the reference's own (its noise subtracted; measured with <code>--every 1</code>).</p>{curve}<table><tr><th>method</th><th>frames measured</th><th>mean</th><th>95th percentile</th><th>largest</th><th>largest after frame 16</th><th>still</th><th>instability</th></tr>"
     );
     for m in report.methods.iter().filter(|m| !m.path.is_empty()) {
         let (mean, p95, max) = path_summary(&m.path);
         let _ = write!(
             h,
-            "<tr><th>{}</th><td>{}</td><td>{mean:.4}</td><td>{p95:.4}</td><td>{max:.4}</td></tr>",
+            "<tr><th>{}</th><td>{}</td><td>{mean:.4}</td><td>{p95:.4}</td><td>{max:.4}</td><td>{:.4}</td><td>{}</td><td>{}</td></tr>",
             escape(&m.name),
-            m.path.len()
+            m.path.len(),
+            path_largest_settled(&m.path),
+            m.path_still.map_or("–".into(), |e| format!("{e:.4}")),
+            m.instability.map_or("–".into(), |e| format!("{e:.2}×")),
         );
     }
     h.push_str("</table>");

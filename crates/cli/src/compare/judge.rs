@@ -136,6 +136,8 @@ impl<'a> Judge<'a> {
             convergence,
             footprint: None,
             path: Vec::new(),
+            path_still: None,
+            instability: None,
         })
     }
 

@@ -336,23 +336,22 @@ pub fn run(args: CompareArgs) -> Result<()> {
         progress.set_message(method);
         let mut r = renderer(&loaded.scene, method)?;
         loaded.report_sun();
-        let (value, mask, convergence, path) =
-            run.frames(&mut r, gpu_aov, &judge, &mask_of, (&along, &mask_against))?;
-        let mut report = judge.measure(method, &value.pixels, &mask, convergence, &mut panels)?;
-        if !path.is_empty() {
-            let (mean, p95, max) = nearfield_eval::report::path_summary(&path);
-            let n = path.len();
-            progress.suspend(|| {
-                println!("{method:<10} along the path: {n} frames, relative error mean {mean:.4}, 95th percentile {p95:.4}, largest {max:.4}")
-            });
-            report.path = path;
+        let f = run.frames(&mut r, gpu_aov, &judge, &mask_of, (&along, &mask_against))?;
+        let (value, mask) = (&f.value, &f.mask);
+        let mut report = judge.measure(method, &value.pixels, mask, f.convergence, &mut panels)?;
+        if !f.path.is_empty() {
+            let make = || renderer(&loaded.scene, method);
+            report.path_still = run.still_error(&make, gpu_aov, (&along, &mask_against))?;
+            report.instability = f.change.map(|(t, r)| metrics::instability(t, r));
+            report.path = f.path;
+            progress.suspend(|| println!("{}", path_line(&report)));
         }
         if let Some((truth, without)) = &footprint {
             let mut without = renderer(&without.scene, method)?;
             report.footprint = Some(judge.footprint(method, truth, &mut r, &mut without, &run)?);
         }
         reports.push(report);
-        last_mask = Some(mask);
+        last_mask = Some(f.mask);
     }
     progress.finish();
     let mask = last_mask.expect("at least one method");
@@ -450,6 +449,25 @@ fn reference_of(
             (img, judge::traced_info(path, settings))
         }
     })
+}
+
+/// The summary of a method's path: its per-frame error's mean, 95th percentile and largest, each
+/// against the still camera's, and its instability.
+fn path_line(m: &nearfield_eval::report::MethodReport) -> String {
+    let (mean, p95, max) = nearfield_eval::report::path_summary(&m.path);
+    let settled = nearfield_eval::report::path_largest_settled(&m.path);
+    let still = m.path_still.unwrap_or(f64::NAN);
+    let mut line = format!(
+        "{:<10} along the path: {} frames, relative error mean {mean:.4} ({:.2}× still {still:.4}), 95th percentile {p95:.4}, largest {max:.4}, after frame 16 {settled:.4} ({:.2}× still)",
+        m.name,
+        m.path.len(),
+        mean / still,
+        settled / still
+    );
+    if let Some(i) = m.instability {
+        line += &format!(", instability {i:.2}× the reference's");
+    }
+    line
 }
 
 /// Writes the report and says where.
