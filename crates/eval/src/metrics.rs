@@ -197,13 +197,16 @@ impl std::ops::AddAssign for FrameChange {
     }
 }
 
+/// Per-pixel standard errors of two frames (current, previous).
+pub type FrameStderr<'a> = (&'a [[f32; 3]], &'a [[f32; 3]]);
+
 /// The motion-compensated change from `prev` to `cur` ([`FrameChange`]); `stderr`: both frames'
 /// per-pixel standard errors (current, previous), for the reference.
 pub fn frame_change(
     (cur, cur_mask): (&[[f32; 4]], &Mask),
     (prev, prev_mask): (&[[f32; 4]], &Mask),
     motion: &[[f32; 4]],
-    stderr: Option<(&[[f32; 3]], &[[f32; 3]])>,
+    stderr: Option<FrameStderr>,
 ) -> FrameChange {
     let (w, h) = (cur_mask.width as i64, cur_mask.height as i64);
     let var = |s: &[f32; 3]| {
