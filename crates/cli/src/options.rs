@@ -454,6 +454,8 @@ impl Motion {
     /// The camera of frame `index` of a run that starts at `start`.
     pub fn camera(&self, start: nearfield_scene::Camera, index: u32) -> nearfield_scene::Camera {
         match self {
+            // Frame 0 (and a still camera) is `start` itself, not a turn by 0° (which rounds).
+            Motion::Orbit(deg) if index == 0 || *deg == 0.0 => start,
             Motion::Orbit(deg) => start.orbit(deg * index as f32),
             Motion::Path(p) => p.camera(index),
         }

@@ -573,3 +573,74 @@ fn compare_along_a_walk_measures_every_kth_frame_against_its_own_reference() {
     assert_eq!(m.instability, Some(1.0));
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// A path with a cut: the Cornell box from its camera for half a second, then a jump into a
+/// corner held for 1.2 s. Every frame after the cut is measured. `none` keeps nothing from frame
+/// to frame, so it is settled at once; hbil's history starts over at the cut and settles within
+/// its interleave's 16 frames. The camera stands still on either side of the cut: no pair of
+/// frames gives an instability figure.
+#[test]
+fn compare_reports_the_frames_a_technique_takes_to_settle_after_a_cut() {
+    let dir = std::env::temp_dir().join(format!("nearfield-cut-{}", std::process::id()));
+    let cache = dir.join("cache");
+    let out = dir.join("cut");
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("cut.json");
+    std::fs::write(
+        &file,
+        r#"{"fps": 30, "keyframes": [
+            {"t": 0, "eye": [0, 1, 3.9], "target": [0, 0.9, 0], "yfov_deg": 38},
+            {"t": 0.5, "eye": [0, 1, 3.9], "target": [0, 0.9, 0], "yfov_deg": 38},
+            {"t": 0.5334, "eye": [0.8, 1.5, 0.8], "target": [-0.6, 0.5, -0.8], "yfov_deg": 38, "cut": true},
+            {"t": 1.7334, "eye": [0.8, 1.5, 0.8], "target": [-0.6, 0.5, -0.8], "yfov_deg": 38}]}"#,
+    )
+    .unwrap();
+    let args = [
+        "compare",
+        "builtin:cornell",
+        "--path",
+        file.to_str().unwrap(),
+        "--every",
+        "1000",
+        "--size",
+        "48x36",
+        "--aov",
+        "ao",
+        "--radius",
+        "0.5",
+        "--far",
+        "sky",
+        "--spp",
+        "16",
+        "--methods",
+        "none,hbil",
+        "--out",
+        out.to_str().unwrap(),
+    ];
+    let (code, stdout, err) = run(&args, &cache);
+    if !gpu_available(&err) {
+        return;
+    }
+    assert_eq!(code, 0, "{err}");
+    let report: nearfield_eval::report::Report =
+        serde_json::from_str(&std::fs::read_to_string(out.join("metrics.json")).unwrap()).unwrap();
+    let settle = |name: &str| {
+        report
+            .methods
+            .iter()
+            .find(|m| m.name == name)
+            .unwrap()
+            .settle
+            .clone()
+    };
+    assert!(stdout.contains("settles in [1] frames"), "{stdout}");
+    assert_eq!(settle("none"), vec![1]);
+    let hbil = settle("hbil");
+    assert_eq!(hbil.len(), 1);
+    assert!(
+        (1..=16).contains(&hbil[0]),
+        "hbil settles in {hbil:?} frames"
+    );
+    assert!(report.methods.iter().all(|m| m.instability.is_none()));
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -38,7 +38,7 @@ pub use error::{SceneError, one_line};
 pub use light::{Light, LightKind};
 pub use material::{AlphaMode, Material, Texture, TextureColorSpace};
 pub use mesh::{Aabb, Mesh};
-pub use path::CameraPath;
+pub use path::{CameraPath, Keyframe};
 pub use sun::{Sun, SunMode};
 
 use std::path::{Path, PathBuf};

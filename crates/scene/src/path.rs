@@ -2,7 +2,9 @@
 //! camera (docs/src/conventions.md, "Camera paths").
 //!
 //! The file: `{"fps": 30, "keyframes": [{"t": 0, "eye": [x,y,z], "target": [x,y,z], "yfov_deg":
-//! 60}, …]}`, each keyframe a camera file's fields (`up` optional) with its time `t` in seconds.
+//! 60}, …]}`, each keyframe a camera file's fields (`up` optional) with its time `t` in seconds;
+//! `"cut": true` on a keyframe makes the camera jump to it (holding the previous keyframe's view
+//! until then).
 //! Between keyframes the eye and the target follow a Catmull-Rom spline through them (the path
 //! passes through every keyframe, with no corner at one), the field of view and up are
 //! interpolated linearly. Frame `i` is the camera at `t₀ + i / fps`; the path has
@@ -17,12 +19,32 @@ use std::path::Path;
 /// The most frames a path may hold (at 60 fps, about 28 minutes).
 pub const MAX_FRAMES: u32 = 100_000;
 
-/// A camera path: keyframes (time in seconds, camera) with increasing times, and a frame rate.
+/// A camera path: keyframes with increasing times, and a frame rate.
 #[derive(Clone, Debug, PartialEq)]
 pub struct CameraPath {
     /// Frames per second.
     pub fps: f32,
-    keys: Vec<(f32, Camera)>,
+    keys: Vec<Keyframe>,
+}
+
+/// A keyframe: the camera at time `t` (seconds); `cut`: the camera jumps here from the previous
+/// keyframe's view, which it holds until `t`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Keyframe {
+    pub t: f32,
+    pub camera: Camera,
+    pub cut: bool,
+}
+
+impl From<(f32, Camera)> for Keyframe {
+    /// The camera at `t`, reached smoothly.
+    fn from((t, camera): (f32, Camera)) -> Self {
+        Keyframe {
+            t,
+            camera,
+            cut: false,
+        }
+    }
 }
 
 /// One keyframe of the file: its time and a camera file's fields.
@@ -31,6 +53,9 @@ pub struct KeyframeFile {
     pub t: f32,
     #[serde(flatten)]
     pub camera: CameraFile,
+    /// The camera jumps to this keyframe.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub cut: bool,
 }
 
 /// The camera path file.
@@ -45,24 +70,29 @@ impl CameraPath {
     /// A path through `keys` (time in seconds, camera) at `fps` frames per second, checked:
     /// at least one keyframe, finite times that increase, cameras that form an image, a frame
     /// rate in (0, 1000] and at most [`MAX_FRAMES`] frames.
-    pub fn new(fps: f32, keys: Vec<(f32, Camera)>) -> Result<Self, String> {
+    pub fn new(
+        fps: f32,
+        keys: impl IntoIterator<Item = impl Into<Keyframe>>,
+    ) -> Result<Self, String> {
+        let keys: Vec<Keyframe> = keys.into_iter().map(Into::into).collect();
         if !(fps.is_finite() && fps > 0.0 && fps <= 1000.0) {
             return Err(format!("fps {fps}: must be a number in (0, 1000]"));
         }
         if keys.is_empty() {
             return Err("no keyframes".into());
         }
-        for (i, (t, camera)) in keys.iter().enumerate() {
+        for (i, k) in keys.iter().enumerate() {
+            let t = k.t;
             if !t.is_finite() {
                 return Err(format!("keyframe {i}: time {t} is not a finite number"));
             }
-            if i > 0 && *t <= keys[i - 1].0 {
+            if i > 0 && t <= keys[i - 1].t {
                 return Err(format!(
                     "keyframe {i}: time {t} s does not come after the previous keyframe's {} s",
-                    keys[i - 1].0
+                    keys[i - 1].t
                 ));
             }
-            camera
+            k.camera
                 .validate()
                 .map_err(|e| format!("keyframe {i}: {e}"))?;
         }
@@ -100,7 +130,7 @@ impl CameraPath {
     /// Parses and checks camera path JSON.
     pub fn parse(text: &str) -> Result<Self, String> {
         let f: PathFile = serde_json::from_str(text).map_err(|e| e.to_string())?;
-        let keys = f
+        let keys: Vec<Keyframe> = f
             .keyframes
             .iter()
             .map(|k| {
@@ -111,7 +141,11 @@ impl CameraPath {
                     up: c.up.into(),
                     yfov: c.yfov_deg.to_radians(),
                 };
-                (k.t, camera)
+                Keyframe {
+                    t: k.t,
+                    camera,
+                    cut: k.cut,
+                }
             })
             .collect();
         Self::new(f.fps, keys)
@@ -124,9 +158,10 @@ impl CameraPath {
             keyframes: self
                 .keys
                 .iter()
-                .map(|(t, c)| KeyframeFile {
-                    t: *t,
-                    camera: CameraFile::from_camera(c),
+                .map(|k| KeyframeFile {
+                    t: k.t,
+                    camera: CameraFile::from_camera(&k.camera),
+                    cut: k.cut,
                 })
                 .collect(),
         }
@@ -134,7 +169,7 @@ impl CameraPath {
 
     /// Seconds from the first keyframe to the last.
     pub fn duration(&self) -> f32 {
-        self.keys[self.keys.len() - 1].0 - self.keys[0].0
+        self.keys[self.keys.len() - 1].t - self.keys[0].t
     }
 
     /// Frames on the path: ⌊duration · fps⌋ + 1.
@@ -144,34 +179,37 @@ impl CameraPath {
 
     /// The camera of frame `index` (clamped to the last keyframe after the path's end).
     pub fn camera(&self, index: u32) -> Camera {
-        self.camera_at(self.keys[0].0 + index as f32 / self.fps)
+        self.camera_at(self.keys[0].t + index as f32 / self.fps)
     }
 
     /// The camera at time `t` (seconds; clamped to the keyframes' span).
     pub fn camera_at(&self, t: f32) -> Camera {
         let k = &self.keys;
         let last = k.len() - 1;
-        if t <= k[0].0 || last == 0 {
-            return k[0].1;
+        if t <= k[0].t || last == 0 {
+            return k[0].camera;
         }
-        if t >= k[last].0 {
-            return k[last].1;
+        if t >= k[last].t {
+            return k[last].camera;
         }
-        let i = k.partition_point(|(kt, _)| *kt <= t) - 1;
-        let (t0, t1) = (k[i].0, k[i + 1].0);
-        let s = (t - t0) / (t1 - t0);
-        let (a, b) = (&k[i].1, &k[i + 1].1);
-        // At the ends the missing neighbour is the next keyframe mirrored (a straight start).
+        let i = k.partition_point(|key| key.t <= t) - 1;
+        let (a, b) = (&k[i].camera, &k[i + 1].camera);
+        if k[i + 1].cut {
+            return *a;
+        }
+        let s = (t - k[i].t) / (k[i + 1].t - k[i].t);
+        // A missing neighbour (at either end, or across a cut) is the next keyframe mirrored (a
+        // straight start).
         let spline = |p: fn(&Camera) -> Vec3| {
-            let before = if i == 0 {
+            let before = if i == 0 || k[i].cut {
                 2.0 * p(a) - p(b)
             } else {
-                p(&k[i - 1].1)
+                p(&k[i - 1].camera)
             };
-            let after = if i + 1 == last {
+            let after = if i + 1 == last || k[i + 2].cut {
                 2.0 * p(b) - p(a)
             } else {
-                p(&k[i + 2].1)
+                p(&k[i + 2].camera)
             };
             catmull_rom(before, p(a), p(b), after, s)
         };
@@ -186,7 +224,7 @@ impl CameraPath {
     /// `frames` frames at `fps` turning `degrees` per frame about the target from `start`
     /// (what `--orbit DEG` means), one keyframe per frame.
     pub fn orbit(start: Camera, degrees: f32, frames: u32, fps: f32) -> Result<Self, String> {
-        let keys = (0..frames.max(1))
+        let keys: Vec<(f32, Camera)> = (0..frames.max(1))
             .map(|i| (i as f32 / fps, start.orbit(degrees * i as f32)))
             .collect();
         Self::new(fps, keys)
@@ -210,14 +248,14 @@ impl CameraPath {
                 eye.clamp(bounds.min - distance, bounds.max + distance)
             };
             let target = start.target + side * (turn * distance);
-            (
+            Keyframe::from((
                 t,
                 Camera {
                     eye,
                     target,
                     ..start
                 },
-            )
+            ))
         };
         Self::new(
             fps,
@@ -265,8 +303,7 @@ mod tests {
         assert!((p.camera(30).eye - cam(1.0).eye).length() < 1e-5);
         assert!((p.camera(90).eye - cam(2.0).eye).length() < 1e-5);
         // Equally spaced collinear keyframes are crossed at constant speed.
-        let line =
-            CameraPath::new(10.0, (0..4).map(|i| (i as f32, cam(i as f32))).collect()).unwrap();
+        let line = CameraPath::new(10.0, (0..4).map(|i| (i as f32, cam(i as f32)))).unwrap();
         for i in 0..=30 {
             let x = line.camera(i).eye.x;
             assert!((x - i as f32 / 10.0).abs() < 1e-4, "frame {i}: x {x}");
@@ -331,6 +368,29 @@ mod tests {
         // NaN is not JSON; a time that overflows to infinity is refused as not finite.
         let inf = r#"{"fps": 30, "keyframes": [{"t": 1e39, "eye": [0, 1, 4], "target": [0, 1, 0], "yfov_deg": 45}]}"#;
         assert!(CameraPath::parse(inf).is_err());
+    }
+
+    #[test]
+    fn a_cut_holds_the_view_then_jumps() {
+        let text = r#"{"fps": 10, "keyframes": [
+            {"t": 0, "eye": [0, 1, 4], "target": [0, 1, 0], "yfov_deg": 45},
+            {"t": 1, "eye": [0, 1, 4], "target": [0, 1, 0], "yfov_deg": 45},
+            {"t": 2, "eye": [4, 1, 0], "target": [0, 1, 0], "yfov_deg": 45, "cut": true},
+            {"t": 3, "eye": [4, 1, 0], "target": [0, 1, 0], "yfov_deg": 45}]}"#;
+        let p = CameraPath::parse(text).unwrap();
+        // Still, with no overshoot, until the jump at frame 20; still after it.
+        for i in 0..20 {
+            assert_eq!(p.camera(i).eye, Vec3::new(0.0, 1.0, 4.0), "frame {i}");
+        }
+        for i in 20..=30 {
+            assert!(
+                (p.camera(i).eye - Vec3::new(4.0, 1.0, 0.0)).length() < 1e-5,
+                "frame {i}"
+            );
+        }
+        assert!(p.camera(19).is_cut_to(&p.camera(20)));
+        let back = CameraPath::parse(&serde_json::to_string(&p.to_file()).unwrap()).unwrap();
+        assert_eq!(back, p);
     }
 
     #[test]

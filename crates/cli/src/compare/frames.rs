@@ -41,6 +41,10 @@ pub(super) struct Frames {
 /// The frames of a still camera's run at a view of the path, measured against its reference.
 const STILL_FRAMES: u32 = 16;
 
+/// The frames after a cut over which a technique's settling is measured: the error of frames
+/// 17–32 after it is its settled value.
+const SETTLE_WINDOW: u32 = 32;
+
 impl Run {
     /// `frames` (`--frames`; default 1, or the path's) from `first`.
     pub fn new(motion: Motion, frames: Option<u32>, first: Camera) -> Self {
@@ -60,14 +64,63 @@ impl Run {
         self.motion.camera(self.first, index)
     }
 
-    /// The frames of a path that are measured: every `every`-th and the last.
+    /// The frames of a path that are measured: every `every`-th, the last, and the
+    /// [`SETTLE_WINDOW`] frames after each cut.
     fn measured(&self, every: u32) -> Vec<u32> {
         if !matches!(self.motion, Motion::Path(_)) {
             return Vec::new();
         }
+        let cuts = self.cuts();
         (0..self.frames)
-            .filter(|i| (i + 1) % every == 0 || i + 1 == self.frames)
+            .filter(|i| {
+                (i + 1) % every == 0
+                    || i + 1 == self.frames
+                    || cuts.iter().any(|c| (*c..c + SETTLE_WINDOW).contains(i))
+            })
             .collect()
+    }
+
+    /// Whether the camera of frame `i` is not that of frame `i − 1` (beyond rounding).
+    fn moved(&self, i: u32) -> bool {
+        let (a, b) = (self.camera(i - 1), self.camera(i));
+        let scale = (a.target - a.eye).length().max(1e-6);
+        (b.eye - a.eye).length() + (b.target - a.target).length() > 1e-5 * scale
+            || (b.yfov - a.yfov).abs() > 1e-6
+    }
+
+    /// The frames of a path whose camera jumps from the frame before's (a cut: the history is
+    /// discarded).
+    pub fn cuts(&self) -> Vec<u32> {
+        if !matches!(self.motion, Motion::Path(_)) {
+            return Vec::new();
+        }
+        (1..self.frames)
+            .filter(|i| self.camera(i - 1).is_cut_to(&self.camera(*i)))
+            .collect()
+    }
+
+    /// The frames a technique takes to settle after each cut with [`SETTLE_WINDOW`] frames
+    /// after it: the first frame from the cut on whose error is within 5 % of the settled
+    /// value (the mean error of the window's last 16 frames), counting the cut's own frame as 1.
+    pub fn settle(&self, path: &[ConvergencePoint]) -> Vec<u32> {
+        let error = |i: u32| {
+            path.iter()
+                .find(|p| p.frames == i + 1)
+                .map(|p| p.relative_error)
+        };
+        let mut out = Vec::new();
+        for c in self.cuts() {
+            let tail: Option<Vec<f64>> = (c + SETTLE_WINDOW / 2..c + SETTLE_WINDOW)
+                .map(error)
+                .collect();
+            let Some(tail) = tail else { continue };
+            let settled = tail.iter().sum::<f64>() / tail.len() as f64;
+            let k = (0..SETTLE_WINDOW)
+                .find(|k| error(c + k).is_some_and(|e| e <= 1.05 * settled))
+                .unwrap_or(SETTLE_WINDOW - 1);
+            out.push(k + 1);
+        }
+        out
     }
 
     /// Runs the frames of a technique ([`Frames`]); along a path each measured frame is judged
@@ -113,8 +166,11 @@ impl Run {
                     rmse: m.rmse,
                     relative_error: m.relative_error,
                 });
+                // Consecutive measured frames whose camera moved: a still camera's frames show
+                // no motion to compensate (and a reference that does not change).
                 if let Some((pk, pv, pm)) = &prev
                     && along[*pk].0 + 1 == i
+                    && self.moved(i)
                 {
                     let motion = r.read_aov(Aov::Motion).pixels;
                     let before = &along[*pk].1;
@@ -208,4 +264,58 @@ pub(super) fn path_truth(
     }
     loaded.camera = run.camera(run.frames - 1);
     Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use nearfield_scene::{CameraPath, Keyframe};
+
+    #[test]
+    fn a_technique_settles_at_the_first_frame_within_5_percent_of_its_settled_error() {
+        let (a, b) = (
+            Camera::new(glam::Vec3::new(0.0, 1.0, 4.0), glam::Vec3::ZERO, 45.0),
+            Camera::new(glam::Vec3::new(4.0, 1.0, 0.0), glam::Vec3::ZERO, 45.0),
+        );
+        let keys = [
+            Keyframe::from((0.0, a)),
+            Keyframe {
+                t: 1.0,
+                camera: b,
+                cut: true,
+            },
+            Keyframe::from((3.0, b)),
+        ];
+        let path = CameraPath::new(10.0, keys).unwrap();
+        let run = Run::new(Motion::Path(path), None, a);
+        assert_eq!(run.cuts(), vec![10]);
+        // Measured: frames 10..42 after the cut (and the last, 30); not the others.
+        let measured = run.measured(1000);
+        assert_eq!(measured.first(), Some(&10));
+        assert!(measured.contains(&30) && !measured.contains(&9));
+        // An error falling from 0.5 by 0.05 a frame to 0.2, then flat: within 5 % of 0.2 at
+        // the seventh frame after the cut (0.5, 0.45, …, 0.2).
+        let points: Vec<ConvergencePoint> = (10..31)
+            .map(|i| ConvergencePoint {
+                frames: i + 1,
+                rmse: 0.0,
+                relative_error: (0.5 - 0.05 * (i - 10) as f64).max(0.2),
+            })
+            .collect();
+        assert_eq!(
+            run.settle(&points),
+            Vec::<u32>::new(),
+            "a window the path cuts short"
+        );
+        let long = CameraPath::new(10.0, [keys[0], keys[1], Keyframe::from((6.0, b))]).unwrap();
+        let run = Run::new(Motion::Path(long), None, a);
+        let points: Vec<ConvergencePoint> = (10..61)
+            .map(|i| ConvergencePoint {
+                frames: i + 1,
+                rmse: 0.0,
+                relative_error: (0.5 - 0.05 * (i - 10) as f64).max(0.2),
+            })
+            .collect();
+        assert_eq!(run.settle(&points), vec![7]);
+    }
 }

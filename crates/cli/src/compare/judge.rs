@@ -138,6 +138,7 @@ impl<'a> Judge<'a> {
             path: Vec::new(),
             path_still: None,
             instability: None,
+            settle: Vec::new(),
         })
     }
 

@@ -343,6 +343,7 @@ pub fn run(args: CompareArgs) -> Result<()> {
             let make = || renderer(&loaded.scene, method);
             report.path_still = run.still_error(&make, gpu_aov, (&along, &mask_against))?;
             report.instability = f.change.map(|(t, r)| metrics::instability(t, r));
+            report.settle = run.settle(&f.path);
             report.path = f.path;
             progress.suspend(|| println!("{}", path_line(&report)));
         }
@@ -466,6 +467,9 @@ fn path_line(m: &nearfield_eval::report::MethodReport) -> String {
     );
     if let Some(i) = m.instability {
         line += &format!(", instability {i:.2}× the reference's");
+    }
+    if !m.settle.is_empty() {
+        line += &format!(", settles in {:?} frames after the cuts", m.settle);
     }
     line
 }
