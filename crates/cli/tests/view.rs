@@ -114,6 +114,45 @@ fn screenshot_after_30_frames_equals_render() {
     assert!(flip <= FLIP_BOUND, "FLIP {flip} > {FLIP_BOUND}");
 }
 
+/// The viewer records the camera of every frame as a camera path; `render --path` plays the
+/// recording and shows what the viewer showed, hbil's history included (the frame after
+/// `stop-path` is rendered at the last recorded camera, which `--frames` one beyond the path's
+/// holds).
+#[test]
+fn a_recorded_camera_path_replays_what_the_viewer_showed() {
+    if !have_xvfb() {
+        return;
+    }
+    let dir = scratch("record");
+    let (path, shot) = (dir.join("walk.json"), dir.join("view.png"));
+    let mut script = format!("record-path {}\n", path.display());
+    script += &"orbit 2\n".repeat(8);
+    script += &format!("stop-path\nscreenshot {}\nquit\n", shot.display());
+    let script_file = dir.join("record.txt");
+    std::fs::write(&script_file, script).unwrap();
+    let args = [SCENE, &["--method", "hbil"]].concat();
+    let (code, _, err) = view(
+        &[
+            &args[..],
+            &["--script", script_file.to_str().unwrap(), "--frames", "200"],
+        ]
+        .concat(),
+    );
+    assert_eq!(code, 0, "{err}");
+    assert!(err.contains("(9 frames)"), "{err}");
+    let recorded = nearfield_scene::CameraPath::load(&path).unwrap();
+    assert_eq!(recorded.frames(), 9);
+    let replay = dir.join("replay.png");
+    let path_arg = path.to_str().unwrap();
+    render(
+        &[&args[..], &["--path", path_arg, "--frames", "10"]].concat(),
+        &replay,
+    );
+    let flip = flip_in(&rgb(&shot), &rgb(&replay), 0, 320);
+    eprintln!("hbil along a recorded path: FLIP(view, render --path) = {flip:.6}");
+    assert!(flip <= FLIP_BOUND, "FLIP {flip} > {FLIP_BOUND}");
+}
+
 #[test]
 fn split_view_shows_each_technique_on_its_side() {
     if !have_xvfb() {

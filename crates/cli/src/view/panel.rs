@@ -325,6 +325,23 @@ impl Panel {
                 req.changes.push(Change::LoadCamera(path));
             }
         });
+        // The camera path: recorded frame by frame into the file named above with .json.
+        ui.horizontal(|ui| match &s.recording {
+            Some(r) => {
+                if ui.button("stop path").clicked() {
+                    req.changes.push(Change::StopPath);
+                }
+                ui.label(format!("recording {} frames", r.frames()));
+            }
+            None => {
+                let path =
+                    std::path::PathBuf::from(self.camera_path.trim()).with_extension("path.json");
+                if ui.button("record path").clicked() {
+                    req.changes.push(Change::RecordPath(path.clone()));
+                }
+                ui.small(format!("into {}", path.display()));
+            }
+        });
         let c = s.camera;
         ui.small(format!(
             "eye {:.3},{:.3},{:.3}  target {:.3},{:.3},{:.3}  fov {:.1}°",

@@ -91,6 +91,8 @@ fn parse_line(line: &str) -> Result<Command, String> {
         "orbit" => Change::Orbit(number(one()?, cmd)?),
         "frame" => Change::FrameScene,
         "far" => Change::Far(one()?.to_string()),
+        "record-path" => Change::RecordPath(PathBuf::from(one()?)),
+        "stop-path" => Change::StopPath,
         "bake-wait" => return Ok(Command::BakeWait),
         "wait" => return Ok(Command::Wait(number(one()?, cmd)?)),
         "screenshot" => return Ok(Command::Screenshot(PathBuf::from(one()?))),
@@ -111,9 +113,9 @@ mod tests {
                     aov ao\nsize 640x360\nscene builtin:boxes\nenv sky\nenv-intensity 2\n\
                     env-rotation 90\nexposure -1\ntonemap neutral\nlight 0 off\nsplit 0.3\n\
                     split off\ncamera c.json\nsave-camera d.json\norbit 5\nframe\nwait 3\n\
-                    screenshot s.png\nreport\nquit\n";
+                    screenshot s.png\nreport\nrecord-path p.json\nstop-path\nquit\n";
         let cmds = parse(text).unwrap();
-        assert_eq!(cmds.len(), 22);
+        assert_eq!(cmds.len(), 24);
         assert_eq!(
             cmds[0],
             Command::Change(Change::Method(Side::B, "ssdo:samples=8".into()))

@@ -20,6 +20,7 @@ mod changes;
 mod display;
 mod far;
 mod files;
+pub mod recording;
 
 /// Which side of the A/B view.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -68,6 +69,10 @@ pub enum Change {
     /// `far sky|volume`: the far field. With `volume` the scene's probe volume is baked (or taken
     /// from the cache) in the background; until it is ready the frame keeps its far field.
     Far(String),
+    /// `record-path FILE.json`: records the camera of every frame from now on as a camera path;
+    /// `stop-path` writes it.
+    RecordPath(PathBuf),
+    StopPath,
 }
 
 /// Live GPU objects of the device (wgpu's registry), for leak checks.
@@ -122,6 +127,8 @@ pub struct Session {
     /// The grid of the session's bakes.
     grid: crate::far::GridOpts,
     bake: Option<Bake>,
+    /// `record-path`: the camera path being recorded.
+    pub recording: Option<recording::Recording>,
 }
 
 /// Everything a session starts from.
@@ -197,6 +204,7 @@ impl Session {
             far_volume,
             volume: None,
             bake: None,
+            recording: None,
             grid: start.grid,
             scene: start.scene,
             ctx,
@@ -301,6 +309,19 @@ impl Session {
                 Ok(())
             }
             Change::Far(mode) => self.set_far_mode(mode),
+            Change::RecordPath(path) => {
+                self.recording = Some(recording::Recording::start(&path)?);
+                Ok(())
+            }
+            Change::StopPath => {
+                let r = self
+                    .recording
+                    .take()
+                    .ok_or("stop-path: no path is being recorded")?;
+                let (n, path) = (r.frames(), r.finish(self.camera)?);
+                eprintln!("nearfield: view: wrote {} ({n} frames)", path.display());
+                Ok(())
+            }
         }
     }
 
@@ -319,6 +340,9 @@ impl Session {
             eprintln!("nearfield: view: {e}");
         }
         let camera = self.camera;
+        if let Some(r) = &mut self.recording {
+            r.frame(camera);
+        }
         self.for_each_renderer(|r| {
             r.set_camera(camera);
             r.render_frame();
