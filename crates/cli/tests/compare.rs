@@ -147,43 +147,20 @@ fn have_chromium() -> bool {
     ok
 }
 
-/// The report, moved to another folder, opened from disk in headless Chromium: it loads without
-/// a script error or console error, shows the metrics table with a row per method, and its own
-/// self-test (`#selftest`: sort by a column both ways, flip each image with a key and the
-/// slider, zoom ×4 on a click and back, every image loads) passes in the real browser.
-#[test]
-fn report_works_in_a_browser_from_any_folder() {
-    if !have_chromium() {
-        return;
-    }
-    let dir = std::env::temp_dir().join(format!("nearfield-report-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    let out = dir.join("made");
-    let (code, _, err) = run(
-        &[
-            "compare",
-            "builtin:cornell",
-            "--size",
-            "64x48",
-            "--aov",
-            "ao",
-            "--radius",
-            "1",
-            "--spp",
-            "8",
-            "--methods",
-            "none,ssao,gtao",
-            "--out",
-            out.to_str().unwrap(),
-        ],
-        &dir.join("cache"),
-    );
-    if !gpu_available(&err) {
-        return;
-    }
-    assert_eq!(code, 0, "{err}");
+/// The report in `out`, moved to another folder and opened from disk in headless Chromium with
+/// `#selftest`: no script or console error, a metrics row per method, the self-test passes.
+/// Returns where it was moved.
+fn report_in_browser(
+    dir: &std::path::Path,
+    out: &std::path::Path,
+    methods: &[&str],
+) -> std::path::PathBuf {
+    let out = out.to_path_buf();
     // Relative paths only: the folder works wherever it is put.
-    let moved = dir.join("moved");
+    let moved = dir.join(format!(
+        "moved-{}",
+        out.file_name().unwrap().to_string_lossy()
+    ));
     std::fs::rename(&out, &moved).unwrap();
     let html = std::fs::read_to_string(moved.join("report.html")).unwrap();
     assert!(
@@ -227,12 +204,52 @@ fn report_works_in_a_browser_from_any_folder() {
         .nth(1)
         .and_then(|t| t.split("</table>").next())
         .expect("the metrics table is on the page");
-    for m in ["none", "ssao", "gtao"] {
+    for m in methods {
         assert!(
             table.contains(&format!(">{m}</a>")),
             "no row for {m}: {table}"
         );
     }
+    moved
+}
+
+/// The report, moved to another folder, opened from disk in headless Chromium: it loads without
+/// a script error or console error, shows the metrics table with a row per method, and its own
+/// self-test (`#selftest`: sort by a column both ways, flip each image with a key and the
+/// slider, zoom ×4 on a click and back, every image loads) passes in the real browser.
+#[test]
+fn report_works_in_a_browser_from_any_folder() {
+    if !have_chromium() {
+        return;
+    }
+    let dir = std::env::temp_dir().join(format!("nearfield-report-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let out = dir.join("made");
+    let (code, _, err) = run(
+        &[
+            "compare",
+            "builtin:cornell",
+            "--size",
+            "64x48",
+            "--aov",
+            "ao",
+            "--radius",
+            "1",
+            "--spp",
+            "8",
+            "--methods",
+            "none,ssao,gtao",
+            "--out",
+            out.to_str().unwrap(),
+        ],
+        &dir.join("cache"),
+    );
+    if !gpu_available(&err) {
+        return;
+    }
+    assert_eq!(code, 0, "{err}");
+    let moved = report_in_browser(&dir, &out, &["none", "ssao", "gtao"]);
+    let url = format!("file://{}/report.html", moved.display());
     // What is presented: a screenshot of the page shows dark text on the light page.
     let shot = dir.join("page.png");
     let o = chromium(
@@ -549,6 +566,14 @@ fn compare_along_a_walk_measures_every_kth_frame_against_its_own_reference() {
     assert!(html.contains("Error along the camera path"));
     let cached = std::fs::read_dir(cache.join("reference")).unwrap().count();
     assert!(cached >= 4, "{cached} references cached for 4 cameras");
+    // The sequence: each measured frame's image, error and reference, stepped in the browser.
+    for f in ["none-0040.png", "none-0121-error.png", "reference-0080.png"] {
+        assert!(out.join("frames").join(f).is_file(), "frames/{f}");
+    }
+    assert!(html.contains(r#"class="seq" data-method="none""#));
+    if have_chromium() {
+        report_in_browser(&dir, &out, &["none"]);
+    }
     // A path file of three frames, each measured.
     let file = dir.join("path.json");
     std::fs::write(

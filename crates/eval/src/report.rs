@@ -303,6 +303,26 @@ document.querySelectorAll("section.flip").forEach(function (section) {
   });
   section.addEventListener("mouseenter", function () { section.focus({ preventScroll: true }); });
 });
+function step(section, i) {
+  const frames = section.dataset.frames.split("|"), method = section.dataset.method;
+  const n = frames[i], imgs = section.querySelectorAll(".frames img");
+  imgs[0].src = "frames/" + method + "-" + n + ".png";
+  imgs[1].src = "frames/reference-" + n + ".png";
+  imgs[2].src = "frames/" + method + "-" + n + "-error.png";
+  section.querySelector("input[type=range]").value = String(i);
+  section.querySelector(".which").textContent = "frame " + parseInt(n, 10) + " (" + (i + 1) + " of " + frames.length + " measured)";
+  section.dataset.shown = String(i);
+}
+document.querySelectorAll("section.seq").forEach(function (section) {
+  const slider = section.querySelector("input[type=range]");
+  step(section, parseInt(slider.value, 10));
+  slider.addEventListener("input", function () { step(section, parseInt(slider.value, 10)); });
+  section.addEventListener("keydown", function (e) {
+    const i = parseInt(section.dataset.shown, 10), last = parseInt(slider.max, 10);
+    if (e.key === "ArrowLeft" && i > 0) step(section, i - 1);
+    else if (e.key === "ArrowRight" && i < last) step(section, i + 1);
+  });
+});
 function selftest() {
   const failures = [];
   const table = document.getElementById("metrics");
@@ -330,6 +350,22 @@ function selftest() {
   const all = [];
   document.querySelectorAll("img[data-srcs]").forEach(function (img) {
     img.dataset.srcs.split("|").forEach(function (s) { if (all.indexOf(s) < 0) all.push(s); });
+  });
+  document.querySelectorAll("section.seq").forEach(function (section) {
+    const frames = section.dataset.frames.split("|");
+    section.dispatchEvent(new KeyboardEvent("keydown", { key: "ArrowLeft" }));
+    if (frames.length > 1 && section.dataset.shown !== String(frames.length - 2)) failures.push(section.dataset.method + ": the left arrow did not step back");
+    const slider = section.querySelector("input[type=range]");
+    slider.value = "0";
+    slider.dispatchEvent(new Event("input"));
+    if (section.querySelector(".frames img").getAttribute("src").indexOf(frames[0]) < 0) failures.push(section.dataset.method + ": the slider did not show the first frame");
+    frames.forEach(function (_, i) {
+      step(section, i);
+      section.querySelectorAll(".frames img").forEach(function (img) {
+        const s = img.getAttribute("src");
+        if (all.indexOf(s) < 0) all.push(s);
+      });
+    });
   });
   Promise.all(all.map(function (s) {
     return new Promise(function (done) {
@@ -378,7 +414,7 @@ pub fn write(dir: &Path, report: &Report) -> std::io::Result<()> {
 td,th{{border:1px solid #ccc;padding:4px 8px;text-align:right}}th{{background:#eee}}
 .row{{display:flex;gap:12px;flex-wrap:wrap;align-items:flex-start}}figure{{margin:0}}figcaption{{font-size:90%;color:#444}}
 .frame{{overflow:auto;max-width:min(100%,960px);max-height:80vh;border:1px solid #999;display:inline-block;cursor:zoom-in}}
-.frame.zoomed{{cursor:zoom-out}}.frame img{{image-rendering:pixelated;display:block;max-width:none}}
+.frame.zoomed{{cursor:zoom-out}}.frame img{{image-rendering:pixelated;display:block;max-width:none}}.frames img{{image-rendering:pixelated;margin-right:4px}}
 .controls{{margin:4px 0}}.controls button.on{{background:#333;color:#fff}}.which{{font-size:90%;color:#444}}
 th[data-sort]{{cursor:pointer}}th.asc::after{{content:" ▲"}}th.desc::after{{content:" ▼"}}section.flip:focus{{outline:2px solid #88f}}.bar{{width:320px;height:14px;border:1px solid #999;background:linear-gradient(to right,{gradient})}}
 .ticks{{display:flex;justify-content:space-between;width:322px;font-size:80%}}</style></head><body>
@@ -415,6 +451,7 @@ the reference, Σσ/Σref = {rel_noise:.4}.</p>
     metrics_rows(&mut h, report);
     convergence(&mut h, report);
     path(&mut h, report);
+    sequence(&mut h, report);
     for m in &report.methods {
         method_section(&mut h, report, m);
     }
@@ -509,6 +546,35 @@ fn path(h: &mut String, report: &Report) {
         );
     }
     h.push_str("</table>");
+}
+
+/// Along a path: each method's measured frames, the reference's and the signed error side by
+/// side, stepped with a slider (the frames' PNGs are in `frames/`).
+fn sequence(h: &mut String, report: &Report) {
+    let methods: Vec<&MethodReport> = report
+        .methods
+        .iter()
+        .filter(|m| !m.path.is_empty())
+        .collect();
+    if methods.is_empty() {
+        return;
+    }
+    h.push_str("<h2>The sequence</h2><p>Each measured frame: the technique, the reference from that frame's camera, and the signed error (its own range per frame). Drag the slider or use the arrow keys.</p>");
+    for m in methods {
+        let frames: Vec<String> = m.path.iter().map(|p| format!("{:04}", p.frames)).collect();
+        let last = frames.len() - 1;
+        let _ = write!(
+            h,
+            r#"<section class="seq" data-method="{name}" data-frames="{frames}" tabindex="0"><h3>{name}</h3>
+<div class="controls"><input type="range" min="0" max="{last}" step="1" value="{last}" aria-label="frame"> <span class="which"></span></div>
+<div class="frames"><img alt="{name}" width="{w}" height="{hh}"><img alt="reference" width="{w}" height="{hh}"><img alt="signed error" width="{w}" height="{hh}"></div>
+</section>"#,
+            name = escape(&m.name),
+            frames = frames.join("|"),
+            w = report.size[0],
+            hh = report.size[1],
+        );
+    }
 }
 
 /// A method's section: its image, the reference and the signed error, flipped in place.

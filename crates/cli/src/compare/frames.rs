@@ -127,7 +127,7 @@ impl Run {
     /// against `along`'s reference, masked with `mask_against`.
     pub fn frames(
         &self,
-        r: &mut Renderer,
+        (method, r): (&str, &mut Renderer),
         gpu_aov: Aov,
         judge: &Judge,
         mask_of: &dyn Fn(&mut Renderer, &AovImage) -> Mask,
@@ -161,6 +161,7 @@ impl Run {
                 let value = r.read_aov(gpu_aov);
                 let m_now = mask_against(r, &value, truth);
                 let m = metrics::metrics(&value.pixels, &truth.value, &m_now);
+                judge.frame_pngs(method, n, &value.pixels, truth, &m_now)?;
                 path.push(ConvergencePoint {
                     frames: n,
                     rmse: m.rmse,

@@ -82,6 +82,37 @@ impl<'a> Judge<'a> {
         })
     }
 
+    /// Along a path: frame `n`'s image of `method` and its signed error against `truth` (the
+    /// reference of that frame) as `frames/METHOD-NNNN.png` and `frames/METHOD-NNNN-error.png`,
+    /// for the report's sequence.
+    pub fn frame_pngs(
+        &self,
+        method: &str,
+        n: u32,
+        pixels: &[[f32; 4]],
+        truth: &ReferenceImage,
+        mask: &Mask,
+    ) -> Result<()> {
+        let (w, h) = self.size;
+        let dir = self.out.join("frames");
+        std::fs::create_dir_all(&dir)?;
+        let srgb = image_ops::tonemap_exposed(pixels, w, h, self.gain);
+        png(srgb, &dir.join(format!("{method}-{n:04}.png")))?;
+        let errors = metrics::signed_errors(pixels, &truth.value, mask);
+        let range = image_ops::error_range(&errors, &mask.valid);
+        let heat = image_ops::heatmap(&errors, &mask.valid, w, h, range);
+        png(heat, &dir.join(format!("{method}-{n:04}-error.png")))
+    }
+
+    /// Along a path: the reference of frame `n` as `frames/reference-NNNN.png`.
+    pub fn reference_png(&self, n: u32, truth: &ReferenceImage) -> Result<()> {
+        let (w, h) = self.size;
+        let dir = self.out.join("frames");
+        std::fs::create_dir_all(&dir)?;
+        let srgb = image_ops::tonemap_exposed(&truth.value, w, h, self.gain);
+        png(srgb, &dir.join(format!("reference-{n:04}.png")))
+    }
+
     /// One image's metrics, PNGs and strip panels: a technique's AOV or an `--image`.
     pub fn measure(
         &self,

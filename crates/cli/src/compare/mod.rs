@@ -303,6 +303,9 @@ pub fn run(args: CompareArgs) -> Result<()> {
         true,
     );
     let judge = Judge::new(&args, &reference, size, &progress)?;
+    for (i, truth) in &along {
+        judge.reference_png(i + 1, truth)?;
+    }
     let mask_settings = MaskSettings {
         border,
         depth_tolerance: 0.01,
@@ -336,7 +339,13 @@ pub fn run(args: CompareArgs) -> Result<()> {
         progress.set_message(method);
         let mut r = renderer(&loaded.scene, method)?;
         loaded.report_sun();
-        let f = run.frames(&mut r, gpu_aov, &judge, &mask_of, (&along, &mask_against))?;
+        let f = run.frames(
+            (method, &mut r),
+            gpu_aov,
+            &judge,
+            &mask_of,
+            (&along, &mask_against),
+        )?;
         let (value, mask) = (&f.value, &f.mask);
         let mut report = judge.measure(method, &value.pixels, mask, f.convergence, &mut panels)?;
         if !f.path.is_empty() {
