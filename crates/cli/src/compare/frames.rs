@@ -8,7 +8,7 @@ use super::judge::Judge;
 use crate::options::{Loaded, Motion};
 use anyhow::Result;
 use nearfield_eval::metrics::{self, FrameChange, Mask};
-use nearfield_eval::report::ConvergencePoint;
+use nearfield_eval::report::{ConvergencePoint, MethodReport};
 use nearfield_reference::{ReferenceImage, ReferenceSettings};
 use nearfield_render::{Aov, AovImage, Renderer};
 use nearfield_scene::Camera;
@@ -23,9 +23,6 @@ pub(super) struct Run {
 
 /// The references of the measured frames of a path: (frame index, reference).
 pub(super) type Along = Vec<(u32, ReferenceImage)>;
-
-/// A mask of a technique's image against one reference.
-type MaskAgainst<'a> = &'a dyn Fn(&mut Renderer, &AovImage, &ReferenceImage) -> Mask;
 
 /// What a technique's frames give: its last frame's AOV and mask, the convergence (a still
 /// camera), and along a path the error of each measured frame and the motion-compensated change
@@ -130,8 +127,7 @@ impl Run {
         (method, r): (&str, &mut Renderer),
         gpu_aov: Aov,
         judge: &Judge,
-        mask_of: &dyn Fn(&mut Renderer, &AovImage) -> Mask,
-        (along, mask_against): (&Along, MaskAgainst),
+        along: &Along,
     ) -> Result<Frames> {
         let still = self.motion.still() && self.frames > 1;
         let (mut convergence, mut path) = (Vec::new(), Vec::new());
@@ -149,7 +145,7 @@ impl Run {
             let n = i + 1;
             if still && (self.frames <= 64 || n.is_power_of_two() || n == self.frames) {
                 let value = r.read_aov(gpu_aov);
-                let mask = mask.get_or_insert_with(|| mask_of(r, &value));
+                let mask = mask.get_or_insert_with(|| judge.mask_of(r, &value));
                 let m = metrics::metrics(&value.pixels, &judge.reference.value, mask);
                 convergence.push(ConvergencePoint {
                     frames: n,
@@ -159,7 +155,7 @@ impl Run {
             }
             if let Some((k, (_, truth))) = next.next_if(|(_, (j, _))| *j == i) {
                 let value = r.read_aov(gpu_aov);
-                let m_now = mask_against(r, &value, truth);
+                let m_now = judge.mask_against(r, &value, truth);
                 let m = metrics::metrics(&value.pixels, &truth.value, &m_now);
                 judge.frame_pngs(method, n, &value.pixels, truth, &m_now)?;
                 path.push(ConvergencePoint {
@@ -199,7 +195,7 @@ impl Run {
         r.check_device()?;
         let mask = match mask {
             Some(m) => m,
-            None => mask_of(r, &value),
+            None => judge.mask_of(r, &value),
         };
         Ok(Frames {
             value,
@@ -210,14 +206,31 @@ impl Run {
         })
     }
 
+    /// A method's figures along the path into `report`: its per-frame errors, the still
+    /// camera's error ([`Self::still_error`]), its instability (from `change`) and its frames to
+    /// settle after each cut.
+    pub fn figures(
+        &self,
+        report: &mut MethodReport,
+        (path, change): (Vec<ConvergencePoint>, Option<(FrameChange, FrameChange)>),
+        make: &dyn Fn() -> Result<Renderer>,
+        (gpu_aov, judge, along): (Aov, &Judge, &Along),
+    ) -> Result<()> {
+        report.path_still = self.still_error(make, (gpu_aov, judge), along)?;
+        report.instability = change.map(|(t, r)| metrics::instability(t, r));
+        report.settle = self.settle(&path);
+        report.path = path;
+        Ok(())
+    }
+
     /// The mean error of a still camera after [`STILL_FRAMES`] frames at up to eight evenly
     /// spaced measured views of the path (`make`: a fresh renderer of the technique), each
     /// against its reference: the error the path's frames are held to.
     pub fn still_error(
         &self,
         make: &dyn Fn() -> Result<Renderer>,
-        gpu_aov: Aov,
-        (along, mask_against): (&Along, MaskAgainst),
+        (gpu_aov, judge): (Aov, &Judge),
+        along: &Along,
     ) -> Result<Option<f64>> {
         if along.is_empty() {
             return Ok(None);
@@ -232,7 +245,7 @@ impl Run {
                 r.render_frame();
             }
             let value = r.read_aov(gpu_aov);
-            let mask = mask_against(&mut r, &value, truth);
+            let mask = judge.mask_against(&mut r, &value, truth);
             sum += metrics::metrics(&value.pixels, &truth.value, &mask).relative_error;
             n += 1;
         }
@@ -265,6 +278,28 @@ pub(super) fn path_truth(
     }
     loaded.camera = run.camera(run.frames - 1);
     Ok(out)
+}
+
+/// The summary of a method's path: its per-frame error's mean, 95th percentile and largest, each
+/// against the still camera's, and its instability.
+pub(super) fn path_line(m: &nearfield_eval::report::MethodReport) -> String {
+    let (mean, p95, max) = nearfield_eval::report::path_summary(&m.path);
+    let settled = nearfield_eval::report::path_largest_settled(&m.path);
+    let still = m.path_still.unwrap_or(f64::NAN);
+    let mut line = format!(
+        "{:<10} along the path: {} frames, relative error mean {mean:.4} ({:.2}× still {still:.4}), 95th percentile {p95:.4}, largest {max:.4}, after frame 16 {settled:.4} ({:.2}× still)",
+        m.name,
+        m.path.len(),
+        mean / still,
+        settled / still
+    );
+    if let Some(i) = m.instability {
+        line += &format!(", instability {i:.2}× the reference's");
+    }
+    if !m.settle.is_empty() {
+        line += &format!(", settles in {:?} frames after the cuts", m.settle);
+    }
+    line
 }
 
 #[cfg(test)]

@@ -25,6 +25,8 @@ pub(super) struct Judge<'a> {
     strip: bool,
     strip_errors: bool,
     pub progress: &'a Progress,
+    /// The comparison mask's settings and `--region`.
+    mask: (metrics::MaskSettings, Option<[u32; 4]>),
 }
 
 /// The report's line for a reference read from a file.
@@ -65,6 +67,7 @@ impl<'a> Judge<'a> {
         reference: &'a ReferenceImage,
         size: (u32, u32),
         progress: &'a Progress,
+        mask: (metrics::MaskSettings, Option<[u32; 4]>),
     ) -> Result<Self> {
         let gain = 2f32.powf(args.technique.exposure);
         let ref_srgb = image_ops::tonemap_exposed(&reference.value, size.0, size.1, gain);
@@ -78,6 +81,7 @@ impl<'a> Judge<'a> {
             out: args.out.clone(),
             strip: args.strip.is_some(),
             strip_errors: args.strip_errors,
+            mask,
             progress,
         })
     }
@@ -111,6 +115,31 @@ impl<'a> Judge<'a> {
         std::fs::create_dir_all(&dir)?;
         let srgb = image_ops::tonemap_exposed(&truth.value, w, h, self.gain);
         png(srgb, &dir.join(format!("reference-{n:04}.png")))
+    }
+
+    /// The comparison mask of a technique's image `value` against the reference.
+    pub fn mask_of(&self, r: &mut Renderer, value: &nearfield_render::AovImage) -> Mask {
+        let (settings, region) = self.mask;
+        super::gpu_mask(
+            r,
+            value,
+            &self.ref_alpha,
+            &self.reference.depth,
+            settings,
+            region,
+        )
+    }
+
+    /// The comparison mask of a technique's image `value` against `truth` (a path's frame).
+    pub fn mask_against(
+        &self,
+        r: &mut Renderer,
+        value: &nearfield_render::AovImage,
+        truth: &ReferenceImage,
+    ) -> Mask {
+        let (settings, region) = self.mask;
+        let alpha: Vec<f32> = truth.value.iter().map(|p| p[3]).collect();
+        super::gpu_mask(r, value, &alpha, &truth.depth, settings, region)
     }
 
     /// One image's metrics, PNGs and strip panels: a technique's AOV or an `--image`.
@@ -181,11 +210,11 @@ impl<'a> Judge<'a> {
         truth: &crate::footprint::Truth,
         with: &mut Renderer,
         without: &mut Renderer,
-        run: &super::frames::Run,
+        (motion, frames): (&crate::options::Motion, u32),
     ) -> Result<f64> {
         let with = crate::footprint::ambient_of(with);
-        for i in 0..run.frames {
-            run.motion.frame(without, i);
+        for i in 0..frames {
+            motion.frame(without, i);
         }
         let without_ambient = crate::footprint::ambient_of(without);
         let e = truth.error(&with, &without_ambient);

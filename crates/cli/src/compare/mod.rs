@@ -11,11 +11,13 @@ use nearfield_eval::metrics::{self, Mask, MaskSettings};
 use nearfield_eval::report::Report;
 use nearfield_reference::ReferenceAov;
 use nearfield_reference::{ReferenceImage, exr_io};
-use nearfield_render::{Aov, GpuContext, RenderSettings, Renderer, TechniqueParams};
+use nearfield_render::{Aov, RenderSettings, Renderer, TechniqueParams};
 use std::path::PathBuf;
+use truths::Truths;
 
 mod frames;
 mod judge;
+mod truths;
 
 #[derive(Args, Debug)]
 pub struct CompareArgs {
@@ -274,91 +276,58 @@ pub fn run(args: CompareArgs) -> Result<()> {
     } = Checked::new(&args)?;
     std::fs::create_dir_all(&args.out)
         .with_context(|| format!("cannot create {}", args.out.display()))?;
-    let mut loaded = args.scene.load()?;
-    let motion = args.motion.motion(path_file, &mut loaded, args.orbit)?;
-    let run = frames::Run::new(motion, args.frames, loaded.camera);
-    // The reference sees what the last frame sees.
-    loaded.camera = run.camera(run.frames - 1);
-    if args.footprint {
-        crate::footprint::check(&args.scene, &loaded)?;
-    }
-    let plan = args.far.plan(&loaded, Some(args.aov.as_str()))?;
-    let radius = settle_radius(&methods, &mut params, &plan)?;
-    let ref_settings = args
-        .reference
-        .settings(ref_aov, size, radius, args.technique.seed)?;
-    let ctx = GpuContext::new(args.scene.adapter.as_deref())?;
-    let volume = plan.volume(&args.scene, &loaded)?;
-    // With --footprint: the truth's footprint, and the scene without its dynamic objects.
-    let footprint = args
-        .footprint
-        .then(|| footprint_truth(&args, &loaded, size, radius))
-        .transpose()?;
-    let (reference, ref_info) = reference_of(&args, &loaded, &ref_settings, reference_file)?;
-    let along = frames::path_truth(&args, &mut loaded, &run, &ref_settings)?;
-    let progress = nearfield_scene::progress::Progress::new(
-        "compare",
-        methods.len() as u64 * u64::from(run.frames),
-        "frames",
-        true,
-    );
-    let judge = Judge::new(&args, &reference, size, &progress)?;
-    for (i, truth) in &along {
-        judge.reference_png(i + 1, truth)?;
-    }
+    let files = (path_file, reference_file);
+    let t = Truths::new(&args, files, (&methods, &mut params), (ref_aov, size))?;
+    let frames = methods.len() as u64 * u64::from(t.run.frames);
+    let progress = nearfield_scene::progress::Progress::new("compare", frames, "frames", true);
     let mask_settings = MaskSettings {
         border,
         depth_tolerance: 0.01,
     };
-    let (ref_alpha, ref_depth) = (&judge.ref_alpha, &reference.depth);
-    let mask_of = |r: &mut Renderer, value: &nearfield_render::AovImage| {
-        gpu_mask(r, value, ref_alpha, ref_depth, mask_settings, region)
-    };
-    // Along a path: the mask against the reference of that frame.
-    let mask_against =
-        |r: &mut Renderer, value: &nearfield_render::AovImage, truth: &ReferenceImage| {
-            let alpha: Vec<f32> = truth.value.iter().map(|p| p[3]).collect();
-            gpu_mask(r, value, &alpha, &truth.depth, mask_settings, region)
-        };
+    let judge = Judge::new(
+        &args,
+        &t.reference,
+        size,
+        &progress,
+        (mask_settings, region),
+    )?;
+    for (i, truth) in &t.along {
+        judge.reference_png(i + 1, truth)?;
+    }
     // One renderer of `method` over `scene`, with the far field every method shares.
     let renderer = |scene: &nearfield_scene::Scene, method: &str| -> Result<Renderer> {
         Ok(Renderer::new(
-            &ctx,
+            &t.ctx,
             scene,
-            &loaded.env,
-            volume.as_ref(),
-            run.camera(0),
+            &t.loaded.env,
+            t.volume.as_ref(),
+            t.run.camera(0),
             &nearfield_render::technique::Spec::resolve(method, &params)?,
             settings,
         )?)
     };
+    let (run, along) = (&t.run, &t.along);
     let mut reports = Vec::new();
     let mut panels = Vec::new();
     let mut last_mask = None;
     for method in &methods {
         progress.set_message(method);
-        let mut r = renderer(&loaded.scene, method)?;
-        loaded.report_sun();
-        let f = run.frames(
-            (method, &mut r),
-            gpu_aov,
-            &judge,
-            &mask_of,
-            (&along, &mask_against),
-        )?;
+        let mut r = renderer(&t.loaded.scene, method)?;
+        t.loaded.report_sun();
+        let f = run.frames((method, &mut r), gpu_aov, &judge, along)?;
         let (value, mask) = (&f.value, &f.mask);
         let mut report = judge.measure(method, &value.pixels, mask, f.convergence, &mut panels)?;
         if !f.path.is_empty() {
-            let make = || renderer(&loaded.scene, method);
-            report.path_still = run.still_error(&make, gpu_aov, (&along, &mask_against))?;
-            report.instability = f.change.map(|(t, r)| metrics::instability(t, r));
-            report.settle = run.settle(&f.path);
-            report.path = f.path;
-            progress.suspend(|| println!("{}", path_line(&report)));
+            let make = || renderer(&t.loaded.scene, method);
+            let path = (f.path, f.change);
+            run.figures(&mut report, path, &make, (gpu_aov, &judge, along))?;
+            progress.suspend(|| println!("{}", frames::path_line(&report)));
         }
-        if let Some((truth, without)) = &footprint {
+        if let Some((truth, without)) = &t.footprint {
             let mut without = renderer(&without.scene, method)?;
-            report.footprint = Some(judge.footprint(method, truth, &mut r, &mut without, &run)?);
+            let motion = (&run.motion, run.frames);
+            let e = judge.footprint(method, truth, &mut r, &mut without, motion)?;
+            report.footprint = Some(e);
         }
         reports.push(report);
         last_mask = Some(f.mask);
@@ -367,30 +336,25 @@ pub fn run(args: CompareArgs) -> Result<()> {
     let mask = last_mask.expect("at least one method");
     // The volume alone: its radiance through the exact visibility V_R, on the CPU (a row named
     // `volume`), so that its error shows apart from any technique's estimate of V_R.
-    if let (Some(v), Aov::FarIrradiance) = (&volume, gpu_aov) {
-        let (scene, env, camera) = (&loaded.scene, &loaded.env, &loaded.camera);
+    if let (Some(v), Aov::FarIrradiance) = (&t.volume, gpu_aov) {
+        let (scene, env, camera) = (&t.loaded.scene, &t.loaded.env, &t.loaded.camera);
         let img =
-            nearfield_reference::render_volume_far(scene, env, camera, &ref_settings, v, false);
+            nearfield_reference::render_volume_far(scene, env, camera, &t.ref_settings, v, false);
         reports.push(judge.measure("volume", &img.value, &mask, Vec::new(), &mut panels)?);
     }
-    // Images made elsewhere: the last technique's mask (same scene, camera and reference); in the
-    // strip before the techniques.
-    let mut first = Vec::new();
-    for (name, pixels) in &images {
-        reports.push(judge.measure(name, pixels, &mask, Vec::new(), &mut first)?);
-    }
-    panels.splice(0..0, first);
+    elsewhere(&judge, &images, &mask, (&mut reports, &mut panels))?;
     if let Some(path) = &args.strip {
-        let far = volume.as_ref().map(|v| v.grid.spacing.max_element());
-        judge.strip(path, panels, &ref_info, far, radius)?;
+        let far = t.volume.as_ref().map(|v| v.grid.spacing.max_element());
+        judge.strip(path, panels, &t.ref_info, far, t.radius)?;
     }
+    let reference = &t.reference;
     let report = Report {
         scene: args.scene.scene.clone(),
         aov: args.aov.clone(),
         size: [size.0, size.1],
-        radius: radius.to_string(),
-        adapter: nearfield_render::context::describe(&ctx.adapter_info()),
-        reference: ref_info,
+        radius: t.radius.to_string(),
+        adapter: nearfield_render::context::describe(&t.ctx.adapter_info()),
+        reference: t.ref_info.clone(),
         mask: mask_settings,
         region,
         silhouette_pixels: mask.silhouette_pixels,
@@ -406,81 +370,23 @@ pub fn run(args: CompareArgs) -> Result<()> {
     write_report(&args.out, &report, border)
 }
 
-/// One radius for both sides and one seed: `--radius`, or auto (the volume's spacing; under the
-/// sky the techniques' own, which must then agree), set in `params`. Every technique's settings
-/// are checked against it before anything is baked or traced.
-fn settle_radius(
-    methods: &[String],
-    params: &mut TechniqueParams,
-    plan: &crate::far::FarPlan,
-) -> Result<f32> {
-    crate::far::apply_auto_radius(params, plan);
-    let radius = common_radius(methods, params)?;
-    params.radius = Some(radius);
-    for m in methods {
-        nearfield_render::technique::check_spec(m, params)?;
+/// Images made elsewhere (`--image`), measured with the last technique's mask (same scene,
+/// camera and reference); in the strip before the techniques.
+fn elsewhere(
+    judge: &Judge,
+    images: &[(String, Vec<[f32; 4]>)],
+    mask: &Mask,
+    (reports, panels): (
+        &mut Vec<nearfield_eval::report::MethodReport>,
+        &mut Vec<nearfield_eval::strip::Panel>,
+    ),
+) -> Result<()> {
+    let mut first = Vec::new();
+    for (name, pixels) in images {
+        reports.push(judge.measure(name, pixels, mask, Vec::new(), &mut first)?);
     }
-    Ok(radius)
-}
-
-/// The truth's footprint of the dynamic objects, and the scene without them.
-fn footprint_truth(
-    args: &CompareArgs,
-    loaded: &crate::options::Loaded,
-    size: (u32, u32),
-    radius: f32,
-) -> Result<(crate::footprint::Truth, crate::options::Loaded)> {
-    let truth = crate::footprint::truth(
-        &args.scene,
-        &args.reference,
-        loaded,
-        size,
-        radius,
-        args.technique.seed,
-    )?;
-    Ok((truth, crate::footprint::without_object(loaded)))
-}
-
-/// The reference: read from `--reference-file`, or traced (from the cache where it is there).
-fn reference_of(
-    args: &CompareArgs,
-    loaded: &crate::options::Loaded,
-    settings: &nearfield_reference::ReferenceSettings,
-    file: Option<(ReferenceImage, PathBuf)>,
-) -> Result<(ReferenceImage, nearfield_eval::report::ReferenceInfo)> {
-    Ok(match file {
-        Some((img, p)) => (img, judge::file_info(&file_name(&p))),
-        None => {
-            let (img, cached) =
-                crate::reference::compute(&args.scene, &args.reference, loaded, settings)?;
-            let path = cached
-                .map(|p| format!("reference cache entry {}", file_name(&p)))
-                .unwrap_or_else(|| "computed, not cached".into());
-            (img, judge::traced_info(path, settings))
-        }
-    })
-}
-
-/// The summary of a method's path: its per-frame error's mean, 95th percentile and largest, each
-/// against the still camera's, and its instability.
-fn path_line(m: &nearfield_eval::report::MethodReport) -> String {
-    let (mean, p95, max) = nearfield_eval::report::path_summary(&m.path);
-    let settled = nearfield_eval::report::path_largest_settled(&m.path);
-    let still = m.path_still.unwrap_or(f64::NAN);
-    let mut line = format!(
-        "{:<10} along the path: {} frames, relative error mean {mean:.4} ({:.2}× still {still:.4}), 95th percentile {p95:.4}, largest {max:.4}, after frame 16 {settled:.4} ({:.2}× still)",
-        m.name,
-        m.path.len(),
-        mean / still,
-        settled / still
-    );
-    if let Some(i) = m.instability {
-        line += &format!(", instability {i:.2}× the reference's");
-    }
-    if !m.settle.is_empty() {
-        line += &format!(", settles in {:?} frames after the cuts", m.settle);
-    }
-    line
+    panels.splice(0..0, first);
+    Ok(())
 }
 
 /// Writes the report and says where.
