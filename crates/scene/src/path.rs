@@ -152,7 +152,7 @@ impl CameraPath {
     }
 
     /// The file of this path (what the viewer records).
-    pub fn to_file(&self) -> PathFile {
+    pub fn file(&self) -> PathFile {
         PathFile {
             fps: self.fps,
             keyframes: self
@@ -389,14 +389,14 @@ mod tests {
             );
         }
         assert!(p.camera(19).is_cut_to(&p.camera(20)));
-        let back = CameraPath::parse(&serde_json::to_string(&p.to_file()).unwrap()).unwrap();
+        let back = CameraPath::parse(&serde_json::to_string(&p.file()).unwrap()).unwrap();
         assert_eq!(back, p);
     }
 
     #[test]
     fn a_path_file_round_trips() {
         let p = CameraPath::new(24.0, vec![(0.5, cam(0.0)), (2.0, cam(3.0))]).unwrap();
-        let text = serde_json::to_string(&p.to_file()).unwrap();
+        let text = serde_json::to_string(&p.file()).unwrap();
         let q = CameraPath::parse(&text).unwrap();
         assert_eq!(q.frames(), p.frames());
         assert!((q.camera(10).eye - p.camera(10).eye).length() < 1e-5);

@@ -54,7 +54,7 @@ impl Recording {
             .enumerate()
             .map(|(i, c)| Keyframe::from((i as f32 / FPS, *c)));
         let path = CameraPath::new(FPS, keys).map_err(|e| format!("record-path: {e}"))?;
-        let text = serde_json::to_string_pretty(&path.to_file()).map_err(|e| e.to_string())?;
+        let text = serde_json::to_string_pretty(&path.file()).map_err(|e| e.to_string())?;
         crate::output::save_atomically(&self.path, |tmp| {
             std::fs::write(tmp, format!("{text}\n")).map_err(anyhow::Error::from)
         })
