@@ -331,13 +331,16 @@ mod tests {
         assert!(measured.contains(&30) && !measured.contains(&9));
         // An error falling from 0.5 by 0.05 a frame to 0.2, then flat: within 5 % of 0.2 at
         // the seventh frame after the cut (0.5, 0.45, …, 0.2).
-        let points: Vec<ConvergencePoint> = (10..31)
-            .map(|i| ConvergencePoint {
-                frames: i + 1,
-                rmse: 0.0,
-                relative_error: (0.5 - 0.05 * (i - 10) as f64).max(0.2),
-            })
-            .collect();
+        let falling = |frames: std::ops::Range<u32>| -> Vec<ConvergencePoint> {
+            frames
+                .map(|i| ConvergencePoint {
+                    frames: i + 1,
+                    rmse: 0.0,
+                    relative_error: (0.5 - 0.05 * (i - 10) as f64).max(0.2),
+                })
+                .collect()
+        };
+        let points = falling(10..31);
         assert_eq!(
             run.settle(&points),
             Vec::<u32>::new(),
@@ -345,13 +348,7 @@ mod tests {
         );
         let long = CameraPath::new(10.0, [keys[0], keys[1], Keyframe::from((6.0, b))]).unwrap();
         let run = Run::new(Motion::Path(long), None, a);
-        let points: Vec<ConvergencePoint> = (10..61)
-            .map(|i| ConvergencePoint {
-                frames: i + 1,
-                rmse: 0.0,
-                relative_error: (0.5 - 0.05 * (i - 10) as f64).max(0.2),
-            })
-            .collect();
+        let points = falling(10..61);
         assert_eq!(run.settle(&points), vec![7]);
     }
 }
