@@ -389,7 +389,8 @@ pub struct MotionOpts {
     /// target while swaying and turning a little (121 frames at 30 fps).
     #[arg(long)]
     pub walk: bool,
-    /// Frames per second of --walk (a path file states its own).
+    /// Frames per second of --walk, --orbit and a moving scene's clock (a path file states its
+    /// own): frame i shows the scene's objects at i / fps seconds.
     #[arg(long, default_value_t = 30.0)]
     pub fps: f32,
 }
@@ -416,19 +417,25 @@ impl MotionOpts {
     }
 
     /// The motion: the path file read by [`Self::check`], or the scene's walk from `loaded`'s
-    /// camera, or `orbit`. The loaded camera becomes the path's first.
+    /// camera, or `orbit`; with `play`, a still camera over a moving scene stands for its
+    /// animation's length. The loaded camera becomes the path's first.
     pub fn motion(
         &self,
         file: Option<nearfield_scene::CameraPath>,
         loaded: &mut Loaded,
-        orbit: f32,
+        (orbit, play): (f32, bool),
     ) -> Result<Motion> {
+        use nearfield_scene::CameraPath;
         let path = match file {
             Some(p) => Some(p),
             None if self.walk => Some(
-                nearfield_scene::CameraPath::walk(loaded.camera, loaded.scene.bounds(), self.fps)
+                CameraPath::walk(loaded.camera, loaded.scene.bounds(), self.fps)
                     .map_err(|e| BadInput(format!("--walk: {e}")))?,
             ),
+            None if play && orbit == 0.0 && loaded.scene.moves() => {
+                let seconds = loaded.scene.animation.duration();
+                Some(CameraPath::standing(loaded.camera, seconds, self.fps).map_err(BadInput)?)
+            }
             None => None,
         };
         Ok(match path {
@@ -436,41 +443,55 @@ impl MotionOpts {
                 loaded.camera = p.camera(0);
                 Motion::Path(p)
             }
-            None => Motion::Orbit(orbit),
+            None => Motion::Orbit {
+                degrees: orbit,
+                fps: self.fps,
+            },
         })
     }
 }
 
-/// How the camera moves from frame to frame: turned about its target, or along a path.
+/// How the camera moves from frame to frame (turned about its target, or along a path), and the
+/// frame rate of the scene's clock.
 #[derive(Clone, Debug)]
 pub enum Motion {
-    /// `--orbit DEG` (0: a still camera).
-    Orbit(f32),
-    /// `--path`, `--walk`.
+    /// `--orbit DEG` (0: a still camera) at `--fps`.
+    Orbit { degrees: f32, fps: f32 },
+    /// `--path`, `--walk`, or a still camera over a moving scene's animation.
     Path(nearfield_scene::CameraPath),
 }
 
 impl Motion {
     /// The camera of frame `index` of a run that starts at `start`.
     pub fn camera(&self, start: nearfield_scene::Camera, index: u32) -> nearfield_scene::Camera {
-        match self {
+        match *self {
             // Frame 0 (and a still camera) is `start` itself, not a turn by 0° (which rounds).
-            Motion::Orbit(deg) if index == 0 || *deg == 0.0 => start,
-            Motion::Orbit(deg) => start.orbit(deg * index as f32),
-            Motion::Path(p) => p.camera(index),
+            Motion::Orbit { degrees, .. } if index == 0 || degrees == 0.0 => start,
+            Motion::Orbit { degrees, .. } => start.orbit(degrees * index as f32),
+            Motion::Path(ref p) => p.camera(index),
         }
+    }
+
+    /// The scene's time at frame `index` (s): `index / fps`.
+    pub fn time(&self, index: u32) -> f32 {
+        let fps = match self {
+            Motion::Orbit { fps, .. } => *fps,
+            Motion::Path(p) => p.fps,
+        };
+        index as f32 / fps
     }
 
     /// Whether the camera stays where it is.
     pub fn still(&self) -> bool {
-        matches!(self, Motion::Orbit(d) if *d == 0.0)
+        matches!(self, Motion::Orbit { degrees, .. } if *degrees == 0.0)
     }
 
-    /// Renders frame `index`, the camera moved to its place first (the renderer was made with
-    /// frame 0's).
+    /// Renders frame `index`: the scene's objects posed at its time, the camera moved to its
+    /// place first (the renderer was made with frame 0's).
     pub fn frame(&self, renderer: &mut nearfield_render::Renderer, index: u32) {
+        renderer.set_time(self.time(index));
         match self {
-            Motion::Orbit(deg) => orbit_frame(renderer, index, *deg),
+            Motion::Orbit { degrees, .. } => orbit_frame(renderer, index, *degrees),
             Motion::Path(p) => {
                 if index > 0 {
                     renderer.set_camera(p.camera(index));

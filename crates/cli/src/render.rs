@@ -63,10 +63,12 @@ pub fn run(args: RenderArgs) -> Result<()> {
     let settings = args.technique.settings(size)?;
     args.far.precheck()?;
     let mut loaded = args.scene.load()?;
-    let motion = args.motion.motion(path_file, &mut loaded, args.orbit)?;
+    let motion = args
+        .motion
+        .motion(path_file, &mut loaded, (args.orbit, false))?;
     let frames = args.frames.unwrap_or(match &motion {
         crate::options::Motion::Path(p) => p.frames(),
-        crate::options::Motion::Orbit(_) => 1,
+        crate::options::Motion::Orbit { .. } => 1,
     });
     let far_aov = (aov != Some(Aov::Final)).then_some(args.aov.as_str());
     let plan = args.far.plan(&loaded, far_aov)?;

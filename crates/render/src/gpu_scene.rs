@@ -21,13 +21,24 @@ impl Vertex {
     pub const ATTRIBUTES: [wgpu::VertexAttribute; 4] =
         wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3, 2 => Float32x2, 3 => Uint32];
 
-    pub fn layout() -> wgpu::VertexBufferLayout<'static> {
-        wgpu::VertexBufferLayout {
-            array_stride: std::mem::size_of::<Vertex>() as u64,
-            step_mode: wgpu::VertexStepMode::Vertex,
-            attributes: &Self::ATTRIBUTES,
-        }
-    }
+    /// The scene's vertex buffer, as every raster pass reads it.
+    pub const LAYOUT: wgpu::VertexBufferLayout<'static> = wgpu::VertexBufferLayout {
+        array_stride: std::mem::size_of::<Vertex>() as u64,
+        step_mode: wgpu::VertexStepMode::Vertex,
+        attributes: &Self::ATTRIBUTES,
+    };
+
+    /// The previous frame's positions ([`GpuScene::previous`], laid out as the vertices), read
+    /// at location 4.
+    pub const PREVIOUS: wgpu::VertexBufferLayout<'static> = wgpu::VertexBufferLayout {
+        array_stride: std::mem::size_of::<Vertex>() as u64,
+        step_mode: wgpu::VertexStepMode::Vertex,
+        attributes: &[wgpu::VertexAttribute {
+            format: wgpu::VertexFormat::Float32x3,
+            offset: 0,
+            shader_location: 4,
+        }],
+    };
 }
 
 crate::gpu_struct! {
@@ -83,6 +94,11 @@ pub const MAX_TEXTURE_SIZE: u32 = 2048;
 /// The scene's GPU buffers and textures.
 pub struct GpuScene {
     pub vertices: wgpu::Buffer,
+    /// The previous frame's vertex positions (the G-buffer's motion vectors): its own buffer
+    /// where objects move, else `vertices` itself.
+    pub previous: wgpu::Buffer,
+    /// The moving objects and the scene's clock (`None`: nothing moves).
+    pub moving: Option<crate::moving::MovingObjects>,
     pub indices: wgpu::Buffer,
     /// Index count of culled (single-sided) geometry; double-sided geometry follows it.
     pub single_sided_indices: u32,
@@ -115,8 +131,10 @@ impl GpuScene {
         let mut vertices: Vec<Vertex> = Vec::new();
         let mut single: Vec<u32> = Vec::new();
         let mut double: Vec<u32> = Vec::new();
+        let mut first = Vec::with_capacity(scene.meshes.len());
         for mesh in &scene.meshes {
             let base = vertices.len() as u32;
+            first.push(base);
             for i in 0..mesh.positions.len() {
                 vertices.push(Vertex {
                     position: mesh.positions[i].into(),
@@ -135,11 +153,24 @@ impl GpuScene {
         let single_sided_indices = single.len() as u32;
         single.extend(double);
         let index_count = single.len() as u32;
-        let vertex_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("scene vertices"),
-            contents: bytemuck::cast_slice(&vertices),
-            usage: wgpu::BufferUsages::VERTEX,
-        });
+        let moving = crate::moving::MovingObjects::new(scene, &vertices, &first);
+        let vertex_buffer = |label| {
+            device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some(label),
+                contents: bytemuck::cast_slice(&vertices),
+                usage: wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::COPY_DST,
+            })
+        };
+        let (vertex_buffer, previous) = match moving {
+            Some(_) => (
+                vertex_buffer("scene vertices"),
+                vertex_buffer("previous vertices"),
+            ),
+            None => {
+                let v = vertex_buffer("scene vertices");
+                (v.clone(), v)
+            }
+        };
         let index_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("scene indices"),
             contents: bytemuck::cast_slice(&single),
@@ -206,6 +237,8 @@ impl GpuScene {
         });
         Ok(GpuScene {
             vertices: vertex_buffer,
+            previous,
+            moving,
             indices: index_buffer,
             single_sided_indices,
             index_count,
@@ -217,9 +250,18 @@ impl GpuScene {
             light_count,
             scene_lights,
             light_capacity: capacity,
-            bounds: scene.bounds(),
+            bounds: scene.bounds_in_motion(),
             triangle_count: index_count / 3,
         })
+    }
+
+    /// Poses the moving objects for the next frame ([`crate::moving::MovingObjects::advance`]):
+    /// whether they moved.
+    pub fn advance(&mut self, queue: &wgpu::Queue) -> bool {
+        match &mut self.moving {
+            Some(m) => m.advance(queue, &self.vertices, &self.previous),
+            None => false,
+        }
     }
 
     /// Writes the light table; `shadow` gives each light's first shadow layer and texel factor.

@@ -15,6 +15,7 @@ pub mod far;
 pub mod frame;
 pub mod gpu_env;
 pub mod gpu_scene;
+pub mod moving;
 pub mod passes;
 pub mod pipeline_cache;
 pub mod profiler;

@@ -463,6 +463,20 @@ impl Renderer {
         self.update_sun();
     }
 
+    /// Sets the scene's time (s) the next frames show: its moving objects are posed there, and
+    /// their motion since the last frame goes into the motion vectors. Nothing happens in a
+    /// scene where nothing moves.
+    pub fn set_time(&mut self, t: f32) {
+        if let Some(m) = &mut self.scene.moving {
+            m.set_time(t);
+        }
+    }
+
+    /// Whether anything in the scene moves ([`Self::set_time`]).
+    pub fn moves(&self) -> bool {
+        self.scene.moving.is_some()
+    }
+
     pub fn frame_index(&self) -> u32 {
         self.frame_index
     }
@@ -534,6 +548,9 @@ impl Renderer {
         let current = CameraMatrices::new(&self.camera, self.settings.size, self.scene.bounds);
         self.write_uniforms(self.uniforms(current));
         self.passes.technique.prepare(&self.queue, &self.camera);
+        if self.scene.advance(&self.queue) {
+            self.shadows.moved();
+        }
         if self
             .shadows
             .fit_to_view(&self.queue, &self.camera, self.settings.size)

@@ -47,6 +47,9 @@ pub struct RasterPipeline<'a> {
     /// `None` draws both faces (double-sided materials, peeling, shadow and light views).
     pub cull: Option<wgpu::Face>,
     pub depth_bias: wgpu::DepthBiasState,
+    /// The vertex buffers: the scene's ([`crate::gpu_scene::Vertex::LAYOUT`]), and for the
+    /// G-buffer the previous frame's positions too.
+    pub vertex_buffers: &'a [Option<wgpu::VertexBufferLayout<'static>>],
 }
 
 /// The pipeline `p` describes (made once per device: [`crate::pipeline_cache`]).
@@ -91,7 +94,7 @@ fn make_raster_pipeline(device: &wgpu::Device, p: &RasterPipeline) -> wgpu::Rend
             module: p.module,
             entry_point: Some(p.vertex),
             compilation_options: Default::default(),
-            buffers: &[Some(crate::gpu_scene::Vertex::layout())],
+            buffers: p.vertex_buffers,
         },
         primitive: wgpu::PrimitiveState {
             topology: wgpu::PrimitiveTopology::TriangleList,

@@ -99,7 +99,7 @@ impl Scene {
     }
 
     /// Adds `other`'s meshes (with their materials and textures) placed by `p`, dynamic, under
-    /// a node named `name`. Its lights and cameras are not taken.
+    /// a node named `name`. Its lights, cameras and animation are not taken.
     pub fn add(&mut self, other: Scene, name: &str, p: Placement) {
         let bounds = other.bounds();
         let base = Vec3::new(
@@ -127,6 +127,7 @@ impl Scene {
             mesh.material += m0;
             mesh.nodes.insert(0, name.to_string());
             mesh.dynamic = true;
+            mesh.motion = None;
             self.meshes.push(mesh);
         }
     }

@@ -1,5 +1,6 @@
 //! glTF 2.0 export of a loaded scene (`nearfield export`): meshes, metallic-roughness materials
-//! with their textures (PNG), punctual lights (`KHR_lights_punctual`) and one camera, as `.glb`
+//! with their textures (PNG), punctual lights (`KHR_lights_punctual`), node animation (a moving
+//! mesh hangs from its animated node, in that node's space) and one camera, as `.glb`
 //! (binary) or `.gltf` (JSON with the buffer embedded as a data URI). What [`crate::load`]
 //! reads back is the same scene: a test loads an exported built-in and compares.
 //!
@@ -191,10 +192,23 @@ fn build(scene: &Scene, camera: &Camera, aspect: f32) -> Result<(Value, Vec<u8>)
     };
     let mut meshes = Vec::new();
     let mut nodes = Vec::new();
+    // The scene's root nodes, and the moving meshes' nodes under each animated node.
+    let mut roots = Vec::new();
+    let mut hanging: Vec<Vec<usize>> = vec![Vec::new(); scene.animation.nodes.len()];
     for m in scene.meshes.iter().filter(|m| !m.indices.is_empty()) {
-        meshes.push(b.mesh(m));
+        match &m.motion {
+            Some(mm) => {
+                meshes.push(b.mesh(&at_rest_in_node(scene, m, mm)));
+                hanging[mm.node as usize].push(nodes.len());
+            }
+            None => {
+                meshes.push(b.mesh(m));
+                roots.push(nodes.len());
+            }
+        }
         nodes.push(json!({ "name": m.name, "mesh": meshes.len() - 1 }));
     }
+    let animations = animate(&mut b, scene, &mut nodes, (&mut roots, hanging));
 
     let mut images = Vec::new();
     for t in &scene.textures {
@@ -214,6 +228,7 @@ fn build(scene: &Scene, camera: &Camera, aspect: f32) -> Result<(Value, Vec<u8>)
     for l in &scene.lights {
         let (light, translation, rotation) = light(l);
         lights.push(light);
+        roots.push(nodes.len());
         nodes.push(json!({
             "name": format!("light {}", lights.len() - 1),
             "translation": translation.to_array(),
@@ -221,6 +236,7 @@ fn build(scene: &Scene, camera: &Camera, aspect: f32) -> Result<(Value, Vec<u8>)
             "extensions": { "KHR_lights_punctual": { "light": lights.len() - 1 } },
         }));
     }
+    roots.push(nodes.len());
     nodes.push(json!({
         "name": "camera",
         "camera": 0,
@@ -237,7 +253,7 @@ fn build(scene: &Scene, camera: &Camera, aspect: f32) -> Result<(Value, Vec<u8>)
     let mut doc = json!({
         "asset": { "version": "2.0", "generator": concat!("nearfield ", env!("CARGO_PKG_VERSION")) },
         "scene": 0,
-        "scenes": [{ "name": scene.name, "nodes": (0..nodes.len()).collect::<Vec<_>>() }],
+        "scenes": [{ "name": scene.name, "nodes": roots }],
         "nodes": nodes,
         "meshes": meshes,
         "materials": materials,
@@ -255,6 +271,9 @@ fn build(scene: &Scene, camera: &Camera, aspect: f32) -> Result<(Value, Vec<u8>)
         // Linear filtering with mipmaps, repeat (the loader's and the renderer's assumption).
         doc["samplers"] = json!([{ "magFilter": 9729, "minFilter": 9987 }]);
     }
+    if let Some(a) = animations {
+        doc["animations"] = json!([a]);
+    }
     if !lights.is_empty() {
         doc["extensions"] = json!({ "KHR_lights_punctual": { "lights": lights } });
     }
@@ -262,6 +281,115 @@ fn build(scene: &Scene, camera: &Camera, aspect: f32) -> Result<(Value, Vec<u8>)
         doc["extensionsUsed"] = json!(used);
     }
     Ok((doc, b.bin))
+}
+
+/// A moving mesh at rest in the space of the node it follows.
+fn at_rest_in_node(
+    scene: &Scene,
+    m: &crate::Mesh,
+    mm: &crate::animation::MeshMotion,
+) -> crate::Mesh {
+    let mut local = crate::Mesh {
+        positions: mm.rest_positions.clone(),
+        normals: mm.rest_normals.clone(),
+        motion: None,
+        ..m.clone()
+    };
+    local.transform(scene.animation.world(mm.node, None).inverse());
+    local
+}
+
+/// The animated nodes as glTF nodes (appended to `nodes`, the roots to `roots`, each with the
+/// moving meshes' nodes in `hanging` and its child nodes as children) and one animation of all
+/// their channels; `None` when nothing moves.
+fn animate(
+    b: &mut Builder,
+    scene: &Scene,
+    nodes: &mut Vec<Value>,
+    (roots, hanging): (&mut Vec<usize>, Vec<Vec<usize>>),
+) -> Option<Value> {
+    if scene.animation.is_empty() {
+        return None;
+    }
+    let base = nodes.len();
+    let (mut samplers, mut channels) = (Vec::new(), Vec::new());
+    for (i, n) in scene.animation.nodes.iter().enumerate() {
+        let mut children = hanging[i].clone();
+        children.extend(
+            (0..scene.animation.nodes.len())
+                .filter(|&c| scene.animation.nodes[c].parent == Some(i as u32))
+                .map(|c| base + c),
+        );
+        if n.parent.is_none() {
+            roots.push(base + i);
+        }
+        let mut node = json!({
+            "name": n.name,
+            "translation": n.translation.to_array(),
+            "rotation": n.rotation.to_array(),
+            "scale": n.scale.to_array(),
+        });
+        if !children.is_empty() {
+            node["children"] = json!(children);
+        }
+        nodes.push(node);
+        let tracks: [(&str, Option<(&[f32], Vec<f32>, &str, crate::Interpolation)>); 3] = [
+            (
+                "translation",
+                n.translations
+                    .as_ref()
+                    .map(|t| track(t, |v: Vec3| v.to_array())),
+            ),
+            (
+                "rotation",
+                n.rotations
+                    .as_ref()
+                    .map(|t| track(t, |q: Quat| q.to_array())),
+            ),
+            (
+                "scale",
+                n.scales.as_ref().map(|t| track(t, |v: Vec3| v.to_array())),
+            ),
+        ];
+        for (path, t) in tracks {
+            let Some((times, values, kind, interpolation)) = t else {
+                continue;
+            };
+            let tv = b.view(&floats(times.iter().copied()), None);
+            let (lo, hi) = (times[0], times[times.len() - 1]);
+            let input = b.accessor(
+                tv,
+                FLOAT,
+                times.len(),
+                "SCALAR",
+                json!({ "min": [lo], "max": [hi] }),
+            );
+            let width = if kind == "VEC4" { 4 } else { 3 };
+            let vv = b.view(&floats(values.iter().copied()), None);
+            let output = b.accessor(vv, FLOAT, values.len() / width, kind, json!({}));
+            let interpolation = match interpolation {
+                crate::Interpolation::Step => "STEP",
+                crate::Interpolation::Linear => "LINEAR",
+                crate::Interpolation::CubicSpline => "CUBICSPLINE",
+            };
+            channels.push(
+                json!({ "sampler": samplers.len(), "target": { "node": base + i, "path": path } }),
+            );
+            samplers
+                .push(json!({ "input": input, "output": output, "interpolation": interpolation }));
+        }
+    }
+    Some(json!({ "name": "motion", "samplers": samplers, "channels": channels }))
+}
+
+/// A track's times, its values flattened, their glTF type and its interpolation.
+fn track<T: Copy, const N: usize>(
+    t: &crate::Track<T>,
+    flat: fn(T) -> [f32; N],
+) -> (&[f32], Vec<f32>, &'static str, crate::Interpolation) {
+    let kind = if N == 4 { "VEC4" } else { "VEC3" };
+    let values = t.values.iter().flat_map(|v| flat(*v)).collect();
+    (&t.times, values, kind, t.interpolation)
 }
 
 /// Writes `scene` seen from `camera` (aspect = width / height) to `path`: binary glTF when the
@@ -318,7 +446,7 @@ mod tests {
     fn an_exported_builtin_loads_back_as_the_same_scene() {
         let dir = std::env::temp_dir().join(format!("nearfield-export-{}", std::process::id()));
         std::fs::create_dir_all(&dir).unwrap();
-        for name in ["cornell", "boxes"] {
+        for name in ["cornell", "boxes", "columns-moving"] {
             let scene = crate::builtin::scene(name).unwrap();
             let camera = scene.cameras[0];
             for ext in ["glb", "gltf"] {
@@ -349,6 +477,19 @@ mod tests {
                     (c.target - c.eye).normalize(),
                 );
                 assert!(d0.dot(d1) > 1.0 - 1e-6, "{name}.{ext}: view direction");
+                // A moving object moves the same: its bounds at each time agree.
+                assert_eq!(back.moves(), scene.moves(), "{name}.{ext}");
+                for t in [0.3, 1.1, 2.5, 9.0] {
+                    let (mut a, mut b) = (scene.clone(), back.clone());
+                    a.pose(t);
+                    b.pose(t);
+                    let (a, b) = (a.dynamic_bounds(), b.dynamic_bounds());
+                    let d = (a.min - b.min).abs().max(a.max - b.max).max_element();
+                    assert!(
+                        a.is_empty() || d < 1e-4,
+                        "{name}.{ext} at {t} s: {a:?} {b:?}"
+                    );
+                }
             }
         }
         let _ = std::fs::remove_dir_all(&dir);

@@ -10,6 +10,7 @@
 //! Loading: [`load_scene`] reads `.gltf`/`.glb`/`.obj`/`.ply`; [`builtin::scene`] builds the
 //! built-in test scenes; [`SceneSource::parse`] understands both spellings used on the command line.
 
+pub mod animation;
 pub mod atomic;
 pub mod builtin;
 pub mod camera;
@@ -30,6 +31,7 @@ pub mod sh;
 pub mod sky;
 pub mod sun;
 
+pub use animation::{Animation, Interpolation, Track};
 pub use camera::{Camera, CameraFile};
 pub use dynamic::{DynamicError, Placement};
 pub use env_source::EnvSource;
@@ -61,6 +63,8 @@ pub struct Scene {
     pub cameras: Vec<Camera>,
     /// The environment this scene is lit by when the user names none.
     pub default_env: EnvSource,
+    /// The animated nodes moving meshes follow (empty: nothing moves).
+    pub animation: Animation,
 }
 
 impl Scene {

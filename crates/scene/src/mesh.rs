@@ -24,6 +24,8 @@ pub struct Mesh {
     /// `"nearfield": {"dynamic": true}`, `--dynamic NAME`, `--add FILE`). The frame and the
     /// reference draw it; `nearfield bake` leaves it out (the book, "Near and far").
     pub dynamic: bool,
+    /// The animated node it follows and its rest pose, when it moves ([`crate::Scene::pose`]).
+    pub motion: Option<crate::animation::MeshMotion>,
 }
 
 impl Mesh {

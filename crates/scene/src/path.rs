@@ -221,6 +221,12 @@ impl CameraPath {
         }
     }
 
+    /// A camera standing at `camera` for `seconds` at `fps` (how `compare` plays a moving
+    /// scene's animation without a path).
+    pub fn standing(camera: Camera, seconds: f32, fps: f32) -> Result<Self, String> {
+        Self::new(fps, vec![(0.0, camera), (seconds.max(1.0 / fps), camera)])
+    }
+
     /// `frames` frames at `fps` turning `degrees` per frame about the target from `start`
     /// (what `--orbit DEG` means), one keyframe per frame.
     pub fn orbit(start: Camera, degrees: f32, frames: u32, fps: f32) -> Result<Self, String> {

@@ -19,6 +19,8 @@ pub(super) struct Run {
     pub frames: u32,
     /// The first frame's camera.
     first: Camera,
+    /// How the scene's objects move (empty: nothing moves).
+    animation: nearfield_scene::Animation,
 }
 
 /// The references of the measured frames of a path: (frame index, reference).
@@ -43,22 +45,38 @@ const STILL_FRAMES: u32 = 16;
 const SETTLE_WINDOW: u32 = 32;
 
 impl Run {
-    /// `frames` (`--frames`; default 1, or the path's) from `first`.
-    pub fn new(motion: Motion, frames: Option<u32>, first: Camera) -> Self {
+    /// `frames` (`--frames`; default 1, or the path's) from `first` over `scene`.
+    pub fn new(
+        motion: Motion,
+        frames: Option<u32>,
+        first: Camera,
+        scene: &nearfield_scene::Scene,
+    ) -> Self {
         let frames = frames.unwrap_or(match &motion {
             Motion::Path(p) => p.frames(),
-            Motion::Orbit(_) => 1,
+            Motion::Orbit { .. } => 1,
         });
+        let animation = if scene.moves() {
+            scene.animation.clone()
+        } else {
+            Default::default()
+        };
         Run {
             motion,
             frames,
             first,
+            animation,
         }
     }
 
     /// The camera of frame `index`.
     pub fn camera(&self, index: u32) -> Camera {
         self.motion.camera(self.first, index)
+    }
+
+    /// The scene's time at frame `index` (s).
+    pub fn time(&self, index: u32) -> f32 {
+        self.motion.time(index)
     }
 
     /// The frames of a path that are measured: every `every`-th, the last, and the
@@ -77,12 +95,14 @@ impl Run {
             .collect()
     }
 
-    /// Whether the camera of frame `i` is not that of frame `i − 1` (beyond rounding).
+    /// Whether the camera of frame `i` is not that of frame `i − 1` (beyond rounding), or an
+    /// object moved between them.
     fn moved(&self, i: u32) -> bool {
         let (a, b) = (self.camera(i - 1), self.camera(i));
         let scale = (a.target - a.eye).length().max(1e-6);
         (b.eye - a.eye).length() + (b.target - a.target).length() > 1e-5 * scale
             || (b.yfov - a.yfov).abs() > 1e-6
+            || self.animation.moved_between(self.time(i - 1), self.time(i))
     }
 
     /// The frames of a path whose camera jumps from the frame before's (a cut: the history is
@@ -241,6 +261,7 @@ impl Run {
         for (j, truth) in along.iter().step_by(step) {
             let mut r = make()?;
             r.set_camera(self.camera(*j));
+            r.set_time(self.time(*j));
             for _ in 0..STILL_FRAMES {
                 r.render_frame();
             }
@@ -266,6 +287,7 @@ pub(super) fn path_truth(
     let mut out = Vec::with_capacity(measured.len());
     for (k, i) in measured.iter().enumerate() {
         loaded.camera = run.camera(*i);
+        loaded.scene.pose(run.time(*i));
         eprintln!(
             "nearfield: reference of frame {} of {} ({} of {} measured)",
             i + 1,
@@ -277,6 +299,7 @@ pub(super) fn path_truth(
         out.push((*i, img));
     }
     loaded.camera = run.camera(run.frames - 1);
+    loaded.scene.pose(run.time(run.frames - 1));
     Ok(out)
 }
 
@@ -323,7 +346,7 @@ mod tests {
             Keyframe::from((3.0, b)),
         ];
         let path = CameraPath::new(10.0, keys).unwrap();
-        let run = Run::new(Motion::Path(path), None, a);
+        let run = Run::new(Motion::Path(path), None, a, &Default::default());
         assert_eq!(run.cuts(), vec![10]);
         // Measured: frames 10..42 after the cut (and the last, 30); not the others.
         let measured = run.measured(1000);
@@ -347,7 +370,7 @@ mod tests {
             "a window the path cuts short"
         );
         let long = CameraPath::new(10.0, [keys[0], keys[1], Keyframe::from((6.0, b))]).unwrap();
-        let run = Run::new(Motion::Path(long), None, a);
+        let run = Run::new(Motion::Path(long), None, a, &Default::default());
         let points = falling(10..61);
         assert_eq!(run.settle(&points), vec![7]);
     }

@@ -36,10 +36,13 @@ impl Truths {
         (ref_aov, size): (ReferenceAov, (u32, u32)),
     ) -> Result<Self> {
         let mut loaded = args.scene.load()?;
-        let motion = args.motion.motion(path_file, &mut loaded, args.orbit)?;
-        let run = frames::Run::new(motion, args.frames, loaded.camera);
+        let motion = args
+            .motion
+            .motion(path_file, &mut loaded, (args.orbit, true))?;
+        let run = frames::Run::new(motion, args.frames, loaded.camera, &loaded.scene);
         // The reference sees what the last frame sees.
         loaded.camera = run.camera(run.frames - 1);
+        loaded.scene.pose(run.time(run.frames - 1));
         if args.footprint {
             crate::footprint::check(&args.scene, &loaded)?;
         }

@@ -91,6 +91,10 @@ impl GBufferPass {
                     ],
                     cull,
                     depth_bias: Default::default(),
+                    vertex_buffers: &[
+                        Some(crate::gpu_scene::Vertex::LAYOUT),
+                        Some(crate::gpu_scene::Vertex::PREVIOUS),
+                    ],
                 },
             )
         };
@@ -151,6 +155,7 @@ impl GBufferPass {
         pass.set_bind_group(0, &self.frame, &[]);
         pass.set_bind_group(1, &self.bind_group, &[]);
         pass.set_vertex_buffer(0, scene.vertices.slice(..));
+        pass.set_vertex_buffer(1, scene.previous.slice(..));
         pass.set_index_buffer(scene.indices.slice(..), wgpu::IndexFormat::Uint32);
         if scene.single_sided_indices > 0 {
             pass.set_pipeline(&self.culled);

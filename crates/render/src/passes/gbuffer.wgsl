@@ -7,7 +7,8 @@
 //   1 albedo      rgba8unorm-srgb  base colour ρ (factor × texture), a = 1
 //   2 material    rgba8unorm   r = metallic, g = perceptual roughness, b = 0, a = 1
 //   3 emissive    rgba16float  emitted radiance (linear), a = 1
-//   4 motion      rg16float    previous − current pixel position (pixels) of this surface point
+//   4 motion      rg16float    previous − current pixel position (pixels) of this surface point,
+//                              moved by the camera and by its object's own motion
 //   5 view_depth  r32float     distance along −Z in view space (m); 0 on background
 // Material data: shaders/materials.wgsl.
 
@@ -16,9 +17,13 @@
 @group(1) @binding(2) var linear_textures: texture_2d_array<f32>;
 @group(1) @binding(3) var material_sampler: sampler;
 
+// The second vertex buffer: each vertex's world position in the previous frame (the scene's own
+// positions where nothing moves), what the motion target is made of.
 @vertex
-fn vs_main(v: VertexIn) -> VertexOut {
-    return transform_vertex(v, view.clip_from_world);
+fn vs_main(v: VertexIn, @location(4) previous: vec3<f32>) -> VertexOut {
+    var o = transform_vertex(v, view.clip_from_world);
+    o.previous = previous;
+    return o;
 }
 
 struct GBufferOut {
@@ -45,7 +50,7 @@ fn fs_main(in: VertexOut, @builtin(front_facing) front: bool) -> GBufferOut {
     o.albedo = vec4<f32>(m.base, 1.0);
     o.material = vec4<f32>(m.metallic, m.roughness, 0.0, 1.0);
     o.emissive = vec4<f32>(m.emissive, 1.0);
-    o.motion = vec4<f32>(to_screen(view, view.prev_clip_from_world, in.world) - in.clip.xy, 0.0, 0.0);
+    o.motion = vec4<f32>(to_screen(view, view.prev_clip_from_world, in.previous) - in.clip.xy, 0.0, 0.0);
     o.view_depth = vec4<f32>(-(view.view_from_world * vec4<f32>(in.world, 1.0)).z, 0.0, 0.0, 0.0);
     return o;
 }

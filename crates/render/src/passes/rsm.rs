@@ -158,6 +158,7 @@ impl Maps {
                 color_formats: &[FORMAT, FORMAT, FORMAT],
                 cull: None,
                 depth_bias: Default::default(),
+                vertex_buffers: &[Some(crate::gpu_scene::Vertex::LAYOUT)],
             },
         );
         let texture = |label: &str, format: wgpu::TextureFormat, usage: wgpu::TextureUsages| {

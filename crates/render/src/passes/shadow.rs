@@ -7,8 +7,8 @@
 //! texels so that shadows do not crawl as the camera moves), a spot light one (perspective over its
 //! outer cone plus a margin, capped at 160°), a point light six (90° faces ±X, ±Y, ±Z). At most
 //! [`ShadowSettings::max_layers`] layers are allocated; lights beyond get no shadow (logged).
-//! A layer is drawn on the first frame and again only when its projection changed
-//! (docs/src/scenes.md, "Lighting details"): the geometry under a pass is fixed.
+//! A layer is drawn on the first frame and again only when its projection changed or an object
+//! moved ([`ShadowPass::moved`]; docs/src/scenes.md, "Lighting details").
 //!
 //! Biases (documented, fixed):
 //! - slope-scaled rasterizer bias: constant 2, slope 2.0 (in the depth format's units), against
@@ -89,9 +89,9 @@ pub struct ShadowPass {
     bounds: Aabb,
     /// The last (camera, image size) a disc light's layer was fitted to.
     fitted_to: Option<(Camera, (u32, u32))>,
-    /// Per layer: its projection, and whether the map holds what that projection sees. The
-    /// scene's geometry does not change under a pass, so a layer is drawn again only when its
-    /// projection changed (a disc light refitted to a moved camera, the sun turned).
+    /// Per layer: its projection, and whether the map holds what that projection sees. A layer
+    /// is drawn again only when its projection changed (a disc light refitted to a moved
+    /// camera, the sun turned) or an object moved.
     layer_matrices: Vec<Mat4>,
     drawn: Vec<AtomicBool>,
     view_buffer: wgpu::Buffer,
@@ -357,6 +357,7 @@ impl ShadowPass {
                     slope_scale: 2.0,
                     clamp: 0.0,
                 },
+                vertex_buffers: &[Some(crate::gpu_scene::Vertex::LAYOUT)],
             },
         );
         let compare_sampler = device.create_sampler(&wgpu::SamplerDescriptor {
@@ -442,6 +443,13 @@ impl ShadowPass {
             shadow_maps: &self.array_view,
             shadow_sampler: &self.compare_sampler,
             shadow_depths: &self.array_view,
+        }
+    }
+
+    /// Marks every layer stale: an object moved, so every map it may fall in is drawn again.
+    pub fn moved(&self) {
+        for d in &self.drawn {
+            d.store(false, Ordering::Relaxed);
         }
     }
 

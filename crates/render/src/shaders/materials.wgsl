@@ -22,6 +22,9 @@ struct VertexOut {
     @location(1) normal: vec3<f32>,
     @location(2) uv: vec2<f32>,
     @location(3) @interpolate(flat) material: u32,
+    // Where the surface point was in the previous frame (world): `world` unless the G-buffer,
+    // which reads the previous positions of moving objects, says otherwise.
+    @location(4) previous: vec3<f32>,
 }
 
 // A vertex seen through `clip_from_world` (the camera, a layer's view or a light's).
@@ -29,6 +32,7 @@ fn transform_vertex(v: VertexIn, clip_from_world: mat4x4<f32>) -> VertexOut {
     var o: VertexOut;
     o.clip = clip_from_world * vec4<f32>(v.position, 1.0);
     o.world = v.position;
+    o.previous = v.position;
     o.normal = v.normal;
     o.uv = v.uv;
     o.material = v.material;

@@ -126,6 +126,41 @@ impl Builder {
         );
     }
 
+    /// A sphere of `radius` around `center`, `rings` latitude bands of `2 · rings` quads each,
+    /// faces outward with smooth normals.
+    pub(super) fn sphere(&mut self, material: u32, center: Vec3, radius: f32, rings: u32) {
+        let m = &mut self.scene.meshes[material as usize];
+        let base = m.positions.len() as u32;
+        let around = 2 * rings;
+        for i in 0..=rings {
+            let theta = std::f32::consts::PI * i as f32 / rings as f32;
+            for j in 0..=around {
+                let phi = std::f32::consts::TAU * j as f32 / around as f32;
+                let n = Vec3::new(
+                    theta.sin() * phi.cos(),
+                    theta.cos(),
+                    -theta.sin() * phi.sin(),
+                );
+                m.positions.push(center + radius * n);
+                m.normals.push(n);
+                m.uvs
+                    .push(Vec2::new(j as f32 / around as f32, i as f32 / rings as f32));
+            }
+        }
+        let at = |i: u32, j: u32| base + i * (around + 1) + j;
+        for i in 0..rings {
+            for j in 0..around {
+                let (a, b, c, d) = (at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1));
+                if i > 0 {
+                    m.indices.push([a, b, d]);
+                }
+                if i + 1 < rings {
+                    m.indices.push([d, b, c]);
+                }
+            }
+        }
+    }
+
     pub(super) fn finish(mut self, camera: Camera, env: EnvSource) -> Scene {
         self.scene.meshes.retain(|m| !m.indices.is_empty());
         self.scene.cameras = vec![camera];

@@ -15,12 +15,15 @@
 //! | `two-rooms` | two 3 × 2.5 × 3 m rooms side by side, a 20 cm wall between them; the left one is open to the sky, the right one closed (no light reaches it): the far field's leak test |
 //! | `cornell-dynamic` | `cornell` with a yellow 0.4 m box on the floor, front left, that the far field's bake leaves out (dynamic) |
 //! | `two-rooms-dynamic` | `two-rooms` with a 0.6 m box on the open room's floor, dynamic |
+//! | `cornell-moving` | `cornell` with a yellow 0.24 m box sliding 1.45 m across the front of the floor in 2 s, then standing still (3 s in all) |
+//! | `columns-moving` | `columns` with a 0.25 m ball rolling 3.2 m in front of the columns in 2 s, then standing still (3 s in all) |
 
 mod builder;
 
+use crate::Track;
 use crate::{Camera, EnvSource, Light, LightKind, Material, Scene, SceneError};
 use builder::Builder;
-use glam::{Vec2, Vec3};
+use glam::{Quat, Vec2, Vec3, Vec3Swizzles};
 
 /// Names of the built-in scenes, in the order shown to users.
 pub const NAMES: &[&str] = &[
@@ -36,6 +39,8 @@ pub const NAMES: &[&str] = &[
     "two-rooms",
     "cornell-dynamic",
     "two-rooms-dynamic",
+    "cornell-moving",
+    "columns-moving",
 ];
 
 /// Builds the named built-in scene.
@@ -53,6 +58,8 @@ pub fn scene(name: &str) -> Result<Scene, SceneError> {
         "two-rooms" => two_rooms(),
         "cornell-dynamic" => cornell_dynamic(),
         "two-rooms-dynamic" => two_rooms_dynamic(),
+        "cornell-moving" => cornell_moving(),
+        "columns-moving" => columns_moving(),
         _ => {
             return Err(SceneError::UnknownBuiltin {
                 name: name.into(),
@@ -295,6 +302,69 @@ fn two_rooms_dynamic() -> Scene {
     s
 }
 
+/// How long the moving variants' objects move, and how long they then stand still (s).
+const MOVING: f32 = 2.0;
+const STANDING: f32 = 1.0;
+
+/// `cornell` with a yellow box sliding across the front of the floor, in front of the short box,
+/// then standing still: what its contact shadow and bounce do in motion, and the ghost it may
+/// leave where it was.
+fn cornell_moving() -> Scene {
+    let (from, to) = (Vec3::new(-0.75, 0.0, 0.86), Vec3::new(0.7, 0.0, 0.86));
+    let mut b = Builder { scene: cornell() };
+    let m = b.dynamic_material(Material::diffuse("sliding box", Vec3::new(0.75, 0.6, 0.2)));
+    b.block(m, from.xz(), Vec3::splat(0.24), 0.0, 0.0);
+    let mut node = crate::animation::Node::at("sliding box", from);
+    node.translations = Some(Track::linear(&[
+        (0.0, from),
+        (MOVING, to),
+        (MOVING + STANDING, to),
+    ]));
+    moving(b, m, node, "cornell-moving")
+}
+
+/// `columns` with a ball rolling along in front of the columns, then standing still.
+fn columns_moving() -> Scene {
+    let radius = 0.25;
+    let (from, to) = (Vec3::new(-1.6, radius, 0.7), Vec3::new(1.6, radius, 0.7));
+    let mut b = Builder { scene: columns() };
+    let m = b.dynamic_material(Material::diffuse(
+        "rolling ball",
+        Vec3::new(0.3, 0.55, 0.85),
+    ));
+    b.sphere(m, from, radius, 12);
+    let mut node = crate::animation::Node::at("rolling ball", from);
+    // Rolling without slipping: a turn of −d/r about +Z after d metres along +X, keyed densely
+    // enough that each step turns less than half a turn.
+    let steps = 16;
+    let keys: Vec<(f32, f32)> = (0..=steps)
+        .map(|i| {
+            let s = i as f32 / steps as f32;
+            (s * MOVING, s * (to.x - from.x))
+        })
+        .collect();
+    let at = |d: f32| from + Vec3::X * d;
+    let mut translations: Vec<(f32, Vec3)> = keys.iter().map(|&(t, d)| (t, at(d))).collect();
+    let mut rotations: Vec<(f32, Quat)> = keys
+        .iter()
+        .map(|&(t, d)| (t, Quat::from_rotation_z(-d / radius)))
+        .collect();
+    translations.push((MOVING + STANDING, to));
+    rotations.push((MOVING + STANDING, rotations[steps].1));
+    node.translations = Some(Track::linear(&translations));
+    node.rotations = Some(Track::linear(&rotations));
+    moving(b, m, node, "columns-moving")
+}
+
+/// The scene of `b` with mesh `m` following `node`, the one animated node.
+fn moving(b: Builder, m: u32, node: crate::animation::Node, name: &str) -> Scene {
+    let mut s = b.scene;
+    s.animation = crate::Animation { nodes: vec![node] };
+    s.meshes[m as usize].follow(0);
+    s.name = format!("builtin:{name}");
+    s
+}
+
 /// Two rooms side by side along x, sharing a 20 cm wall (x = ±0.1): the left one
 /// (x ∈ [−3.2, −0.1]) has no ceiling and sees the sky and its sun, the right one
 /// (x ∈ [0.1, 3.2]) is closed on every side, so that no light reaches it. A probe volume must
@@ -451,12 +521,18 @@ mod tests {
             let s = scene(name).unwrap();
             s.validate(std::path::Path::new(name)).unwrap();
             assert!(s.triangle_count() >= 2, "{name}");
-            // Winding agrees with the stored normals.
+            // Winding agrees with the stored normals (a ball's smooth normals lean up to half a
+            // facet's 15° from its faces; every other face is flat).
             for m in &s.meshes {
                 for t in &m.indices {
                     let [a, bb, c] = t.map(|i| m.positions[i as usize]);
                     let g = (bb - a).cross(c - a).normalize();
-                    assert!(g.dot(m.normals[t[0] as usize]) > 0.999, "{name}");
+                    let flat = if m.name == "rolling ball" {
+                        0.95
+                    } else {
+                        0.999
+                    };
+                    assert!(g.dot(m.normals[t[0] as usize]) > flat, "{name}");
                 }
             }
             s.default_camera().validate().unwrap();

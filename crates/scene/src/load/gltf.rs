@@ -6,13 +6,17 @@
 //! texture with `KHR_materials_emissive_strength`, alpha mask, double-sided, `KHR_lights_punctual`
 //! (point, spot, directional) and perspective cameras. A *required* extension outside this list is
 //! an error; an optional one is ignored with one warning. `KHR_materials_transmission` materials
-//! render opaque with a warning. Normal maps and texture transforms are ignored.
+//! render opaque with a warning. Normal maps and texture transforms are ignored. Node animation
+//! (translation, rotation and scale channels, every animation of the file played at once) moves
+//! the meshes under the animated nodes ([`animation`]); morph targets, skins and animated
+//! cameras and lights are not played.
 //!
 //! Before anything is built, the file's structure is checked ([`check`]): the node graph is a
 //! tree, every accessor lies inside its buffer view and every view inside its buffer, URIs name
 //! regular files, image headers are within [`crate::limits`]; while it is built, transforms,
 //! cameras, lights and counts are.
 
+mod animation;
 mod check;
 
 use super::{finish_mesh, io_error};
@@ -59,6 +63,9 @@ pub fn load(path: &Path) -> Result<Scene, SceneError> {
         .map(|n| (n, Mat4::IDENTITY, Vec::new(), false))
         .collect();
     let mut counts = Counts::default();
+    // Each node's parent, and the node each mesh hangs from (what an animation moves).
+    let mut parents: HashMap<usize, usize> = HashMap::new();
+    let mut mesh_nodes: Vec<usize> = Vec::new();
     while let Some((node, parent, mut nodes, parent_dynamic)) = stack.pop() {
         let local = Mat4::from_cols_array_2d(&node.transform().matrix());
         let world = parent * local;
@@ -69,6 +76,7 @@ pub fn load(path: &Path) -> Result<Scene, SceneError> {
             nodes.push(name.to_string());
         }
         for child in node.children() {
+            parents.insert(child.index(), node.index());
             stack.push((child, world, nodes.clone(), dynamic));
         }
         if let Some(mesh) = node.mesh() {
@@ -86,6 +94,7 @@ pub fn load(path: &Path) -> Result<Scene, SceneError> {
                 finish_mesh(&mut m, path);
                 m.transform(world);
                 scene.meshes.push(m);
+                mesh_nodes.push(node.index());
             }
         }
         if let Some(light) = node.light() {
@@ -102,6 +111,13 @@ pub fn load(path: &Path) -> Result<Scene, SceneError> {
     }
     cameras.sort_by_key(|(i, _)| *i);
     scene.cameras = cameras.into_iter().map(|(_, c)| c).collect();
+    scene.animation = animation::read(doc, &buffers, &parents).map_err(err)?;
+    for (m, node) in scene.meshes.iter_mut().zip(mesh_nodes) {
+        if scene.animation.moves(node as u32) {
+            m.follow(node as u32);
+        }
+    }
+    scene.pose(0.0);
     Ok(scene)
 }
 
@@ -315,6 +331,7 @@ fn primitive(
         material: 0,
         nodes: Vec::new(),
         dynamic: false,
+        motion: None,
     };
     let n = m.positions.len() as u32;
     if let Some(bad) = m.indices.iter().flatten().find(|&&i| i >= n) {

@@ -79,6 +79,7 @@ impl LayerDrawing {
                 ],
                 cull: None,
                 depth_bias: Default::default(),
+                vertex_buffers: &[Some(crate::gpu_scene::Vertex::LAYOUT)],
             },
         );
 
