@@ -362,6 +362,28 @@ fn gltf_with(edit: impl FnOnce(&mut serde_json::Value)) -> Vec<u8> {
 }
 
 /// A PNG data URI whose header claims `w`×`h` pixels and holds none.
+/// The one-triangle glTF with its node translated by an animation (its key times [0, 1] and
+/// values the triangle's first two vertices, from the triangle's buffer), changed by `edit`.
+/// Accessor 3 holds the times [1, 0]; accessor 4 three VEC3 values.
+fn animated(edit: impl FnOnce(&mut serde_json::Value)) -> Vec<u8> {
+    use serde_json::json;
+    gltf_with(|v| {
+        let accessors = v["accessors"].as_array_mut().unwrap();
+        accessors.extend([
+            json!({"bufferView":0,"byteOffset":8,"componentType":5126,"count":2,"type":"SCALAR","min":[0],"max":[1]}),
+            json!({"bufferView":0,"componentType":5126,"count":2,"type":"VEC3"}),
+            json!({"bufferView":0,"byteOffset":12,"componentType":5126,"count":2,"type":"SCALAR","min":[0],"max":[1]}),
+            json!({"bufferView":0,"componentType":5126,"count":3,"type":"VEC3"}),
+        ]);
+        let mut a = json!({
+            "samplers": [{"input": 1, "output": 2}],
+            "channels": [{"sampler": 0, "target": {"node": 0, "path": "translation"}}],
+        });
+        edit(&mut a);
+        v["animations"] = json!([a]);
+    })
+}
+
 fn png_header_uri(w: u32, h: u32) -> String {
     let mut png = b"\x89PNG\r\n\x1a\n\0\0\0\x0dIHDR".to_vec();
     png.extend(w.to_be_bytes());
@@ -482,6 +504,13 @@ fn structurally_bad_files_exit_2_with_one_line_within_a_second() {
         })), "light intensity -5"),
         (scene("device.gltf", gltf_with(|v| v["buffers"][0]["uri"] = json!("/dev/zero"))), "not a regular file"),
         (scene("percent.gltf", gltf_with(|v| v["buffers"][0]["uri"] = json!("%ff%fe.bin"))), "not valid UTF-8"),
+        // Animations: a channel whose sampler is missing, none at all, key times that go back,
+        // more values than times, values of the wrong type.
+        (scene("nosampler.gltf", animated(|a| a["channels"][0]["sampler"] = json!(3))), "sampler"),
+        (scene("nosamplers.gltf", animated(|a| a["samplers"] = json!([]))), "sampler"),
+        (scene("backwards.gltf", animated(|a| a["samplers"][0]["input"] = json!(3))), "not increasing"),
+        (scene("counts.gltf", animated(|a| a["samplers"][0]["output"] = json!(4))), "2 key times but 3 values"),
+        (scene("rotation.gltf", animated(|a| a["channels"][0]["target"]["path"] = json!("rotation"))), "not a type"),
         (scene("position.obj", b"v 0 0 0\nv 1e30 0 0\nv 0 1 0\nf 1 2 3\n".to_vec()), "absurd vertex position"),
         (scene("huge.ply", b"ply\nformat binary_little_endian 1.0\nelement vertex 1000000000000\nproperty float x\nproperty float y\nproperty float z\nend_header\n".to_vec()), "beyond the limit"),
         (scene("lying.ply", b"ply\nformat ascii 1.0\nelement vertex 1000000\nproperty float x\nproperty float y\nproperty float z\nend_header\n0 0 0\n".to_vec()), "more than a"),
