@@ -126,3 +126,124 @@ fn a_moved_clock_poses_objects_as_a_fresh_renderer_and_their_motion_reaches_the_
         "a still camera over a still scene: {largest} px"
     );
 }
+
+/// The frames after its stop by which every pixel a moving object uncovered must be back within
+/// 5 % of its settled value.
+const WITHIN: u32 = 8;
+
+/// The ghost test's image size.
+const GHOST: (u32, u32) = (72, 54);
+
+/// The ghost test (the book, "In motion"): `cornell-moving`'s box slides across the floor and
+/// stops. For every technique at its defaults, every pixel the box swept over and left (not next
+/// to where it stands) is, 8 frames after the stop, within 5 % of its settled value (the mean of
+/// the last 16 of 32 frames after the stop), plus twice that pixel's own frame-to-frame noise
+/// once settled (a settled frame's distance from that mean): a ghost is a bias, noise is not.
+/// One frame after the stop vbgi is not settled yet, and the test sees it.
+#[test]
+fn pixels_a_moving_box_uncovered_settle_within_8_frames_for_every_technique() {
+    let Some(ctx) = common::context() else { return };
+    let mut report = Vec::new();
+    for name in nearfield_render::technique::names() {
+        let (uncovered, worst, beyond) = ghost(&ctx, name, WITHIN);
+        assert!(uncovered > 150, "{name}: {uncovered} uncovered pixels");
+        report.push(format!("{name} {worst:.4}"));
+        assert!(
+            beyond.is_empty(),
+            "{name}: {} of {uncovered} uncovered pixels are not back within 5 % (+ 2× noise) {WITHIN} frames after the stop: {:?}",
+            beyond.len(),
+            &beyond[..beyond.len().min(8)]
+        );
+    }
+    eprintln!(
+        "largest relative difference {WITHIN} frames after the stop: {}",
+        report.join(", ")
+    );
+    // The frame right after the stop is not settled yet, and the test sees it.
+    let (_, worst, beyond) = ghost(&ctx, "vbgi", 1);
+    assert!(
+        !beyond.is_empty() && worst > 0.05,
+        "vbgi 1 frame after the stop: {} pixels beyond, largest {worst:.4}",
+        beyond.len()
+    );
+}
+
+/// A pixel's place and its relative difference from its settled value, and its noise.
+type Off = (u32, u32, f64, f64);
+
+/// Runs `spec` over `cornell-moving` from a still camera: the pixels the box uncovered, the
+/// largest relative difference among them `within` frames after the stop, and those beyond the
+/// bound.
+fn ghost(ctx: &nearfield_render::GpuContext, spec: &str, within: u32) -> (usize, f64, Vec<Off>) {
+    let scene = nearfield_scene::builtin::scene("cornell-moving").unwrap();
+    let (env, _) = nearfield_scene::EnvSource::Sky
+        .load_split(nearfield_scene::SunMode::Auto)
+        .unwrap();
+    let camera = scene.default_camera();
+    let fps = 30.0;
+    // The box moves for 2 s of the animation's 3.
+    let stop = ((scene.animation.duration() - 1.0) * fps).round() as u32;
+    let box_colour = Vec3::new(0.75, 0.6, 0.2);
+    let on_box = |a: &AovImage, x: u32, y: u32| {
+        (Vec3::from_slice(&a.get(x, y)[..3]) - box_colour)
+            .abs()
+            .max_element()
+            < 0.02
+    };
+    let luminance = |p: [f32; 4]| (p[0] + p[1] + p[2]) as f64;
+    let (settle_frames, last) = (16, stop + 32);
+    let n = (GHOST.0 * GHOST.1) as usize;
+    let spec = nearfield_render::technique::Spec::resolve(spec, &Default::default()).unwrap();
+    let settings = nearfield_render::RenderSettings {
+        size: GHOST,
+        ..Default::default()
+    };
+    let mut r = Renderer::new(ctx, &scene, &env, None, camera, &spec, settings).unwrap();
+    let mut swept = vec![false; n];
+    let (mut at_check, mut one_settled) = (Vec::new(), Vec::new());
+    let mut settled = vec![0f64; n];
+    for i in 0..=last {
+        r.set_time(i as f32 / fps);
+        r.render_frame();
+        if i <= stop {
+            let albedo = r.read_aov(Aov::Albedo);
+            for (k, s) in swept.iter_mut().enumerate() {
+                *s |= on_box(&albedo, k as u32 % GHOST.0, k as u32 / GHOST.0);
+            }
+        }
+        if i == stop + within {
+            at_check = r.read_aov(Aov::Lambertian).pixels;
+        }
+        if i == last - settle_frames {
+            one_settled = r.read_aov(Aov::Lambertian).pixels;
+        }
+        if i > last - settle_frames {
+            for (s, p) in settled.iter_mut().zip(&r.read_aov(Aov::Lambertian).pixels) {
+                *s += luminance(*p) / settle_frames as f64;
+            }
+        }
+    }
+    // Uncovered: swept by the box and not next to where it stands.
+    let albedo = r.read_aov(Aov::Albedo);
+    let near_box = |x: u32, y: u32| {
+        (x.saturating_sub(1)..=(x + 1).min(GHOST.0 - 1)).any(|u| {
+            (y.saturating_sub(1)..=(y + 1).min(GHOST.1 - 1)).any(|v| on_box(&albedo, u, v))
+        })
+    };
+    let (mut uncovered, mut worst, mut beyond) = (0, 0f64, Vec::new());
+    for k in 0..n {
+        let (x, y) = (k as u32 % GHOST.0, k as u32 / GHOST.0);
+        if !swept[k] || near_box(x, y) {
+            continue;
+        }
+        uncovered += 1;
+        let s = settled[k].max(1e-6);
+        let off = (luminance(at_check[k]) - s).abs() / s;
+        let noise = (luminance(one_settled[k]) - s).abs() / s;
+        worst = worst.max(off);
+        if off > 0.05 + 2.0 * noise {
+            beyond.push((x, y, off, noise));
+        }
+    }
+    (uncovered, worst, beyond)
+}

@@ -18,6 +18,12 @@ struct SvgfParams {
     sigma_n: f32,
     // This à-trous iteration's tap spacing (pixels).
     step: i32,
+    // The history's clamp: this frame's 5×5 neighbourhood mean ± clamp standard deviations
+    // (0: off).
+    clamp: f32,
+    _pad0: f32,
+    _pad1: f32,
+    _pad2: f32,
 }
 
 fn svgf_luma(c: vec3<f32>) -> f32 {

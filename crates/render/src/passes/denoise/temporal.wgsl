@@ -7,6 +7,10 @@
 // light's luminance are accumulated the same way (the per-pixel variance of the spatial filter).
 // No passing tap, no history (first frame, camera cut) or temporal off: the mean restarts at
 // this frame's value, count 1. Weight of the new frame 1 / min(count, max_history).
+// With `clamp` > 0 the history's ao, env and indirect means are first clamped to this frame's
+// raw values' mean ± clamp standard deviations over the 5×5 surface pixels around (variance
+// clipping): where a moving object changed the light, the history follows within frames, while
+// a still scene's history, whose mean lies inside its own noise, is left alone.
 
 @group(1) @binding(0) var<uniform> params: SvgfParams;
 @group(1) @binding(1) var gb_normal: texture_2d<f32>;
@@ -23,6 +27,65 @@
 @group(1) @binding(12) var acc_env: texture_storage_2d<rgba16float, write>;
 @group(1) @binding(13) var acc_indirect: texture_storage_2d<rgba16float, write>;
 @group(1) @binding(14) var acc_geometry: texture_storage_2d<rgba32float, write>;
+
+// The mean and standard deviation of this frame's raw ao and env and indirect channels over the
+// 5×5 pixels around `pixel` on its surface (the history tests: normal cosine and tangent-plane
+// distance; `x`, `n` and `depth` the centre's), so that another object's light beside it does
+// not widen the range.
+struct Neighbourhood {
+    env_mean: vec3<f32>,
+    env_sd: vec3<f32>,
+    ind_mean: vec3<f32>,
+    ind_sd: vec3<f32>,
+    ao_mean: f32,
+    ao_sd: f32,
+}
+
+fn neighbourhood(pixel: vec2<u32>, x: vec3<f32>, n: vec3<f32>, depth: f32) -> Neighbourhood {
+    var count = 0.0;
+    var e1 = vec3<f32>(0.0);
+    var e2 = vec3<f32>(0.0);
+    var i1 = vec3<f32>(0.0);
+    var i2 = vec3<f32>(0.0);
+    var a1 = 0.0;
+    var a2 = 0.0;
+    for (var dy = -2; dy <= 2; dy++) {
+        for (var dx = -2; dx <= 2; dx++) {
+            let q = vec2<i32>(pixel) + vec2<i32>(dx, dy);
+            if q.x < 0 || q.y < 0 || !in_bounds(view, vec2<u32>(q)) {
+                continue;
+            }
+            let nq = textureLoad(gb_normal, q, 0);
+            let dq = textureLoad(gb_view_depth, q, 0).r;
+            if nq.w == 0.0 || dq <= 0.0 || dot(nq.xyz, n) < params.reject_normal {
+                continue;
+            }
+            let xq = world_position(view, vec2<u32>(q), dq);
+            if abs(dot(n, xq - x)) > params.reject_depth * depth {
+                continue;
+            }
+            let e = textureLoad(raw_env, q, 0).rgb;
+            let i = textureLoad(raw_indirect, q, 0).rgb;
+            let a = textureLoad(raw_ao, q, 0).r;
+            count += 1.0;
+            e1 += e;
+            e2 += e * e;
+            i1 += i;
+            i2 += i * i;
+            a1 += a;
+            a2 += a * a;
+        }
+    }
+    var o: Neighbourhood;
+    let inv = 1.0 / max(count, 1.0);
+    o.env_mean = e1 * inv;
+    o.env_sd = sqrt(max(e2 * inv - o.env_mean * o.env_mean, vec3<f32>(0.0)));
+    o.ind_mean = i1 * inv;
+    o.ind_sd = sqrt(max(i2 * inv - o.ind_mean * o.ind_mean, vec3<f32>(0.0)));
+    o.ao_mean = a1 * inv;
+    o.ao_sd = sqrt(max(a2 * inv - o.ao_mean * o.ao_mean, 0.0));
+    return o;
+}
 
 @compute @workgroup_size(8, 8, 1)
 fn temporal(@builtin(global_invocation_id) id: vec3<u32>) {
@@ -65,10 +128,23 @@ fn temporal(@builtin(global_invocation_id) id: vec3<u32>) {
             }
             let inv = 1.0 / taps.total;
             count = min(e.w * inv + 1.0, params.max_history);
+            var hm = m * inv;
+            var he = e.rgb * inv;
+            var hi = ind * inv;
+            if params.clamp > 0.0 {
+                let g = params.clamp;
+                let nb = neighbourhood(pixel, x, n, depth);
+                let cm = clamp(hm.x, nb.ao_mean - g * nb.ao_sd, nb.ao_mean + g * nb.ao_sd);
+                let ce = clamp(he, nb.env_mean - g * nb.env_sd, nb.env_mean + g * nb.env_sd);
+                let ci = clamp(hi, nb.ind_mean - g * nb.ind_sd, nb.ind_mean + g * nb.ind_sd);
+                hm.x = cm;
+                he = ce;
+                hi = ci;
+            }
             let a = 1.0 / count;
-            moments = mix(m * inv, moments, a);
-            env = mix(e.rgb * inv, env, a);
-            indirect = mix(ind * inv, indirect, a);
+            moments = mix(hm, moments, a);
+            env = mix(he, env, a);
+            indirect = mix(hi, indirect, a);
         }
     }
     textureStore(acc_moments, pixel, moments);
