@@ -99,7 +99,8 @@ impl Scene {
     }
 
     /// Adds `other`'s meshes (with their materials and textures) placed by `p`, dynamic, under
-    /// a node named `name`. Its lights, cameras and animation are not taken.
+    /// a node named `name`. Its animation comes along (under a node that places it); its lights
+    /// and cameras are not taken.
     pub fn add(&mut self, other: Scene, name: &str, p: Placement) {
         let bounds = other.bounds();
         let base = Vec3::new(
@@ -110,6 +111,18 @@ impl Scene {
         let world = Mat4::from_translation(p.at)
             * Mat4::from_scale(Vec3::splat(p.scale))
             * Mat4::from_translation(-base);
+        // The model's animated nodes hang from one that places them, after this scene's nodes.
+        let n0 = self.animation.nodes.len() as u32;
+        let moves = !other.animation.is_empty();
+        if moves {
+            let mut placing = crate::animation::Node::at(name, p.at - p.scale * base);
+            placing.scale = Vec3::splat(p.scale);
+            self.animation.nodes.push(placing);
+            for mut node in other.animation.nodes {
+                node.parent = Some(node.parent.map_or(n0, |q| q + n0 + 1));
+                self.animation.nodes.push(node);
+            }
+        }
         let (m0, t0) = (self.materials.len() as u32, self.textures.len());
         self.textures.extend(other.textures);
         for mut mat in other.materials {
@@ -127,7 +140,13 @@ impl Scene {
             mesh.material += m0;
             mesh.nodes.insert(0, name.to_string());
             mesh.dynamic = true;
-            mesh.motion = None;
+            if let Some(m) = &mut mesh.motion {
+                m.node += n0 + 1;
+                (m.rest_positions, m.rest_normals) = m.posed(world);
+            }
+            if !moves {
+                mesh.motion = None;
+            }
             self.meshes.push(mesh);
         }
     }
@@ -187,6 +206,32 @@ mod tests {
             assert_eq!(s.baked_part().triangle_count(), base.triangle_count());
             assert!(s.triangle_count() > base.triangle_count());
         }
+    }
+
+    #[test]
+    fn an_added_model_moves_as_its_animation_says_where_it_is_placed() {
+        let mut s = crate::builtin::scene("plane").unwrap();
+        let other = crate::builtin::scene("columns-moving").unwrap();
+        let p = Placement::parse("x", "3,0.5,-2,0.5").unwrap();
+        // The bounds of the moving meshes at time t.
+        let (mut alone, moved) = (other.clone(), |s: &Scene, t: f32| {
+            let mut s = s.clone();
+            s.pose(t);
+            let mut b = crate::Aabb::EMPTY;
+            for m in s.meshes.iter().filter(|m| m.motion.is_some()) {
+                m.positions.iter().for_each(|p| b.grow(*p));
+            }
+            b
+        });
+        s.add(other, "columns", p);
+        assert!(s.moves());
+        alone.pose(0.0);
+        // The ball at half scale rolls half as far: its bounds move by half of its own.
+        let (a0, a1) = (moved(&alone, 0.0), moved(&alone, 2.0));
+        let (b0, b1) = (moved(&s, 0.0), moved(&s, 2.0));
+        let (da, db) = (a1.center() - a0.center(), b1.center() - b0.center());
+        assert!((db - 0.5 * da).length() < 1e-4, "{da} {db}");
+        assert!((b0.extent() - 0.5 * a0.extent()).length() < 1e-4);
     }
 
     #[test]

@@ -17,6 +17,7 @@
 //! | `two-rooms-dynamic` | `two-rooms` with a 0.6 m box on the open room's floor, dynamic |
 //! | `cornell-moving` | `cornell` with a yellow 0.24 m box sliding 1.45 m across the front of the floor in 2 s, then standing still (3 s in all) |
 //! | `columns-moving` | `columns` with a 0.25 m ball rolling 3.2 m in front of the columns in 2 s, then standing still (3 s in all) |
+//! | `rolling-ball` | that ball alone, rolling 3.2 m along +X from the origin: `--add builtin:rolling-ball@X,Y,Z[,S]` rolls it through another scene |
 
 mod builder;
 
@@ -41,6 +42,7 @@ pub const NAMES: &[&str] = &[
     "two-rooms-dynamic",
     "cornell-moving",
     "columns-moving",
+    "rolling-ball",
 ];
 
 /// Builds the named built-in scene.
@@ -60,6 +62,7 @@ pub fn scene(name: &str) -> Result<Scene, SceneError> {
         "two-rooms-dynamic" => two_rooms_dynamic(),
         "cornell-moving" => cornell_moving(),
         "columns-moving" => columns_moving(),
+        "rolling-ball" => rolling_ball(),
         _ => {
             return Err(SceneError::UnknownBuiltin {
                 name: name.into(),
@@ -325,9 +328,32 @@ fn cornell_moving() -> Scene {
 
 /// `columns` with a ball rolling along in front of the columns, then standing still.
 fn columns_moving() -> Scene {
+    roll(
+        Builder { scene: columns() },
+        Vec3::new(-1.6, 0.0, 0.7),
+        "columns-moving",
+    )
+}
+
+/// The ball of `columns-moving` alone, rolling from the origin: a model to `--add`.
+fn rolling_ball() -> Scene {
+    let mut s = roll(Builder::new("rolling-ball"), Vec3::ZERO, "rolling-ball");
+    s.meshes.retain(|m| !m.indices.is_empty());
+    s.cameras = vec![Camera::new(
+        Vec3::new(1.6, 1.2, 4.0),
+        Vec3::new(1.6, 0.25, 0.0),
+        45.0,
+    )];
+    s.default_env = EnvSource::Sky;
+    s
+}
+
+/// `b`'s scene with a 0.25 m ball resting on y = `start.y` at `start` rolling 3.2 m along +X in
+/// 2 s, then standing still for 1 s.
+fn roll(mut b: Builder, start: Vec3, name: &str) -> Scene {
     let radius = 0.25;
-    let (from, to) = (Vec3::new(-1.6, radius, 0.7), Vec3::new(1.6, radius, 0.7));
-    let mut b = Builder { scene: columns() };
+    let from = start + Vec3::Y * radius;
+    let to = from + Vec3::X * 3.2;
     let m = b.dynamic_material(Material::diffuse(
         "rolling ball",
         Vec3::new(0.3, 0.55, 0.85),
@@ -353,7 +379,7 @@ fn columns_moving() -> Scene {
     rotations.push((MOVING + STANDING, rotations[steps].1));
     node.translations = Some(Track::linear(&translations));
     node.rotations = Some(Track::linear(&rotations));
-    moving(b, m, node, "columns-moving")
+    moving(b, m, node, name)
 }
 
 /// The scene of `b` with mesh `m` following `node`, the one animated node.
