@@ -114,6 +114,40 @@ fn screenshot_after_30_frames_equals_render() {
     assert!(flip <= FLIP_BOUND, "FLIP {flip} > {FLIP_BOUND}");
 }
 
+/// The viewer plays a moving scene's animation on its frame clock: its 45th frame shows the box
+/// where `render --frames 45` shows it (moved since the first frame), hbil's history included.
+#[test]
+fn a_moving_scene_plays_in_the_viewer_as_render_plays_it() {
+    if !have_xvfb() {
+        return;
+    }
+    let dir = scratch("moving");
+    let shot = dir.join("view.png");
+    let args = [
+        "builtin:cornell-moving",
+        "--size",
+        "320x180",
+        "--method",
+        "hbil",
+    ];
+    let frames = [&args[..], &["--frames", "45"]].concat();
+    let (code, _, err) = view(&[&frames[..], &["--screenshot", shot.to_str().unwrap()]].concat());
+    assert_eq!(code, 0, "{err}");
+    let (later, first) = (dir.join("render.png"), dir.join("first.png"));
+    render(&frames, &later);
+    render(&args, &first);
+    let flip = flip_in(&rgb(&shot), &rgb(&later), 0, 320);
+    let moved = flip_in(&rgb(&shot), &rgb(&first), 0, 320);
+    eprintln!(
+        "cornell-moving, 45 frames: FLIP(view, render) = {flip:.6}, against frame 1 {moved:.6}"
+    );
+    assert!(flip <= FLIP_BOUND, "FLIP {flip} > {FLIP_BOUND}");
+    assert!(
+        moved > 10.0 * FLIP_BOUND.max(1e-4),
+        "the box moved: {moved}"
+    );
+}
+
 /// The viewer records the camera of every frame as a camera path; `render --path` plays the
 /// recording and shows what the viewer showed, hbil's history included (the frame after
 /// `stop-path` is rendered at the last recorded camera, which `--frames` one beyond the path's

@@ -333,7 +333,7 @@ fn animate(
             node["children"] = json!(children);
         }
         nodes.push(node);
-        let tracks: [(&str, Option<(&[f32], Vec<f32>, &str, crate::Interpolation)>); 3] = [
+        let tracks: [(&str, Option<Flat>); 3] = [
             (
                 "translation",
                 n.translations
@@ -383,10 +383,10 @@ fn animate(
 }
 
 /// A track's times, its values flattened, their glTF type and its interpolation.
-fn track<T: Copy, const N: usize>(
-    t: &crate::Track<T>,
-    flat: fn(T) -> [f32; N],
-) -> (&[f32], Vec<f32>, &'static str, crate::Interpolation) {
+type Flat<'a> = (&'a [f32], Vec<f32>, &'static str, crate::Interpolation);
+
+/// A track as glTF stores it ([`Flat`]).
+fn track<T: Copy, const N: usize>(t: &crate::Track<T>, flat: fn(T) -> [f32; N]) -> Flat<'_> {
     let kind = if N == 4 { "VEC4" } else { "VEC3" };
     let values = t.values.iter().flat_map(|v| flat(*v)).collect();
     (&t.times, values, kind, t.interpolation)
