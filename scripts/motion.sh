@@ -26,19 +26,19 @@ fi
 
 if [ "${MOTION_ONLY:-sponza}" = sponza ]; then
     # The far-field page's Sponza view, walked; a 0.375 m ball rolls 4.8 m down the nave towards
-    # the camera in the first 2 s and stands still after.
+    # the camera in the first 2 s and stands still after, 5 m ahead of the last frame's camera.
     echo "== sponza walk with a rolling ball"
     $N compare "$ASSETS/scenes/crytek_sponza/Sponza.gltf" --eye 9,1.5,-0.4 --target -5,3.5,0.2 \
-        --fov 60 --env "$ASSETS/env/rooitou_park_1k.hdr" --add builtin:rolling-ball@-3,-0.02,0.4,1.5 \
-        --walk --every 40 --size 192x108 --spp 512 --max-depth 16 --aov lambertian \
+        --fov 60 --env "$ASSETS/env/rooitou_park_1k.hdr" --add builtin:rolling-ball@-6,-0.02,0.4,1.5 \
+        --walk --every 40 --size 192x108 --spp 512 --max-depth 16 --aov lambertian --exposure 5 \
         --methods none,hbil,vbgi --out "$OUT/sponza" 2>&1 | grep -E "along the path|relative noise"
     f="$OUT/sponza/frames"
-    rows=()
+    tiles=()
     for i in 0040 0080 0120; do
-        convert "$f/hbil-$i.png" "$f/vbgi-$i.png" "$f/reference-$i.png" "$f/vbgi-$i-error.png" \
-            +append "$OUT/row-$i.png"
-        rows+=("$OUT/row-$i.png")
+        n=$((10#$i))
+        tiles+=(-label "hbil, frame $n" "$f/hbil-$i.png" -label "vbgi, frame $n" "$f/vbgi-$i.png"
+            -label "reference, frame $n" "$f/reference-$i.png" -label "vbgi's error" "$f/vbgi-$i-error.png")
     done
-    convert "${rows[@]}" -append docs/src/motion/sponza-walk.png
+    montage "${tiles[@]}" -tile 4x3 -geometry +2+2 -font DejaVu-Sans -pointsize 11 docs/src/motion/sponza-walk.png
     echo "wrote docs/src/motion/sponza-walk.png (rows: frames 40, 80, 120; hbil | vbgi | reference | vbgi's error)"
 fi

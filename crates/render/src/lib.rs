@@ -25,6 +25,7 @@ pub mod settings;
 pub mod targets;
 pub mod technique;
 pub mod util;
+pub mod vertex;
 pub mod vpl;
 
 pub use aov::{Aov, AovImage};

@@ -2,7 +2,7 @@
 //! the scene's time before each frame, and the previous frame's positions the G-buffer makes its
 //! motion vectors of (the book, "In motion").
 
-use crate::gpu_scene::Vertex;
+use crate::vertex::Vertex;
 use nearfield_scene::Scene;
 use nearfield_scene::animation::{Animation, MeshMotion};
 
