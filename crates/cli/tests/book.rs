@@ -265,9 +265,10 @@ fn every_page_link_and_image_of_the_book_resolves() {
     assert!(checked >= 15, "only {checked} pages");
 
     // Every picture comes from scripts/figures.sh (figures.rs, or bevy-figures.sh for the Bevy
-    // plugin's), or is a front of scripts/pareto-book.sh.
+    // plugin's, motion.sh for the In motion page's), or is a front of scripts/pareto-book.sh.
     let figures = read(&root().join("crates/cli/examples/figures.rs"));
     let bevy_figures = read(&root().join("scripts/bevy-figures.sh"));
+    let motion = read(&root().join("scripts/motion.sh"));
     let fronts = read(&root().join("scripts/pareto-book.sh"));
     let made = |name: &str| {
         figures.contains(name)
@@ -283,9 +284,13 @@ fn every_page_link_and_image_of_the_book_resolves() {
         let front = rel.starts_with("pareto/")
             && name == "pareto.svg"
             && fronts.contains("$out/$scene-$aov");
+        let moving = rel.starts_with("motion/") && motion.contains(&format!("docs/src/{rel}"));
         assert!(
-            made(name) || front || (failure && figures.contains("img/failures/{technique}.png")),
-            "{rel} is not made by crates/cli/examples/figures.rs or scripts/bevy-figures.sh"
+            made(name)
+                || front
+                || moving
+                || (failure && figures.contains("img/failures/{technique}.png")),
+            "{rel} is not made by crates/cli/examples/figures.rs, scripts/bevy-figures.sh or scripts/motion.sh"
         );
     }
     eprintln!("{checked} pages, {} pictures checked", images.len());
