@@ -77,9 +77,7 @@ impl MovingObjects {
         for m in &mut self.meshes {
             queue.write_buffer(previous, m.first * stride, bytemuck::cast_slice(&m.posed));
             if moved {
-                let a = &self.animation;
-                let world = a.world(m.motion.node, Some(self.time))
-                    * a.world(m.motion.node, None).inverse();
+                let world = self.animation.motion_at(m.motion.node, self.time);
                 let (positions, normals) = m.motion.posed(world);
                 for ((v, p), n) in m.posed.iter_mut().zip(positions).zip(normals) {
                     v.position = p.into();

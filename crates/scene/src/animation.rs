@@ -243,6 +243,11 @@ impl Animation {
         m
     }
 
+    /// How `node` is moved at time `t` from its rest pose (world from rest).
+    pub fn motion_at(&self, node: u32, t: f32) -> Mat4 {
+        self.world(node, Some(t)) * self.world(node, None).inverse()
+    }
+
     /// Whether `node` or one of its ancestors has a channel.
     pub fn moves(&self, node: u32) -> bool {
         let mut at = Some(node);
@@ -356,7 +361,7 @@ impl Scene {
 
     /// How `node` is moved at time `t` from its rest pose (world from rest).
     pub fn motion_at(&self, node: u32, t: f32) -> Mat4 {
-        self.animation.world(node, Some(t)) * self.animation.world(node, None).inverse()
+        self.animation.motion_at(node, t)
     }
 
     /// Poses every moving mesh at time `t` (s), from its rest pose: the same `t` gives the same
