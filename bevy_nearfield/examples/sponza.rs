@@ -12,6 +12,10 @@
 //!   --size WxH                                  window size (default 1280x720)
 //!   --screenshot FILE.png                       save the window after --frames frames and exit
 //!   --frames N                                  (default 60)
+//!   --move                                      the camera walks (nearfield's `--walk` of the
+//!                                               view, back and forth) and a ball rolls across
+//!                                               the floor before it, at 60 frames a second
+//!   --taa                                       Bevy's TAA on the camera
 //!   --bench                                     time off, bevy-ssao, the three techniques and
 //!                                               gtao-budget
 //!                                               A B A B and print a table
@@ -21,6 +25,7 @@
 //! SCENE defaults to `../shared/assets/scenes/crytek_sponza/Sponza.gltf` (beside the repository).
 //! The camera is the one nearfield's fits use in Sponza (`docs/src/fits/sponza-camera.json`).
 
+use bevy::anti_alias::taa::TemporalAntiAliasing;
 use bevy::camera::Hdr;
 use bevy::core_pipeline::prepass::{
     DeferredPrepass, DepthPrepass, MotionVectorPrepass, NormalPrepass,
@@ -50,6 +55,8 @@ struct Options {
     screenshot: Option<PathBuf>,
     frames: u32,
     bench: bool,
+    moving: bool,
+    taa: bool,
 }
 
 fn fail(msg: &str) -> ! {
@@ -71,6 +78,8 @@ fn options() -> Options {
         screenshot: None,
         frames: 60,
         bench: false,
+        moving: false,
+        taa: false,
     };
     let mut args = std::env::args().skip(1);
     while let Some(a) = args.next() {
@@ -107,6 +116,8 @@ fn options() -> Options {
                     .unwrap_or_else(|| fail(&format!("--size {v}: WxH, each 1..=8192")))
             }
             "--bench" => o.bench = true,
+            "--move" => o.moving = true,
+            "--taa" => o.taa = true,
             s if !s.starts_with("--") => {
                 o.scene = s.into();
                 o.scene_given = true;
@@ -220,7 +231,7 @@ fn main() {
         })
         .insert_resource(o)
         .add_systems(Startup, setup)
-        .add_systems(Update, (keys, step))
+        .add_systems(Update, (keys, step, animate).chain())
         .run();
 }
 
@@ -238,6 +249,54 @@ struct Run {
 
 #[derive(Component)]
 struct TheCamera;
+
+/// With `--move`: the camera's walk and the rolling ball.
+#[derive(Resource)]
+struct Motion {
+    walk: nearfield_scene::CameraPath,
+}
+
+#[derive(Component)]
+struct Ball;
+
+/// The ball's radius (m), and the line it rolls along (from, to) on the floor before the camera.
+const BALL_RADIUS: f32 = 0.45;
+const BALL_LINE: (Vec3, Vec3) = (Vec3::new(2.5, 0.0, -1.5), Vec3::new(2.5, 0.0, 1.5));
+/// Seconds the ball takes from one end of its line to the other.
+const BALL_SECONDS: f32 = 3.0;
+/// The clock of `--move`: frame n shows time n / 60 s, whatever the frame rate, so that a
+/// screenshot after `--frames N` is one picture.
+const MOVE_FPS: f32 = 60.0;
+
+/// Back and forth over [0, period]: t for the first period, then back down, and so on.
+fn ping_pong(t: f32, period: f32) -> f32 {
+    let u = t.rem_euclid(2.0 * period);
+    if u <= period { u } else { 2.0 * period - u }
+}
+
+/// Poses the camera on its walk and the ball on its line for this frame (`--move`).
+fn animate(
+    run: Res<Run>,
+    motion: Option<Res<Motion>>,
+    options: Res<Options>,
+    mut camera: Single<&mut Transform, (With<TheCamera>, Without<Ball>)>,
+    mut ball: Query<&mut Transform, With<Ball>>,
+) {
+    let Some(motion) = motion else { return };
+    let t = run.frame as f32 / MOVE_FPS;
+    let walk = &motion.walk;
+    let c = walk.camera_at(ping_pong(t, walk.duration()));
+    **camera = scene::camera(&c, options.size, 0.05).0;
+    let s = ping_pong(t, BALL_SECONDS) / BALL_SECONDS;
+    let (from, to) = BALL_LINE;
+    let travelled = (to - from).length() * s;
+    let dir = (to - from).normalize();
+    for mut b in &mut ball {
+        b.translation = from.lerp(to, s) + Vec3::Y * BALL_RADIUS;
+        // Rolling without slipping: turned about the axis across its path by distance / radius.
+        b.rotation = Quat::from_axis_angle(Vec3::Y.cross(dir), travelled / BALL_RADIUS);
+    }
+}
 
 fn setup(
     mut commands: Commands,
@@ -279,6 +338,41 @@ fn setup(
         ))
         .id();
     configure(&mut commands, id, &options.technique, &options);
+    if options.taa {
+        commands.entity(id).insert(TemporalAntiAliasing::default());
+    }
+    if options.moving {
+        let walk = nearfield_scene::CameraPath::walk(camera, loaded.0.bounds(), MOVE_FPS)
+            .unwrap_or_else(|e| fail(&format!("--move: {e}")));
+        commands.insert_resource(Motion { walk });
+        // A chequered ball, so that its rolling shows.
+        let mut ball = Sphere::new(BALL_RADIUS).mesh().uv(32, 16);
+        let colours: Vec<[f32; 4]> = ball
+            .attribute(Mesh::ATTRIBUTE_POSITION)
+            .and_then(|p| p.as_float3())
+            .unwrap_or_default()
+            .iter()
+            .map(|p| {
+                let check = ((p[0] * 8.0).floor() + (p[1] * 8.0).floor() + (p[2] * 8.0).floor())
+                    .rem_euclid(2.0);
+                if check < 1.0 {
+                    [0.9, 0.2, 0.1, 1.0]
+                } else {
+                    [0.9, 0.85, 0.8, 1.0]
+                }
+            })
+            .collect();
+        ball.insert_attribute(Mesh::ATTRIBUTE_COLOR, colours);
+        commands.spawn((
+            Ball,
+            Mesh3d(meshes.add(ball)),
+            MeshMaterial3d(materials.add(StandardMaterial {
+                perceptual_roughness: 0.6,
+                ..default()
+            })),
+            Transform::from_translation(BALL_LINE.0 + Vec3::Y * BALL_RADIUS),
+        ));
+    }
     commands.spawn((
         DirectionalLight {
             illuminance: 8000.0,

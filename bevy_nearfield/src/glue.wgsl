@@ -4,8 +4,11 @@
 // the near-field indirect light as a diffuse term (docs/src/bevy.md).
 
 struct Glue {
-    // Bevy's inverse projection (clip → view), infinite reverse-z.
+    // Bevy's inverse projection (clip → view), infinite reverse-z, with the frame's TAA jitter.
     view_from_clip: mat4x4<f32>,
+    // This frame's view → last frame's clip (unjittered): the camera's own motion, used where
+    // Bevy's motion vectors are not bound.
+    previous_clip_from_view: mat4x4<f32>,
     size: vec2<f32>,
     // 1 where Bevy's motion-vector prepass is bound.
     has_motion: u32,
@@ -34,6 +37,9 @@ fn vs_fullscreen(@builtin(vertex_index) i: u32) -> @builtin(position) vec4<f32> 
 @group(1) @binding(1) var bevy_normal: texture_2d<f32>;
 // Bevy's motion vectors: current − previous position in uv units (rg16float), when bound.
 @group(1) @binding(2) var bevy_motion: texture_2d<f32>;
+// Bevy's lit colour of the frame before (rgb) and that frame's view depth (a; 0: none), as
+// fs_capture kept it.
+@group(1) @binding(3) var captured: texture_2d<f32>;
 
 struct Inputs {
     // nearfield's view depth (r32float): metres along the view direction, 0 on background.
@@ -42,7 +48,13 @@ struct Inputs {
     @location(1) normal: vec4<f32>,
     // nearfield's motion (rg16float): previous − current pixel position.
     @location(2) motion: vec4<f32>,
+    // The radiance the technique gathers (rgba16float): last frame's colour where this
+    // surface point was (below).
+    @location(3) gathered: vec4<f32>,
 }
+
+// Relative depth tolerance of the reprojection's same-surface test.
+const SAME_SURFACE: f32 = 0.05;
 
 @fragment
 fn fs_inputs(@builtin(position) p: vec4<f32>) -> Inputs {
@@ -52,6 +64,7 @@ fn fs_inputs(@builtin(position) p: vec4<f32>) -> Inputs {
     o.view_depth = vec4<f32>(0.0);
     o.normal = vec4<f32>(0.0);
     o.motion = vec4<f32>(0.0);
+    o.gathered = vec4<f32>(0.0);
     if d <= 0.0 {
         return o;
     }
@@ -64,16 +77,56 @@ fn fs_inputs(@builtin(position) p: vec4<f32>) -> Inputs {
         let mv = textureLoad(bevy_motion, px, 0).xy;
         o.motion = vec4<f32>(-mv * glue.size, 0.0, 0.0);
     }
+    // Where the camera's motion alone takes this point (a still world) and its depth there.
+    let c = glue.previous_clip_from_view * vec4<f32>(v.xyz / v.w, 1.0);
+    if glue.has_motion == 0u {
+        // No motion prepass: the camera's motion, as Bevy would write it.
+        let prev_ndc = c.xy / c.w;
+        let prev = vec2<f32>(prev_ndc.x + 1.0, 1.0 - prev_ndc.y) * 0.5 * glue.size;
+        o.motion = vec4<f32>(prev - p.xy, 0.0, 0.0);
+    }
+    // The gathered colour, reprojected: last frame's colour where this surface point was
+    // (through the motion), bilinearly from the four texels around it that showed this surface
+    // (their depth within SAME_SURFACE of the depth the camera's motion gives this point); where
+    // none did (a disocclusion), last frame's colour at this pixel as it was (one frame's lag).
+    let here = textureLoad(captured, px, 0);
+    o.gathered = vec4<f32>(here.rgb, 1.0);
+    let q = p.xy + o.motion.xy - 0.5;
+    let base = vec2<i32>(floor(q));
+    let f = q - floor(q);
+    var sum = vec3<f32>(0.0);
+    var weight = 0.0;
+    for (var k = 0; k < 4; k++) {
+        let o_k = vec2<i32>(k & 1, k >> 1u);
+        let t = base + o_k;
+        if any(t < vec2<i32>(0)) || any(t >= vec2<i32>(glue.size)) {
+            continue;
+        }
+        let there = textureLoad(captured, t, 0);
+        if there.a <= 0.0 || abs(there.a - c.w) > SAME_SURFACE * c.w {
+            continue;
+        }
+        let w = select(1.0 - f.x, f.x, o_k.x == 1) * select(1.0 - f.y, f.y, o_k.y == 1);
+        sum += w * there.rgb;
+        weight += w;
+    }
+    if weight > 1e-3 {
+        o.gathered = vec4<f32>(sum / weight, 1.0);
+    }
     return o;
 }
 
 // --- Bevy's lit colour → next frame's radiance -------------------------------------------------
 
 @group(1) @binding(0) var bevy_colour: texture_2d<f32>;
+// nearfield's view depth of this frame (fs_inputs'): kept in alpha for next frame's
+// same-surface test.
+@group(1) @binding(1) var view_depth: texture_2d<f32>;
 
 @fragment
 fn fs_capture(@builtin(position) p: vec4<f32>) -> @location(0) vec4<f32> {
-    return vec4<f32>(textureLoad(bevy_colour, vec2<i32>(p.xy), 0).rgb, 1.0);
+    let px = vec2<i32>(p.xy);
+    return vec4<f32>(textureLoad(bevy_colour, px, 0).rgb, textureLoad(view_depth, px, 0).r);
 }
 
 // --- the indirect light as a diffuse term ------------------------------------------------------

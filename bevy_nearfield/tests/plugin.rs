@@ -3,10 +3,13 @@
 //! nearfield's own `Renderer` from the same camera at 320×180. The plugin's images are read back
 //! by copies inside Bevy's frame (`NearFieldReadback`), not from screenshots.
 //!
-//! One test binary (Bevy is built once): ao, indirect light, refused settings.
+//! One test binary (Bevy is built once): ao, indirect light, ao along a camera path (with Bevy's
+//! motion vectors, without them, under Bevy's TAA), refused settings.
 
+use bevy::anti_alias::taa::TemporalAntiAliasing;
 use bevy::camera::Hdr;
 use bevy::camera::RenderTarget;
+use bevy::core_pipeline::prepass::MotionVectorPrepass;
 use bevy::core_pipeline::tonemapping::{DebandDither, Tonemapping};
 use bevy::prelude::*;
 use bevy::render::render_resource::{TextureFormat, TextureUsages};
@@ -19,11 +22,14 @@ use bevy_nearfield::{
     NearFieldReadback, NearFieldTechnique, ReadbackImages,
 };
 use nearfield_render::{Aov, GpuContext, RenderSettings, Renderer, TechniqueParams};
+use nearfield_scene::CameraPath;
 use std::sync::{Arc, Mutex};
 
 const SIZE: (u32, u32) = (320, 180);
 /// Frames each app renders before its images are compared (pipelines compile during the first).
 const FRAMES: u32 = 24;
+/// Frames along the camera path (about a second of the walk at 30 fps).
+const PATH_FRAMES: u32 = 32;
 
 /// The Cornell box as `nearfield export` writes it, loaded back.
 fn exported_cornell() -> nearfield_scene::Scene {
@@ -41,19 +47,53 @@ fn exported_cornell() -> nearfield_scene::Scene {
 /// nothing (measured on lavapipe: the scene appears in the third).
 const WARMUP: u32 = 6;
 
-/// Runs a headless Bevy app on `scene` with `near_field` on the camera for `frames` frames and
-/// returns the last images read back (None when the plugin produced none). With `warmup`, the
-/// camera first renders [`WARMUP`] frames with the technique at quality Low: the technique is
-/// then made anew, so its running mean starts on frames that see Bevy's colour (the indirect
-/// light gathers the frame before's colour; frames drawn before Bevy's pipelines are ready are
-/// black and would stay in the mean for its `history` frames).
-fn run_bevy(
-    scene: &nearfield_scene::Scene,
+/// How a headless Bevy app runs: the technique, its frames, and how the camera moves.
+struct Setup {
     shading: Shading,
     near_field: NearField,
     frames: u32,
+    /// The camera first renders [`WARMUP`] frames at quality Low (below).
     warmup: bool,
-) -> Run {
+    /// The camera of each frame (frame k after the warm-up takes `path.camera(k)`; the
+    /// warm-up stands at `path.camera(0)`); None: the scene's default camera throughout.
+    path: Option<CameraPath>,
+    /// Bevy's motion-vector prepass on the camera (without it the glue derives the camera's
+    /// motion from the two frames' matrices).
+    motion_vectors: bool,
+    /// Bevy's TAA on the camera (its jittered projection, its motion vectors).
+    taa: bool,
+}
+
+impl Setup {
+    fn still(shading: Shading, near_field: NearField, frames: u32, warmup: bool) -> Self {
+        Setup {
+            shading,
+            near_field,
+            frames,
+            warmup,
+            path: None,
+            motion_vectors: false,
+            taa: false,
+        }
+    }
+}
+
+/// Runs a headless Bevy app on `scene` with the setup's `NearField` on the camera for its
+/// frames and returns the images read back (None when the plugin produced none). With
+/// `warmup`, the camera first renders [`WARMUP`] frames with the technique at quality Low: the
+/// technique is then made anew, so its running mean starts on frames that see Bevy's colour
+/// (the indirect light gathers the frame before's colour; frames drawn before Bevy's pipelines
+/// are ready are black and would stay in the mean for its `history` frames).
+fn run_bevy(scene: &nearfield_scene::Scene, setup: Setup) -> Run {
+    let Setup {
+        shading,
+        near_field,
+        frames,
+        warmup,
+        path,
+        motion_vectors,
+        taa,
+    } = setup;
     let mut app = App::new();
     app.add_plugins(
         DefaultPlugins
@@ -77,6 +117,9 @@ fn run_bevy(
     let target = app.world_mut().resource_mut::<Assets<Image>>().add(image);
     let target_copy = target.clone();
     let camera_entity = app.world_mut().spawn_empty().id();
+    let start = path
+        .as_ref()
+        .map_or(scene.default_camera(), |p| p.camera(0));
     app.add_systems(
         Startup,
         move |mut commands: Commands,
@@ -91,8 +134,9 @@ fn run_bevy(
                 &scene_copy,
                 shading,
             );
-            let (transform, projection) = scene::camera(&scene_copy.default_camera(), SIZE, 0.01);
-            commands.entity(camera_entity).insert((
+            let (transform, projection) = scene::camera(&start, SIZE, 0.01);
+            let mut camera = commands.entity(camera_entity);
+            camera.insert((
                 Camera3d::default(),
                 RenderTarget::Image(target_copy.clone().into()),
                 transform,
@@ -103,6 +147,12 @@ fn run_bevy(
                 DebandDither::Disabled,
                 NearFieldReadback,
             ));
+            if motion_vectors {
+                camera.insert(MotionVectorPrepass);
+            }
+            if taa {
+                camera.insert(TemporalAntiAliasing::default());
+            }
         },
     );
     app.finish();
@@ -118,8 +168,21 @@ fn run_bevy(
         }
     }
     app.world_mut().entity_mut(camera_entity).insert(near_field);
-    for _ in 0..frames {
+    let mut sequence = Vec::new();
+    for k in 0..frames {
+        if let Some(path) = &path {
+            let (transform, _) = scene::camera(&path.camera(k), SIZE, 0.01);
+            app.world_mut().entity_mut(camera_entity).insert(transform);
+        }
         app.update();
+        if path.is_some() {
+            let images = app.world().resource::<NearFieldImages>().get(camera_entity);
+            let images = images.expect("the plugin's images");
+            // The read-back is this update's frame: the view was made anew by the first update
+            // after the warm-up, so frame k + 1 is the one drawn from path.camera(k).
+            assert_eq!(images.frames, k + 1, "read-back frame of update {k}");
+            sequence.push(images);
+        }
     }
     let images = app.world().resource::<NearFieldImages>().get(camera_entity);
     let checked = app.world().get::<NearFieldChecked>(camera_entity).cloned();
@@ -144,6 +207,7 @@ fn run_bevy(
         .count();
     Run {
         images,
+        sequence,
         checked,
         lit,
     }
@@ -152,12 +216,55 @@ fn run_bevy(
 /// What a run of the Bevy app gave.
 struct Run {
     images: Option<ReadbackImages>,
+    /// With a path: every frame's images, in order (frame 1 first).
+    sequence: Vec<ReadbackImages>,
     checked: Option<NearFieldChecked>,
     /// Pixels of the camera's target with a red channel above 0.
     lit: usize,
 }
 
-/// nearfield's own frame `frames` of the same view: its ao, indirect irradiance and coverage.
+/// nearfield's own frames 1..=`frames` of the same view, frame k + 1 drawn from `camera(k)` (as
+/// the plugin's along a path): its ao, indirect irradiance, direct radiance and coverage.
+fn references(
+    scene: &nearfield_scene::Scene,
+    env: &nearfield_scene::Environment,
+    method: &str,
+    params: &TechniqueParams,
+    camera: impl Fn(u32) -> nearfield_scene::Camera,
+    frames: u32,
+) -> Vec<Reference> {
+    let ctx = GpuContext::new(None).expect("an adapter (lavapipe in CI)");
+    let technique = nearfield_render::technique::Spec::resolve(method, params).unwrap();
+    let settings = RenderSettings {
+        size: SIZE,
+        ..Default::default()
+    };
+    let mut r = Renderer::new(&ctx, scene, env, None, camera(0), &technique, settings).unwrap();
+    (0..frames)
+        .map(|k| {
+            r.set_camera(camera(k));
+            r.render_frame();
+            let ao = r.read_aov(Aov::Ao);
+            let mut rgb = |aov| -> Vec<[f32; 3]> {
+                r.read_aov(aov)
+                    .pixels
+                    .iter()
+                    .map(|p| [p[0], p[1], p[2]])
+                    .collect()
+            };
+            let indirect = rgb(Aov::IndirectIrradiance);
+            let direct = rgb(Aov::DirectRadiance);
+            Reference {
+                covered: ao.pixels.iter().map(|p| p[3] > 0.0).collect(),
+                ao: ao.pixels.iter().map(|p| p[0]).collect(),
+                indirect,
+                direct,
+            }
+        })
+        .collect()
+}
+
+/// nearfield's own frame `frames` of the scene's view.
 fn reference(
     scene: &nearfield_scene::Scene,
     env: &nearfield_scene::Environment,
@@ -165,40 +272,23 @@ fn reference(
     params: &TechniqueParams,
     frames: u32,
 ) -> Reference {
-    let ctx = GpuContext::new(None).expect("an adapter (lavapipe in CI)");
-    let technique = nearfield_render::technique::Spec::resolve(method, params).unwrap();
-    let mut r = Renderer::new(
-        &ctx,
-        scene,
-        env,
-        None,
-        scene.default_camera(),
-        &technique,
-        RenderSettings {
-            size: SIZE,
-            ..Default::default()
-        },
-    )
-    .unwrap();
-    for _ in 0..frames {
-        r.render_frame();
-    }
-    let ao = r.read_aov(Aov::Ao);
-    let mut rgb = |aov| -> Vec<[f32; 3]> {
-        r.read_aov(aov)
-            .pixels
-            .iter()
-            .map(|p| [p[0], p[1], p[2]])
-            .collect()
-    };
-    let indirect = rgb(Aov::IndirectIrradiance);
-    let direct = rgb(Aov::DirectRadiance);
-    Reference {
-        covered: ao.pixels.iter().map(|p| p[3] > 0.0).collect(),
-        ao: ao.pixels.iter().map(|p| p[0]).collect(),
-        indirect,
-        direct,
-    }
+    let camera = scene.default_camera();
+    references(scene, env, method, params, |_| camera, frames)
+        .pop()
+        .unwrap()
+}
+
+/// Mean |a − b| over the covered pixels, and their count.
+fn ao_mae(a: &[f32], b: &[f32], covered: &[bool]) -> (f64, usize) {
+    let (sum, n) = a
+        .iter()
+        .zip(b)
+        .zip(covered)
+        .filter(|(_, c)| **c)
+        .fold((0.0f64, 0usize), |(s, n), ((a, b), _)| {
+            (s + (a - b).abs() as f64, n + 1)
+        });
+    (sum / n.max(1) as f64, n)
 }
 
 /// nearfield's images of a frame.
@@ -244,21 +334,12 @@ fn the_plugin_matches_nearfield_render() {
             ..default()
         };
         let params = near_field.params().unwrap();
-        let images = run_bevy(&scene, Shading::Lit, near_field, FRAMES, true)
+        let images = run_bevy(&scene, Setup::still(Shading::Lit, near_field, FRAMES, true))
             .images
             .expect("the plugin's images");
         assert_eq!(images.size, SIZE);
         let reference = reference(&scene, &env, technique.name(), &params, images.frames);
-        let (sum, n) = images
-            .ao
-            .iter()
-            .zip(&reference.ao)
-            .zip(&reference.covered)
-            .filter(|(_, c)| **c)
-            .fold((0.0f64, 0usize), |(s, n), ((a, b), _)| {
-                (s + (a - b).abs() as f64, n + 1)
-            });
-        let mae = sum / n as f64;
+        let (mae, n) = ao_mae(&images.ao, &reference.ao, &reference.covered);
         eprintln!(
             "{}: ao MAE {mae:.5} over {n} pixels (frame {})",
             technique.name(),
@@ -285,9 +366,12 @@ fn the_plugin_matches_nearfield_render() {
             ..default()
         };
         let params = near_field.params().unwrap();
-        let images = run_bevy(&dark, Shading::Unlit(1.0), near_field, FRAMES, true)
-            .images
-            .expect("the plugin's images");
+        let images = run_bevy(
+            &dark,
+            Setup::still(Shading::Unlit(1.0), near_field, FRAMES, true),
+        )
+        .images
+        .expect("the plugin's images");
         let r = reference(&dark, &white, technique.name(), &params, images.frames);
         // The inputs agree: Bevy's colour is nearfield's direct radiance.
         let radiance = relative_error(&images.radiance, &r.direct, &r.covered);
@@ -304,7 +388,118 @@ fn the_plugin_matches_nearfield_render() {
         );
     }
 
-    // 3. refused settings: one line, no effect, the camera still renders.
+    // 3. along a camera path (the Cornell box's walk at 30 fps): every frame after the first
+    // 16 within ao MAE 0.01 of nearfield's frame from the same camera. With Bevy's motion
+    // vectors, without them (the glue's camera motion) and under Bevy's TAA (jittered depth).
+    let path = CameraPath::walk(scene.default_camera(), scene.bounds(), 30.0).unwrap();
+    for (technique, motion_vectors, taa) in [
+        // hbil's ao is gtao's (one horizon search): not run again.
+        (NearFieldTechnique::GTAO, true, false),
+        (NearFieldTechnique::VBGI, true, false),
+        (NearFieldTechnique::VBGI, false, false),
+        (NearFieldTechnique::GTAO, true, true),
+        (NearFieldTechnique::VBGI, true, true),
+    ] {
+        let near_field = NearField {
+            technique,
+            quality: NearFieldQuality::High,
+            ..default()
+        };
+        let params = near_field.params().unwrap();
+        let run = run_bevy(
+            &scene,
+            Setup {
+                path: Some(path.clone()),
+                motion_vectors,
+                taa,
+                ..Setup::still(Shading::Lit, near_field, PATH_FRAMES, true)
+            },
+        );
+        let truth = references(
+            &scene,
+            &env,
+            technique.name(),
+            &params,
+            |k| path.camera(k),
+            PATH_FRAMES,
+        );
+        let maes: Vec<f64> = run
+            .sequence
+            .iter()
+            .zip(&truth)
+            .map(|(images, r)| {
+                let (mae, n) = ao_mae(&images.ao, &r.ao, &r.covered);
+                assert!(n > (SIZE.0 * SIZE.1 / 4) as usize, "coverage {n}");
+                mae
+            })
+            .collect();
+        assert_eq!(maes.len(), PATH_FRAMES as usize);
+        let settled = &maes[16..];
+        let worst = settled.iter().cloned().fold(0.0, f64::max);
+        let mean = settled.iter().sum::<f64>() / settled.len() as f64;
+        eprintln!(
+            "{} along the walk (motion vectors {motion_vectors}, TAA {taa}): ao MAE over frames \
+             17..{PATH_FRAMES} mean {mean:.5}, largest {worst:.5}; frames 1..16 largest {:.5}",
+            technique.name(),
+            maes[..16].iter().cloned().fold(0.0, f64::max)
+        );
+        assert!(
+            worst <= 0.01,
+            "{} along the walk (motion vectors {motion_vectors}, TAA {taa}): ao MAE {worst}",
+            technique.name()
+        );
+    }
+
+    // The light gathered in motion: last frame's colour reprojected to this frame. On the unlit
+    // box of part 2 a surface keeps its colour from frame to frame, so the indirect light of
+    // every frame after the first 16 of a turn of 1.5° a frame (about 7 pixels a frame) is
+    // within 2 % of nearfield's, which gathers the frame's own direct radiance.
+    let turn = CameraPath::orbit(scene.default_camera(), 1.5, PATH_FRAMES, 30.0).unwrap();
+    for technique in [NearFieldTechnique::HBIL, NearFieldTechnique::VBGI] {
+        let near_field = NearField {
+            technique,
+            quality: NearFieldQuality::High,
+            ambient_occlusion: false,
+            ..default()
+        };
+        let params = near_field.params().unwrap();
+        let run = run_bevy(
+            &dark,
+            Setup {
+                path: Some(turn.clone()),
+                motion_vectors: true,
+                ..Setup::still(Shading::Unlit(1.0), near_field, PATH_FRAMES, true)
+            },
+        );
+        let truth = references(
+            &dark,
+            &white,
+            technique.name(),
+            &params,
+            |k| turn.camera(k),
+            PATH_FRAMES,
+        );
+        let errors: Vec<f64> = run
+            .sequence
+            .iter()
+            .zip(&truth)
+            .map(|(images, r)| relative_error(&images.indirect_irradiance, &r.indirect, &r.covered))
+            .collect();
+        let worst = errors[16..].iter().cloned().fold(0.0, f64::max);
+        let mean = errors[16..].iter().sum::<f64>() / (errors.len() - 16) as f64;
+        eprintln!(
+            "{} turning: indirect relative error over frames 17..{PATH_FRAMES} mean {mean:.4}, \
+             largest {worst:.4}",
+            technique.name()
+        );
+        assert!(
+            worst <= 0.02,
+            "{} turning: indirect relative error {worst}",
+            technique.name()
+        );
+    }
+
+    // 4. refused settings: one line, no effect, the camera still renders.
     for bad in [
         NearField {
             radius: Some(f32::NAN),
@@ -330,7 +525,10 @@ fn the_plugin_matches_nearfield_render() {
             Ok(_) => "refused when made".into(),
         };
         assert!(!e.contains('\n'), "one line: {e}");
-        let run = run_bevy(&scene, Shading::Unlit(1.0), bad, WARMUP, false);
+        let run = run_bevy(
+            &scene,
+            Setup::still(Shading::Unlit(1.0), bad, WARMUP, false),
+        );
         assert!(run.images.is_none(), "a refused NearField produced images");
         assert!(run.checked.is_some_and(|c| c.is_refused()));
         // The camera renders on without the effect: the box's unlit walls are on its target.

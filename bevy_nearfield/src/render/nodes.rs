@@ -74,11 +74,12 @@ pub(super) fn inputs_and_technique(
         .as_ref()
         .map(|m| &*m.texture.default_view)
         // Unbound motion reads a valid image the shader ignores (`has_motion` = 0).
-        .unwrap_or(&nf.images.direct[0].view);
+        .unwrap_or(&nf.images.captured.view);
     let inputs_group = InputsBindings {
         bevy_depth: depth,
         bevy_normal: &normal.texture.default_view,
         bevy_motion: motion,
+        captured: &nf.images.captured.view,
     }
     .bind_group(device, &pipelines.inputs_layout);
     let info = *nf.info.lock().unwrap();
@@ -94,6 +95,7 @@ pub(super) fn inputs_and_technique(
             &nf.images.view_depth.view,
             &nf.images.normal.view,
             &nf.images.motion.view,
+            &nf.images.gathered.view,
         ],
         wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
     );
@@ -148,12 +150,12 @@ pub(super) fn capture_and_add(
 ) {
     let (nf, target, prepass, near_field, readback) = view.into_inner();
     let device = device.wgpu_device();
-    let info = *nf.info.lock().unwrap();
-    // Frame i reads radiance[i % 2] as this frame's and the other as last frame's: Bevy's colour
-    // of frame i is next frame's.
-    let next = &nf.images.direct[(info.side() + 1) % 2].view;
+    // Bevy's colour of this frame is what the next frame gathers (reprojected by its inputs
+    // pass), with this frame's view depth for that pass's same-surface test.
+    let next = &nf.images.captured.view;
     let capture_group = CaptureBindings {
         bevy_colour: target.main_texture_view(),
+        view_depth: &nf.images.view_depth.view,
     }
     .bind_group(device, &pipelines.capture_layout);
     let encoder = ctx.command_encoder();
@@ -169,7 +171,7 @@ pub(super) fn capture_and_add(
     if readback.is_some()
         && let Some(b) = nf.readback.lock().unwrap().as_ref()
     {
-        b.copy_radiance(encoder, &nf.images.direct[(info.side() + 1) % 2].texture);
+        b.copy_radiance(encoder, &nf.images.captured.texture);
     }
     if !near_field.technique.has_indirect() || near_field.indirect_intensity == 0.0 {
         return;

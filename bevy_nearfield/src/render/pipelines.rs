@@ -12,6 +12,7 @@ nearfield_render::gpu_struct! {
     /// The glue's uniform (`Glue` in glue.wgsl).
     pub struct Glue {
         pub view_from_clip: [[f32; 4]; 4],
+        pub previous_clip_from_view: [[f32; 4]; 4],
         pub size: [f32; 2],
         pub has_motion: u32,
         pub indirect_intensity: f32,
@@ -39,13 +40,16 @@ nearfield_render::bind_group! {
         bevy_normal: view = kind::TEXTURE_UNFILTERABLE,
         /// Bevy's motion vectors (rg16float), or any image where there are none.
         bevy_motion: view = kind::TEXTURE_UNFILTERABLE,
+        /// Bevy's lit colour of the frame before, a = its view depth (`fs_capture`'s).
+        captured: view = kind::TEXTURE_UNFILTERABLE,
     }
 }
 
 nearfield_render::bind_group! {
-    /// Group 1 of `fs_capture`: Bevy's lit colour.
+    /// Group 1 of `fs_capture`: Bevy's lit colour and nearfield's view depth of the frame.
     pub struct CaptureBindings: FRAGMENT {
         bevy_colour: view = kind::TEXTURE_UNFILTERABLE,
+        view_depth: view = kind::TEXTURE_UNFILTERABLE,
     }
 }
 
@@ -89,7 +93,7 @@ pub(crate) struct GluePipelines {
     pub inputs_layout: wgpu::BindGroupLayout,
     pub inputs: wgpu::RenderPipeline,
     pub capture_layout: wgpu::BindGroupLayout,
-    /// By the format of the image written (this frame's radiance: rgba16float).
+    /// Into the captured colour (rgba16float).
     pub capture: wgpu::RenderPipeline,
     pub add_layout: wgpu::BindGroupLayout,
     /// The additive pass, by Bevy's main-texture format (hdr and not).
@@ -180,6 +184,7 @@ impl FromWorld for GluePipelines {
                 Some(F::R32Float.into()),
                 Some(F::Rgba16Float.into()),
                 Some(F::Rg16Float.into()),
+                Some(F::Rgba16Float.into()),
             ],
         );
         let capture = raster(

@@ -7,7 +7,7 @@ use bevy::core_pipeline::prepass::ViewPrepassTextures;
 use bevy::log::error;
 use bevy::pbr::SsaoPipelineId;
 use bevy::prelude::*;
-use bevy::render::camera::ExtractedCamera;
+use bevy::render::camera::{ExtractedCamera, TemporalJitter};
 use bevy::render::renderer::{RenderDevice, RenderQueue};
 use bevy::render::sync_world::MainEntity;
 use bevy::render::view::ExtractedView;
@@ -34,7 +34,10 @@ pub struct Images {
     albedo: Image,
     material: Image,
     emission: Image,
-    pub(super) direct: [Image; 2],
+    /// Bevy's lit colour, kept after its main pass (a = the view depth) for the next frame.
+    pub(super) captured: Image,
+    /// The radiance the technique gathers: the captured colour reprojected to this frame.
+    pub(super) gathered: Image,
     pub(super) motion: Image,
     pub(super) ao: Image,
     /// The outputs the technique declares besides ao (`TechniqueDesc::writes`): gtao writes
@@ -60,10 +63,8 @@ impl Images {
             albedo: image("nearfield albedo", F::Rgba8Unorm, U::TEXTURE_BINDING),
             material: image("nearfield material", F::Rgba8Unorm, U::TEXTURE_BINDING),
             emission: image("nearfield emission", F::Rgba16Float, U::TEXTURE_BINDING),
-            direct: [
-                image("nearfield radiance 0", F::Rgba16Float, target),
-                image("nearfield radiance 1", F::Rgba16Float, target),
-            ],
+            captured: image("nearfield captured colour", F::Rgba16Float, target),
+            gathered: image("nearfield gathered radiance", F::Rgba16Float, target),
             motion: image("nearfield motion", F::Rg16Float, target),
             ao: image("nearfield ao", F::R32Float, storage),
             env_irradiance: writes
@@ -83,6 +84,8 @@ impl Images {
 pub(super) struct State {
     frame_index: u32,
     previous: Option<CameraMatrices>,
+    /// Last frame's Bevy clip_from_world (unjittered), for the camera's motion.
+    previous_clip_from_world: Option<Mat4>,
     pub(super) profiler: GpuProfiler,
 }
 
@@ -191,7 +194,9 @@ impl NearFieldView {
             albedo: &images.albedo.view,
             material: &images.material.view,
             emission: &images.emission.view,
-            direct_radiance: [&images.direct[0].view, &images.direct[1].view],
+            // One image for both sides: the glue writes this frame's reprojected colour into it
+            // before the technique reads it.
+            direct_radiance: [&images.gathered.view, &images.gathered.view],
             motion: &images.motion.view,
             depth: None,
         };
@@ -242,6 +247,7 @@ impl NearFieldView {
             state: Mutex::new(State {
                 frame_index: 0,
                 previous: None,
+                previous_clip_from_world: None,
                 profiler: GpuProfiler::new(device, queue, false),
             }),
             ambient_occlusion: near_field.ambient_occlusion,
@@ -250,10 +256,31 @@ impl NearFieldView {
         })
     }
 
-    /// This frame's uniforms: the view (this and last frame's camera), the glue's.
-    fn prepare(&self, queue: &wgpu::Queue, view: &ExtractedView, has_motion: bool, intensity: f32) {
+    /// This frame's uniforms: the view (this and last frame's camera), the glue's. Under TAA
+    /// (`jitter`) Bevy rasterizes the prepass with a jittered projection: nearfield's matrices
+    /// and the glue's reconstruction take the same jitter, so that every position the technique
+    /// rebuilds lies on the surface the depth holds and every point it projects lands where that
+    /// depth shows it.
+    fn prepare(
+        &self,
+        queue: &wgpu::Queue,
+        view: &ExtractedView,
+        jitter: Option<&TemporalJitter>,
+        has_motion: bool,
+        intensity: f32,
+    ) {
         let (near, far) = near_far(view);
-        let (camera, matrices) = camera_of(view, near, far);
+        let (camera, mut matrices) = camera_of(view, near, far);
+        let mut clip_from_view = view.clip_from_view;
+        if let Some(j) = jitter {
+            let size = self.size.as_vec2();
+            j.jitter_projection(&mut clip_from_view, size);
+            let mut m = Mat4::from_cols_array(&matrices.clip_from_view.to_cols_array());
+            j.jitter_projection(&mut m, size);
+            matrices.clip_from_view = glam::Mat4::from_cols_array(&m.to_cols_array());
+        }
+        let world_from_view = view.world_from_view.to_matrix();
+        let clip_from_world = view.clip_from_view * world_from_view.inverse();
         let mut state = self.state.lock().unwrap();
         let previous = state.previous.unwrap_or(matrices);
         let index = state.frame_index;
@@ -271,8 +298,11 @@ impl NearFieldView {
             history: (history, index.saturating_sub(1)),
         });
         queue.write_buffer(&self.view_buffer, 0, bytemuck::bytes_of(&uniforms));
+        let previous_clip_from_world = state.previous_clip_from_world.unwrap_or(clip_from_world);
         let glue = Glue {
-            view_from_clip: view.clip_from_view.inverse().to_cols_array_2d(),
+            view_from_clip: clip_from_view.inverse().to_cols_array_2d(),
+            previous_clip_from_view: (previous_clip_from_world * world_from_view)
+                .to_cols_array_2d(),
             size: [self.size.x as f32, self.size.y as f32],
             has_motion: has_motion as u32,
             indirect_intensity: intensity,
@@ -285,6 +315,7 @@ impl NearFieldView {
         self.technique.prepare(queue, &camera);
         *self.info.lock().unwrap() = FrameInfo { index, history };
         state.previous = Some(matrices);
+        state.previous_clip_from_world = Some(clip_from_world);
         state.frame_index = index.wrapping_add(1);
     }
 }
@@ -305,10 +336,11 @@ pub(super) fn prepare_views(
         &ExtractedView,
         &ExtractedNearField,
         Option<&ViewPrepassTextures>,
+        Option<&TemporalJitter>,
         Option<&NearFieldView>,
     )>,
 ) {
-    for (entity, main, camera, view, near_field, prepass, existing) in &views {
+    for (entity, main, camera, view, near_field, prepass, jitter, existing) in &views {
         if refusals.0.lock().unwrap().contains(&main.id()) {
             continue;
         }
@@ -326,7 +358,13 @@ pub(super) fn prepare_views(
                 && v.ambient_occlusion == near_field.ambient_occlusion
         });
         if let Some(v) = current {
-            v.prepare(&queue, view, has_motion, near_field.indirect_intensity);
+            v.prepare(
+                &queue,
+                view,
+                jitter,
+                has_motion,
+                near_field.indirect_intensity,
+            );
             continue;
         }
         match NearFieldView::new(
@@ -338,7 +376,13 @@ pub(super) fn prepare_views(
             view,
         ) {
             Ok(v) => {
-                v.prepare(&queue, view, has_motion, near_field.indirect_intensity);
+                v.prepare(
+                    &queue,
+                    view,
+                    jitter,
+                    has_motion,
+                    near_field.indirect_intensity,
+                );
                 commands.entity(entity).insert(v);
             }
             Err(e) => {

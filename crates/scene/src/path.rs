@@ -240,7 +240,8 @@ impl CameraPath {
     /// steps forward a third of the way to the target and sways sideways by a tenth of that
     /// distance and back, while the gaze turns by about 10° and back: a walk past the scene, no
     /// cut, each frame's disocclusions small. `bounds` keeps the eye inside the scene's box
-    /// grown by the distance (a camera outside a closed room stays where it is).
+    /// grown by the distance, or by as much as the start lies outside it: a camera outside the
+    /// scene walks from where it stands, never out beyond it nor thrown into the box.
     pub fn walk(start: Camera, bounds: Aabb, fps: f32) -> Result<Self, String> {
         let to_target = start.target - start.eye;
         let distance = to_target.length();
@@ -251,7 +252,9 @@ impl CameraPath {
             let eye = if bounds.is_empty() {
                 eye
             } else {
-                eye.clamp(bounds.min - distance, bounds.max + distance)
+                let lo = (bounds.min - distance).min(start.eye);
+                let hi = (bounds.max + distance).max(start.eye);
+                eye.clamp(lo, hi)
             };
             let target = start.target + side * (turn * distance);
             Keyframe::from((
@@ -337,6 +340,30 @@ mod tests {
             "the walk moves: {}",
             end.eye
         );
+    }
+
+    /// A camera outside the scene's box by more than its target distance (a glTF camera's
+    /// target is 1 m ahead) walks from where it stands: it is not thrown into the box, where
+    /// it would face away from the scene.
+    #[test]
+    fn a_walk_from_outside_the_scene_starts_where_the_camera_stands() {
+        let start = Camera::new(Vec3::new(0.0, 1.0, 3.9), Vec3::new(0.0, 1.0, 2.9), 38.0);
+        let bounds = Aabb {
+            min: Vec3::new(-1.0, 0.0, -1.0),
+            max: Vec3::new(1.0, 2.0, 1.0),
+        };
+        let w = CameraPath::walk(start, bounds, 30.0).unwrap();
+        assert_eq!(w.camera(0).eye, start.eye);
+        for i in 0..w.frames() {
+            let c = w.camera(i);
+            assert!(c.eye.z <= start.eye.z + 1e-5, "frame {i}: {}", c.eye);
+            assert!(
+                c.forward().z < -0.9,
+                "frame {i} looks away: {}",
+                c.forward()
+            );
+        }
+        assert!((w.camera(120).eye.z - (start.eye.z - 0.33)).abs() < 1e-3);
     }
 
     #[test]
