@@ -39,14 +39,16 @@ figures:
 # Every test: unit, naga shader validation, GPU tests (lavapipe without a GPU), real assets from
 # ../shared/assets, bad-input handling. REQUIRE_GPU=1 makes a missing adapter a failure. Then the
 # test build with a scratch setting and a scratch family (feature `scratch`), their consumers in
-# the renderer and the CLI. Then the
+# the renderer and the CLI (built for the whole workspace, so that the dependencies keep the
+# features of the first build and only nearfield's own crates compile again). Then the
 # Bevy plugin (its own workspace; Bevy 0.20.1 declares rust 1.97.1, so the nightly toolchain
-# builds it, about 10 minutes cold on 2 cores) and its one test binary.
+# builds it; its `ci` profile, release at opt-level 1, about 11 minutes cold on 2 cores against
+# 14 for release) and its one test binary.
 test: setup
 	$(CARGO) test --workspace
-	$(CARGO) test -p nearfield-render --features scratch --test scratch
-	$(CARGO) test -p nearfield-cli --features nearfield-render/scratch --lib settings_reach
-	cd bevy_nearfield && $(CARGO) +nightly test --release --ignore-rust-version
+	$(CARGO) test --workspace --features nearfield-render/scratch --test scratch
+	$(CARGO) test --workspace --features nearfield-render/scratch --lib settings_reach
+	cd bevy_nearfield && $(CARGO) +nightly test --profile ci --ignore-rust-version
 
 lint:
 	$(CARGO) fmt --all -- --check

@@ -27,7 +27,9 @@ pub struct BenchArgs {
     #[arg(long, default_value_t = 5)]
     pub warmup: u32,
     /// Degrees the camera turns about its target before every frame after the first (timings
-    /// then include reprojection of a moving view).
+    /// then include reprojection of a moving view). A moving scene plays its animation in a
+    /// loop at 30 frames a second, as in the viewer (timings then include posing the objects
+    /// and redrawing the shadow maps they move through).
     #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
     pub orbit: f32,
     /// Also write the results as JSON.
@@ -36,7 +38,8 @@ pub struct BenchArgs {
     /// Profile one method's frame by ablation: time it whole and with each pass left out in
     /// turn (gbuffer, shadows, direct, technique, composite, tonemap), the configurations taking
     /// turns frame by frame; a pass's cost is the wall time its absence saves (what a CPU
-    /// adapter's unreliable timestamps cannot tell).
+    /// adapter's unreliable timestamps cannot tell). A moving scene stands at its first pose
+    /// (every configuration renders the same frame).
     #[arg(long)]
     pub ablate: bool,
 }
@@ -174,10 +177,10 @@ struct Timed {
 }
 
 impl Timed {
-    /// Renders and times frame `index` (of the orbit).
-    fn frame(&mut self, index: u32, orbit: f32) {
+    /// Renders and times frame `index` (of the orbit and the scene's clock).
+    fn frame(&mut self, scene: &nearfield_scene::Scene, index: u32, orbit: f32) {
         let t0 = Instant::now();
-        crate::options::orbit_frame(&mut self.renderer, index, orbit);
+        bench_frame(&mut self.renderer, scene, index, orbit);
         self.renderer.wait();
         self.walls.push(t0.elapsed().as_secs_f64() * 1e3);
         let mut total = 0.0;
@@ -205,6 +208,20 @@ impl Timed {
             wall: stat(&mut self.walls),
         }
     }
+}
+
+/// Renders frame `index` of the benchmark: the camera turned by `orbit` (after the first) and a
+/// moving scene posed at the frame's time on a looping clock at
+/// [`nearfield_scene::animation::LOOP_FPS`].
+fn bench_frame(r: &mut Renderer, scene: &nearfield_scene::Scene, index: u32, orbit: f32) {
+    if r.moves() {
+        r.set_time(
+            scene
+                .animation
+                .looped(index, nearfield_scene::animation::LOOP_FPS),
+        );
+    }
+    crate::options::orbit_frame(r, index, orbit);
 }
 
 pub fn run(args: BenchArgs) -> Result<()> {
@@ -267,7 +284,7 @@ pub fn run(args: BenchArgs) -> Result<()> {
         )?;
         loaded.report_sun();
         for i in 0..args.warmup {
-            crate::options::orbit_frame(&mut r, i, args.orbit);
+            bench_frame(&mut r, &loaded.scene, i, args.orbit);
             progress.inc(1);
         }
         r.wait();
@@ -283,7 +300,7 @@ pub fn run(args: BenchArgs) -> Result<()> {
     for i in 0..args.frames {
         for t in &mut timed {
             progress.inc(1);
-            t.frame(args.warmup + i, args.orbit);
+            t.frame(&loaded.scene, args.warmup + i, args.orbit);
         }
         if let Some(t) = timed.first() {
             t.renderer.check_device()?;

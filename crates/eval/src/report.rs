@@ -41,6 +41,10 @@ pub struct MethodReport {
     /// error of frames 17–32 after it, the cut's own frame counted as 1).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub settle: Vec<u32>,
+    /// Along a path over moving objects: the frames to settle after each time they come to
+    /// rest (the same rule as `settle`, from the first frame at rest).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub settle_stops: Vec<u32>,
 }
 
 /// The frames after which a path's frames are held to the still camera's error: a technique's
@@ -370,30 +374,35 @@ fn path(h: &mut String, report: &Report) {
     }
     let _ = write!(
         h,
-        "<h2>Error along the camera path</h2><p>Relative error of each measured frame against the reference from that frame's camera, each technique's history carried from frame to frame. Still: the mean error a still camera reaches after 16 frames at up to eight of those views. Instability: the motion-compensated change from frame to frame over the reference's own (its noise subtracted; measured with <code>--every 1</code>).</p>{curve}<table><tr><th>method</th><th>frames measured</th><th>mean</th><th>95th percentile</th><th>largest</th><th>largest after frame 16</th><th>still</th><th>instability</th><th>frames to settle after a cut</th></tr>"
+        "<h2>Error along the camera path</h2><p>Relative error of each measured frame against the reference from that frame's camera, each technique's history carried from frame to frame. Still: the mean error a still camera reaches after 16 frames at up to eight of those views. Instability: the motion-compensated change from frame to frame over the reference's own (its noise subtracted; measured with <code>--every 1</code>).</p>{curve}<table><tr><th>method</th><th>frames measured</th><th>mean</th><th>95th percentile</th><th>largest</th><th>largest after frame 16</th><th>still</th><th>instability</th><th>frames to settle after a cut</th><th>frames to settle after the objects stop</th></tr>"
     );
     for m in report.methods.iter().filter(|m| !m.path.is_empty()) {
         let (mean, p95, max) = path_summary(&m.path);
         let _ = write!(
             h,
-            "<tr><th>{}</th><td>{}</td><td>{mean:.4}</td><td>{p95:.4}</td><td>{max:.4}</td><td>{:.4}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
+            "<tr><th>{}</th><td>{}</td><td>{mean:.4}</td><td>{p95:.4}</td><td>{max:.4}</td><td>{:.4}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
             escape(&m.name),
             m.path.len(),
             path_largest_settled(&m.path),
             m.path_still.map_or("–".into(), |e| format!("{e:.4}")),
             m.instability.map_or("–".into(), |e| format!("{e:.2}×")),
-            if m.settle.is_empty() {
-                "–".to_string()
-            } else {
-                m.settle
-                    .iter()
-                    .map(u32::to_string)
-                    .collect::<Vec<_>>()
-                    .join(", ")
-            },
+            frame_list(&m.settle),
+            frame_list(&m.settle_stops),
         );
     }
     h.push_str("</table>");
+}
+
+/// Frame counts as a comma-separated list, or "–" for none.
+fn frame_list(frames: &[u32]) -> String {
+    if frames.is_empty() {
+        return "–".to_string();
+    }
+    frames
+        .iter()
+        .map(u32::to_string)
+        .collect::<Vec<_>>()
+        .join(", ")
 }
 
 /// Along a path: each method's measured frames, the reference's and the signed error side by

@@ -204,6 +204,10 @@ fn play<T: Keyed>(track: &Option<Track<T>>, rest: T, t: Option<f32>) -> T {
     }
 }
 
+/// Frames per second of the clock that plays a moving scene in a loop where no rate is given
+/// (the viewer, `bench`): frame-locked, so that a run replays alike.
+pub const LOOP_FPS: f32 = 30.0;
+
 /// The animated node hierarchy of a scene (empty: nothing moves).
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Animation {
@@ -213,6 +217,17 @@ pub struct Animation {
 impl Animation {
     pub fn is_empty(&self) -> bool {
         !self.nodes.iter().any(Node::animated)
+    }
+
+    /// The time of frame `frame` of a clock at `fps` that plays the animation in a loop (what the
+    /// viewer and `bench` show; 0 when nothing moves).
+    pub fn looped(&self, frame: u32, fps: f32) -> f32 {
+        let period = self.duration();
+        if period > 0.0 {
+            (frame as f32 / fps) % period
+        } else {
+            0.0
+        }
     }
 
     /// When the last key of any channel is played (s); 0 when nothing moves.

@@ -40,9 +40,12 @@ pub(super) struct Frames {
 /// The frames of a still camera's run at a view of the path, measured against its reference.
 const STILL_FRAMES: u32 = 16;
 
-/// The frames after a cut over which a technique's settling is measured: the error of frames
-/// 17–32 after it is its settled value.
+/// The frames after a cut (or after the objects stop) over which a technique's settling is
+/// measured: the error of frames 17–32 after it is its settled value (frames 17 to the path's
+/// end where it ends sooner, if that is at least [`SETTLE_TAIL`] frames).
 const SETTLE_WINDOW: u32 = 32;
+/// The fewest frames the settled value is the mean of.
+const SETTLE_TAIL: u32 = 8;
 
 impl Run {
     /// `frames` (`--frames`; default 1, or the path's) from `first` over `scene`.
@@ -80,17 +83,17 @@ impl Run {
     }
 
     /// The frames of a path that are measured: every `every`-th, the last, and the
-    /// [`SETTLE_WINDOW`] frames after each cut.
+    /// [`SETTLE_WINDOW`] frames after each cut and after each time the objects stop.
     fn measured(&self, every: u32) -> Vec<u32> {
         if !matches!(self.motion, Motion::Path(_)) {
             return Vec::new();
         }
-        let cuts = self.cuts();
+        let events = [self.cuts(), self.stops()].concat();
         (0..self.frames)
             .filter(|i| {
                 (i + 1) % every == 0
                     || i + 1 == self.frames
-                    || cuts.iter().any(|c| (*c..c + SETTLE_WINDOW).contains(i))
+                    || events.iter().any(|c| (*c..c + SETTLE_WINDOW).contains(i))
             })
             .collect()
     }
@@ -116,25 +119,49 @@ impl Run {
             .collect()
     }
 
-    /// The frames a technique takes to settle after each cut with [`SETTLE_WINDOW`] frames
-    /// after it: the first frame from the cut on whose error is within 5 % of the settled
-    /// value (the mean error of the window's last 16 frames), counting the cut's own frame as 1.
+    /// The frames at which the scene's moving objects come to rest: each frame that moved from
+    /// the frame before while the next does not move from it. What they uncovered last changed
+    /// there; from there on a technique's history settles (the disocclusion's ghost fades).
+    pub fn stops(&self) -> Vec<u32> {
+        let moved = |i: u32| self.animation.moved_between(self.time(i - 1), self.time(i));
+        (1..self.frames.saturating_sub(1))
+            .filter(|&s| moved(s) && !moved(s + 1))
+            .collect()
+    }
+
+    /// The frames a technique takes to settle after each cut ([`Self::settle_after`]).
     pub fn settle(&self, path: &[ConvergencePoint]) -> Vec<u32> {
+        self.settle_after(&self.cuts(), path)
+    }
+
+    /// The frames a technique takes to settle after each time the objects stop
+    /// ([`Self::stops`], [`Self::settle_after`]).
+    pub fn settle_stops(&self, path: &[ConvergencePoint]) -> Vec<u32> {
+        self.settle_after(&self.stops(), path)
+    }
+
+    /// The frames a technique takes to settle after each of `events`: the first frame from the
+    /// event on whose error is within 5 % of the settled value (the mean error of frames 17–32
+    /// after it, [`SETTLE_WINDOW`]), counting the event's own frame as 1. An event too close to
+    /// the path's end for [`SETTLE_TAIL`] settled frames is left out.
+    fn settle_after(&self, events: &[u32], path: &[ConvergencePoint]) -> Vec<u32> {
         let error = |i: u32| {
             path.iter()
                 .find(|p| p.frames == i + 1)
                 .map(|p| p.relative_error)
         };
         let mut out = Vec::new();
-        for c in self.cuts() {
-            let tail: Option<Vec<f64>> = (c + SETTLE_WINDOW / 2..c + SETTLE_WINDOW)
-                .map(error)
-                .collect();
+        for &c in events {
+            let (start, end) = (c + SETTLE_WINDOW / 2, (c + SETTLE_WINDOW).min(self.frames));
+            if end < start + SETTLE_TAIL {
+                continue;
+            }
+            let tail: Option<Vec<f64>> = (start..end).map(error).collect();
             let Some(tail) = tail else { continue };
             let settled = tail.iter().sum::<f64>() / tail.len() as f64;
-            let k = (0..SETTLE_WINDOW)
+            let k = (0..end - c)
                 .find(|k| error(c + k).is_some_and(|e| e <= 1.05 * settled))
-                .unwrap_or(SETTLE_WINDOW - 1);
+                .unwrap_or(end - c - 1);
             out.push(k + 1);
         }
         out
@@ -228,7 +255,7 @@ impl Run {
 
     /// A method's figures along the path into `report`: its per-frame errors, the still
     /// camera's error ([`Self::still_error`]), its instability (from `change`) and its frames to
-    /// settle after each cut.
+    /// settle after each cut and after each time the objects stop.
     pub fn figures(
         &self,
         report: &mut MethodReport,
@@ -239,6 +266,7 @@ impl Run {
         report.path_still = self.still_error(make, (gpu_aov, judge), along)?;
         report.instability = change.map(|(t, r)| metrics::instability(t, r));
         report.settle = self.settle(&path);
+        report.settle_stops = self.settle_stops(&path);
         report.path = path;
         Ok(())
     }
@@ -322,6 +350,12 @@ pub(super) fn path_line(m: &nearfield_eval::report::MethodReport) -> String {
     if !m.settle.is_empty() {
         line += &format!(", settles in {:?} frames after the cuts", m.settle);
     }
+    if !m.settle_stops.is_empty() {
+        line += &format!(
+            ", settles in {:?} frames after the objects stop",
+            m.settle_stops
+        );
+    }
     line
 }
 
@@ -373,5 +407,37 @@ mod tests {
         let run = Run::new(Motion::Path(long), None, a, &Default::default());
         let points = falling(10..61);
         assert_eq!(run.settle(&points), vec![7]);
+    }
+
+    /// `cornell-moving`'s box slides for 2 s and stands for 1 s: at 30 fps it comes to rest at
+    /// frame 60, and the frames to settle are counted from there, the settled value the mean of
+    /// frames 76–90 (the path ends before frame 92).
+    #[test]
+    fn a_technique_settles_after_the_objects_stop() {
+        let scene = nearfield_scene::builtin::scene("cornell-moving").unwrap();
+        let camera = scene.default_camera();
+        let path = CameraPath::standing(camera, 3.0, 30.0).unwrap();
+        let run = Run::new(Motion::Path(path), None, camera, &scene);
+        assert_eq!(run.frames, 91);
+        assert_eq!(run.stops(), vec![60]);
+        assert!(run.cuts().is_empty());
+        let measured = run.measured(1000);
+        assert!(measured.contains(&60) && measured.contains(&89) && !measured.contains(&59));
+        let points: Vec<ConvergencePoint> = (0..91)
+            .map(|i| ConvergencePoint {
+                frames: i + 1,
+                rmse: 0.0,
+                relative_error: (0.5 - 0.05 * (i as f64 - 60.0)).clamp(0.2, 0.5),
+            })
+            .collect();
+        assert_eq!(run.settle_stops(&points), vec![7]);
+        // A still scene has no stops.
+        let still = nearfield_scene::builtin::scene("cornell").unwrap();
+        let path = CameraPath::standing(camera, 3.0, 30.0).unwrap();
+        assert!(
+            Run::new(Motion::Path(path), None, camera, &still)
+                .stops()
+                .is_empty()
+        );
     }
 }

@@ -199,6 +199,7 @@ impl<'a> Judge<'a> {
             path_still: None,
             instability: None,
             settle: Vec::new(),
+            settle_stops: Vec::new(),
         })
     }
 

@@ -129,13 +129,12 @@ pub struct Session {
     bake: Option<Bake>,
     /// `record-path`: the camera path being recorded.
     pub recording: Option<recording::Recording>,
-    /// Frames shown: the scene's clock, at [`CLOCK_FPS`], playing a moving scene's animation in
+    /// Frames shown: the scene's clock, at [`LOOP_FPS`], playing a moving scene's animation in
     /// a loop.
     clock: u32,
 }
 
-/// Frames per second of the viewer's scene clock (frame-locked, so that a script replays alike).
-pub const CLOCK_FPS: f32 = 30.0;
+use nearfield_scene::animation::LOOP_FPS;
 
 /// Everything a session starts from.
 pub struct Start {
@@ -350,12 +349,7 @@ impl Session {
         if let Some(r) = &mut self.recording {
             r.frame(camera);
         }
-        let period = self.scene.animation.duration();
-        let time = if period > 0.0 {
-            (self.clock as f32 / CLOCK_FPS) % period
-        } else {
-            0.0
-        };
+        let time = self.scene.animation.looped(self.clock, LOOP_FPS);
         self.clock += 1;
         self.for_each_renderer(|r| {
             r.set_camera(camera);
