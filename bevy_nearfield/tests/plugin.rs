@@ -278,6 +278,42 @@ fn reference(
         .unwrap()
 }
 
+/// The plugin along `setup`'s path and nearfield's frames from the same cameras (the same
+/// technique and resolved settings): `metric` of each frame's pair, frames 1..=PATH_FRAMES.
+fn along(
+    scene: &nearfield_scene::Scene,
+    env: &nearfield_scene::Environment,
+    setup: Setup,
+    metric: impl Fn(&ReadbackImages, &Reference) -> f64,
+) -> Vec<f64> {
+    let technique = setup.near_field.technique;
+    let params = setup.near_field.params().unwrap();
+    let path = setup.path.clone().expect("a path");
+    let frames = setup.frames;
+    let run = run_bevy(scene, setup);
+    let truth = references(
+        scene,
+        env,
+        technique.name(),
+        &params,
+        |k| path.camera(k),
+        frames,
+    );
+    assert_eq!(run.sequence.len(), frames as usize);
+    run.sequence
+        .iter()
+        .zip(&truth)
+        .map(|(images, r)| metric(images, r))
+        .collect()
+}
+
+/// The mean and the largest of a path's values after its first 16 frames.
+fn after_16(values: &[f64]) -> (f64, f64) {
+    let settled = &values[16..];
+    let worst = settled.iter().cloned().fold(0.0, f64::max);
+    (settled.iter().sum::<f64>() / settled.len() as f64, worst)
+}
+
 /// Mean |a − b| over the covered pixels, and their count.
 fn ao_mae(a: &[f32], b: &[f32], covered: &[bool]) -> (f64, usize) {
     let (sum, n) = a
@@ -405,38 +441,18 @@ fn the_plugin_matches_nearfield_render() {
             quality: NearFieldQuality::High,
             ..default()
         };
-        let params = near_field.params().unwrap();
-        let run = run_bevy(
-            &scene,
-            Setup {
-                path: Some(path.clone()),
-                motion_vectors,
-                taa,
-                ..Setup::still(Shading::Lit, near_field, PATH_FRAMES, true)
-            },
-        );
-        let truth = references(
-            &scene,
-            &env,
-            technique.name(),
-            &params,
-            |k| path.camera(k),
-            PATH_FRAMES,
-        );
-        let maes: Vec<f64> = run
-            .sequence
-            .iter()
-            .zip(&truth)
-            .map(|(images, r)| {
-                let (mae, n) = ao_mae(&images.ao, &r.ao, &r.covered);
-                assert!(n > (SIZE.0 * SIZE.1 / 4) as usize, "coverage {n}");
-                mae
-            })
-            .collect();
-        assert_eq!(maes.len(), PATH_FRAMES as usize);
-        let settled = &maes[16..];
-        let worst = settled.iter().cloned().fold(0.0, f64::max);
-        let mean = settled.iter().sum::<f64>() / settled.len() as f64;
+        let setup = Setup {
+            path: Some(path.clone()),
+            motion_vectors,
+            taa,
+            ..Setup::still(Shading::Lit, near_field, PATH_FRAMES, true)
+        };
+        let maes = along(&scene, &env, setup, |images, r| {
+            let (mae, n) = ao_mae(&images.ao, &r.ao, &r.covered);
+            assert!(n > (SIZE.0 * SIZE.1 / 4) as usize, "coverage {n}");
+            mae
+        });
+        let (mean, worst) = after_16(&maes);
         eprintln!(
             "{} along the walk (motion vectors {motion_vectors}, TAA {taa}): ao MAE over frames \
              17..{PATH_FRAMES} mean {mean:.5}, largest {worst:.5}; frames 1..16 largest {:.5}",
@@ -462,31 +478,15 @@ fn the_plugin_matches_nearfield_render() {
             ambient_occlusion: false,
             ..default()
         };
-        let params = near_field.params().unwrap();
-        let run = run_bevy(
-            &dark,
-            Setup {
-                path: Some(turn.clone()),
-                motion_vectors: true,
-                ..Setup::still(Shading::Unlit(1.0), near_field, PATH_FRAMES, true)
-            },
-        );
-        let truth = references(
-            &dark,
-            &white,
-            technique.name(),
-            &params,
-            |k| turn.camera(k),
-            PATH_FRAMES,
-        );
-        let errors: Vec<f64> = run
-            .sequence
-            .iter()
-            .zip(&truth)
-            .map(|(images, r)| relative_error(&images.indirect_irradiance, &r.indirect, &r.covered))
-            .collect();
-        let worst = errors[16..].iter().cloned().fold(0.0, f64::max);
-        let mean = errors[16..].iter().sum::<f64>() / (errors.len() - 16) as f64;
+        let setup = Setup {
+            path: Some(turn.clone()),
+            motion_vectors: true,
+            ..Setup::still(Shading::Unlit(1.0), near_field, PATH_FRAMES, true)
+        };
+        let errors = along(&dark, &white, setup, |images, r| {
+            relative_error(&images.indirect_irradiance, &r.indirect, &r.covered)
+        });
+        let (mean, worst) = after_16(&errors);
         eprintln!(
             "{} turning: indirect relative error over frames 17..{PATH_FRAMES} mean {mean:.4}, \
              largest {worst:.4}",

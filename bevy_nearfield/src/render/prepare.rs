@@ -357,42 +357,41 @@ pub(super) fn prepare_views(
                 && v.params == near_field.params
                 && v.ambient_occlusion == near_field.ambient_occlusion
         });
-        if let Some(v) = current {
-            v.prepare(
+        // A view made anew where the size or the settings changed (or the first frame).
+        let fresh = match current {
+            Some(_) => None,
+            None => match NearFieldView::new(
+                device.wgpu_device(),
                 &queue,
+                &pipelines,
+                size,
+                near_field,
                 view,
-                jitter,
-                has_motion,
-                near_field.indirect_intensity,
-            );
+            ) {
+                Ok(v) => Some(v),
+                Err(e) => {
+                    error!(
+                        "NearField ({}): {e}; the camera renders without it",
+                        near_field.technique.name()
+                    );
+                    refusals.0.lock().unwrap().insert(main.id());
+                    commands.entity(entity).remove::<NearFieldView>();
+                    continue;
+                }
+            },
+        };
+        let Some(v) = fresh.as_ref().or(current) else {
             continue;
-        }
-        match NearFieldView::new(
-            device.wgpu_device(),
+        };
+        v.prepare(
             &queue,
-            &pipelines,
-            size,
-            near_field,
             view,
-        ) {
-            Ok(v) => {
-                v.prepare(
-                    &queue,
-                    view,
-                    jitter,
-                    has_motion,
-                    near_field.indirect_intensity,
-                );
-                commands.entity(entity).insert(v);
-            }
-            Err(e) => {
-                error!(
-                    "NearField ({}): {e}; the camera renders without it",
-                    near_field.technique.name()
-                );
-                refusals.0.lock().unwrap().insert(main.id());
-                commands.entity(entity).remove::<NearFieldView>();
-            }
+            jitter,
+            has_motion,
+            near_field.indirect_intensity,
+        );
+        if let Some(v) = fresh {
+            commands.entity(entity).insert(v);
         }
     }
 }
