@@ -11,6 +11,7 @@ pub use files::{env_name, save_camera};
 use nearfield_render::passes::display::{DisplayPass, DisplayPost};
 use nearfield_render::technique::Spec;
 use nearfield_render::{Aov, GpuContext, RenderSettings, Renderer};
+use nearfield_scene::animation::LOOP_FPS;
 use nearfield_scene::probes::ProbeVolume;
 use nearfield_scene::{Camera, CameraFile, Environment, Scene, SunMode};
 use std::path::{Path, PathBuf};
@@ -133,8 +134,6 @@ pub struct Session {
     /// a loop.
     clock: u32,
 }
-
-use nearfield_scene::animation::LOOP_FPS;
 
 /// Everything a session starts from.
 pub struct Start {
