@@ -508,14 +508,16 @@ fn bake_output(out: Option<&Path>, format: Option<&str>) -> Result<(PathBuf, boo
 /// Writes Bevy's ambient-cube texture (KTX2) and says how to place it.
 fn write_bevy(volume: &ProbeVolume, out: &Path) -> Result<()> {
     let b = nearfield_scene::probes::bevy::BevyVolume::from_volume(volume);
+    let bytes = b.to_ktx2();
     crate::output::save_atomically(out, |tmp| {
-        std::fs::write(tmp, b.to_ktx2()).map_err(|e| anyhow::anyhow!("{}: {e}", out.display()))
+        std::fs::write(tmp, &bytes).map_err(|e| anyhow::anyhow!("{}: {e}", out.display()))
     })?;
     eprintln!(
-        "nearfield: Bevy irradiance volume {}×{}×{} texels: Transform translation ({:.4}, {:.4}, {:.4}), scale ({:.4}, {:.4}, {:.4}); IrradianceVolume intensity {}",
+        "nearfield: Bevy irradiance volume {}×{}×{} texels ({:.1} MB): Transform translation ({:.4}, {:.4}, {:.4}), scale ({:.4}, {:.4}, {:.4}); IrradianceVolume intensity {}",
         b.size[0],
         b.size[1],
         b.size[2],
+        bytes.len() as f64 / 1e6,
         b.translation.x,
         b.translation.y,
         b.translation.z,

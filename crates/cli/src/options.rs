@@ -20,7 +20,8 @@ pub struct SceneOpts {
     /// own (sky for files and most built-ins).
     #[arg(long)]
     pub env: Option<String>,
-    /// Multiplies the environment's radiance (≥ 0).
+    /// Multiplies the environment's radiance (> 0): the map's values times this are cd/m², as
+    /// Bevy's `EnvironmentMapLight::intensity` reads them.
     #[arg(long, default_value_t = 1.0, allow_hyphen_values = true)]
     pub env_intensity: f32,
     /// Turns the environment about +Y (degrees).
@@ -156,9 +157,9 @@ impl SceneOpts {
     /// loads the scene and environment and resolves the camera.
     pub fn load(&self) -> Result<Loaded> {
         parse_size(&self.size)?;
-        if !(self.env_intensity.is_finite() && self.env_intensity >= 0.0) {
+        if !(self.env_intensity.is_finite() && self.env_intensity > 0.0) {
             return Err(BadInput(format!(
-                "--env-intensity {}: must be a finite number ≥ 0",
+                "--env-intensity {}: must be a finite number > 0",
                 self.env_intensity
             ))
             .into());

@@ -168,6 +168,7 @@ fn every_bad_input_exits_2_with_one_line() {
         (vec!["render".into(), "--exposure".into(), "nan".into()], "--exposure"),
         (vec!["render".into(), "--tonemap".into(), "magic".into()], "--tonemap"),
         (vec!["render".into(), "--env-intensity".into(), "-1".into()], "--env-intensity"),
+        (vec!["bake".into(), "--env-intensity".into(), "0".into()], "--env-intensity 0: must be a finite number > 0"),
         (vec!["render".into(), "builtin:nope".into()], "unknown built-in scene"),
         (vec!["render".into(), "--sun".into(), "maybe".into()], "--sun maybe: expected auto or off"),
         (vec!["reference".into(), "--sun".into(), "maybe".into()], "--sun maybe"),
@@ -502,6 +503,12 @@ fn structurally_bad_files_exit_2_with_one_line_within_a_second() {
             v["nodes"] = json!([{"mesh":0},{"extensions":{"KHR_lights_punctual":{"light":0}}}]);
             v["scenes"] = json!([{"nodes":[0,1]}]);
         })), "light intensity -5"),
+        (scene("light-inf.gltf", gltf_with(|v| {
+            v["extensionsUsed"] = json!(["KHR_lights_punctual"]);
+            v["extensions"] = json!({"KHR_lights_punctual":{"lights":[{"type":"directional","intensity":1e39}]}});
+            v["nodes"] = json!([{"mesh":0},{"extensions":{"KHR_lights_punctual":{"light":0}}}]);
+            v["scenes"] = json!([{"nodes":[0,1]}]);
+        })), "light intensity inf"),
         (scene("device.gltf", gltf_with(|v| v["buffers"][0]["uri"] = json!("/dev/zero"))), "not a regular file"),
         (scene("percent.gltf", gltf_with(|v| v["buffers"][0]["uri"] = json!("%ff%fe.bin"))), "not valid UTF-8"),
         // Animations: a channel whose sampler is missing, none at all, key times that go back,

@@ -11,11 +11,24 @@
 //! surface facing that way — [`ProbeVolume::irradiance`]'s quantity, so the value on each axis
 //! is exactly ours.
 //!
-//! Bevy stretches the voxels over a unit cube centred on its `Transform`; probe (i, j, k) of a
-//! grid stands at the centre of its cell, so the transform is the grid's box: translation
-//! [`BevyVolume::translation`], scale [`BevyVolume::scale`] (counts × spacing), no rotation.
-//! Switched-off probes (inside geometry) take the mean of their active neighbours, repeated
-//! until every probe has a value, because Bevy filters trilinearly and knows no visibility.
+//! Bevy interpolates its voxels trilinearly and knows no visibility: a surface between a probe
+//! in a lit room and one behind the wall reads half of each (a dark band along every wall that
+//! the grid straddles), where nearfield's own lookup ([`ProbeVolume::weights`]: the normal and
+//! view offset, Chebyshev's visibility) leaves the probe behind the wall out. So the texture is
+//! not the probes themselves but nearfield's lookup resampled: [`SUBDIVISION`] voxels per probe
+//! spacing and axis, each side S of a voxel holding [`ProbeVolume::irradiance`] at the voxel's
+//! centre for a surface facing S seen from the front (n = v = S). A side is read by Bevy only
+//! for normals that face it, and the lookup's offset along S moves its point off a wall the
+//! voxel may lie behind, so that a wall's surface is lit by the side of it it faces. Where no
+//! probe around a voxel is active the nearest probe's light stands in (switched-off probes
+//! filled with their active neighbours' mean).
+//!
+//! Bevy stretches the voxels over a unit cube centred on its `Transform` and weights a light
+//! probe by a ramp that is 0 on its box's faces, so a surface on the grid's box (a floor on the
+//! scene's bounds, where the default grid ends) would get no light from a box of exactly the
+//! grid's cells: the texture has [`PAD`] more voxel on each side of every axis. The transform is
+//! then the grid's box (from the first probe's cell to the last's) grown by a voxel on each side:
+//! translation [`BevyVolume::translation`], scale [`BevyVolume::scale`], no rotation.
 //!
 //! The texels are RGBA16F (alpha 1), the format Bevy filters on every backend. Where a value
 //! exceeds half precision's largest (65504) the whole texture is scaled by a power of two and
@@ -39,11 +52,16 @@ pub const SIDES: [(usize, f32); 6] = [
 pub const VK_FORMAT_R16G16B16A16_SFLOAT: u32 = 97;
 /// The largest finite half-precision value.
 pub const HALF_MAX: f32 = 65504.0;
+/// Voxels added on each side of every axis, beyond the grid's box.
+pub const PAD: u32 = 1;
+/// Voxels per probe spacing and axis of [`BevyVolume::from_volume`] (measured in
+/// docs/src/bevy.md, "The far field").
+pub const SUBDIVISION: u32 = 4;
 
 /// A probe volume in Bevy's layout.
 #[derive(Clone, Debug, PartialEq)]
 pub struct BevyVolume {
-    /// Texture size (Rx, 2Ry, 3Rz).
+    /// Texture size (Rx, 2Ry, 3Rz), R = the grid's counts + 2 [`PAD`].
     pub size: [u32; 3],
     /// RGB per texel, x fastest, then y, then z; already multiplied by `1 / intensity`.
     pub texels: Vec<Vec3>,
@@ -53,7 +71,15 @@ pub struct BevyVolume {
     pub translation: Vec3,
     /// The volume's `Transform`: scale (m), the grid's box.
     pub scale: Vec3,
+    /// The baked volume itself (`.nfv` bytes, [`ProbeVolume::to_bytes`]), carried in the file
+    /// as `nearfield.volume` for the near-field techniques that read it as their far field.
+    pub volume: Vec<u8>,
 }
+
+/// The KTX2 key of the transform's JSON.
+pub const KEY_TRANSFORM: &str = "nearfield.transform";
+/// The KTX2 key of the baked volume's bytes.
+pub const KEY_VOLUME: &str = "nearfield.volume";
 
 /// Texel index of voxel `v` on side `side` (an index into [`SIDES`]) in a texture of voxel
 /// resolution `r`.
@@ -65,18 +91,48 @@ pub fn texel_index(r: [u32; 3], v: [u32; 3], side: usize) -> usize {
 }
 
 impl BevyVolume {
-    /// Converts a baked volume.
+    /// Converts a baked volume at [`SUBDIVISION`] voxels per probe spacing.
     pub fn from_volume(volume: &ProbeVolume) -> Self {
+        Self::resampled(volume, SUBDIVISION)
+    }
+
+    /// Converts a baked volume at `k` ≥ 1 voxels per probe spacing and axis (module docs): each
+    /// voxel side holds [`ProbeVolume::irradiance`] for a surface at the voxel's centre facing
+    /// that side, seen from the front; where no probe around it is active, the nearest probe's
+    /// (inactive ones filled with their neighbours' mean).
+    pub fn resampled(volume: &ProbeVolume, k: u32) -> Self {
+        let k = k.max(1);
         let g = &volume.grid;
-        let r = g.counts;
+        let r = g.counts.map(|c| c * k + 2 * PAD);
+        let step = g.spacing / k as f32;
+        let cells = |c: [u32; 3]| Vec3::new(c[0] as f32, c[1] as f32, c[2] as f32);
+        // The grid's box (from the first probe's cell), and the texture's: a voxel more each side.
+        let centre = g.origin - 0.5 * g.spacing + 0.5 * g.spacing * cells(g.counts);
+        let size = step * cells(r);
+        let first = centre - 0.5 * size + 0.5 * step;
         let filled = fill_inactive(volume);
+        let max_index = g.counts.map(|c| c as f32 - 1.0);
         let mut texels = vec![Vec3::ZERO; (r[0] * 2 * r[1] * 3 * r[2]) as usize];
-        for (index, sh) in filled.iter().enumerate() {
-            let v = g.coords(index);
-            for (side, &(axis, sign)) in SIDES.iter().enumerate() {
-                let mut n = Vec3::ZERO;
-                n[axis] = sign;
-                texels[texel_index(r, v, side)] = sh::irradiance_over_pi(sh, n).max(Vec3::ZERO);
+        for z in 0..r[2] {
+            for y in 0..r[1] {
+                for x in 0..r[0] {
+                    let p = first + step * cells([x, y, z]);
+                    let nearest = {
+                        let rel = ((p - g.origin) / g.spacing).round();
+                        let c = [0, 1, 2].map(|a| rel[a].clamp(0.0, max_index[a]) as u32);
+                        &filled[g.index(c)]
+                    };
+                    for (side, &(axis, sign)) in SIDES.iter().enumerate() {
+                        let mut n = Vec3::ZERO;
+                        n[axis] = sign;
+                        let read = volume.weights(p, n, n).weights.iter().any(|w| *w > 0.0);
+                        texels[texel_index(r, [x, y, z], side)] = if read {
+                            volume.irradiance(p, n, n)
+                        } else {
+                            sh::irradiance_over_pi(nearest, n).max(Vec3::ZERO)
+                        };
+                    }
+                }
             }
         }
         let largest = texels
@@ -92,18 +148,19 @@ impl BevyVolume {
                 *t *= scale;
             }
         }
-        let size = g.spacing * Vec3::new(r[0] as f32, r[1] as f32, r[2] as f32);
         BevyVolume {
             size: [r[0], 2 * r[1], 3 * r[2]],
             texels,
             intensity: 1.0 / scale,
-            translation: g.origin - 0.5 * g.spacing + 0.5 * size,
+            translation: centre,
             scale: size,
+            volume: volume.to_bytes(),
         }
     }
 
     /// The KTX2 file: one level, one layer, one face, RGBA16F, a basic data format descriptor,
-    /// and key/value data `nearfield.transform` (translation, scale and intensity as JSON).
+    /// and key/value data [`KEY_TRANSFORM`] (translation, scale and intensity as JSON) and
+    /// [`KEY_VOLUME`] (the `.nfv` bytes, NUL-terminated).
     pub fn to_ktx2(&self) -> Vec<u8> {
         let mut data = Vec::with_capacity(self.texels.len() * 8);
         for t in &self.texels {
@@ -121,16 +178,19 @@ impl BevyVolume {
             self.scale.z,
             self.intensity
         );
+        // Sorted by key, as KTX2 asks; each value ends with a NUL (the volume's bytes too, so
+        // that a reader that drops a trailing NUL gets them back whole).
         let mut kvd = Vec::new();
         for (k, v) in [
-            ("KTXwriter", "nearfield"),
-            ("nearfield.transform", kv_value.as_str()),
+            ("KTXwriter", b"nearfield".as_slice()),
+            (KEY_TRANSFORM, kv_value.as_bytes()),
+            (KEY_VOLUME, self.volume.as_slice()),
         ] {
             let len = k.len() + 1 + v.len() + 1;
             kvd.extend_from_slice(&(len as u32).to_le_bytes());
             kvd.extend_from_slice(k.as_bytes());
             kvd.push(0);
-            kvd.extend_from_slice(v.as_bytes());
+            kvd.extend_from_slice(v);
             kvd.push(0);
             while kvd.len() % 4 != 0 {
                 kvd.push(0);
@@ -260,46 +320,88 @@ fn fill_inactive(volume: &ProbeVolume) -> Vec<[Vec3; super::SH_COEFFS]> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::probes::{Probe, ProbeGrid};
+    use crate::probes::tests::constant_volume;
 
+    /// A 3 × 2 × 4 grid over the 2 m cube whose probes differ (probe i's light grows with i and
+    /// leans towards +X and −Y), every probe seeing nothing within its range.
     fn volume(active: impl Fn(usize) -> bool) -> ProbeVolume {
-        let grid = ProbeGrid {
-            origin: Vec3::new(-1.0, 0.5, 2.0),
-            spacing: Vec3::new(1.0, 0.5, 2.0),
-            counts: [3, 2, 4],
-        };
-        let probes = (0..grid.count())
-            .map(|i| {
-                let mut sh = [Vec3::ZERO; super::super::SH_COEFFS];
-                sh[0] = Vec3::splat(1.0 + i as f32);
-                sh[1] = Vec3::new(0.3, 0.0, 0.1);
-                sh[3] = Vec3::new(-0.2, 0.1, 0.0);
-                Probe {
-                    offset: Vec3::ZERO,
-                    active: active(i),
-                    sh,
-                }
-            })
-            .collect();
-        ProbeVolume {
-            grid,
-            max_distance: 1.0,
-            probes,
-            visibility: Vec::new(),
-            rays: 1,
-            bounces: 1,
-            key: 0,
+        let mut v = constant_volume(Vec3::ONE, [3, 2, 4]);
+        for (i, p) in v.probes.iter_mut().enumerate() {
+            p.sh[0] = Vec3::splat(1.0 + i as f32);
+            p.sh[1] = Vec3::new(0.3, 0.0, 0.1);
+            p.sh[3] = Vec3::new(-0.2, 0.1, 0.0);
+            p.active = active(i);
         }
+        v
+    }
+
+    /// The centre of voxel `v` of the texture (`k` voxels per spacing).
+    fn centre(vol: &ProbeVolume, b: &BevyVolume, k: u32, v: [u32; 3]) -> Vec3 {
+        let step = vol.grid.spacing / k as f32;
+        b.translation - 0.5 * b.scale
+            + step * (Vec3::new(v[0] as f32, v[1] as f32, v[2] as f32) + 0.5)
     }
 
     #[test]
-    fn the_transform_is_the_grid_box() {
-        let b = BevyVolume::from_volume(&volume(|_| true));
-        assert_eq!(b.size, [3, 4, 12]);
-        // cells from origin − spacing/2 to that + counts·spacing
-        assert_eq!(b.scale, Vec3::new(3.0, 1.0, 8.0));
-        assert_eq!(b.translation, Vec3::new(0.0, 0.75, 5.0));
+    fn the_transform_is_the_grid_box_grown_by_a_voxel() {
+        let v = volume(|_| true);
+        let b = BevyVolume::from_volume(&v);
+        let r = v.grid.counts.map(|c| c * SUBDIVISION + 2 * PAD);
+        assert_eq!(b.size, [r[0], 2 * r[1], 3 * r[2]]);
+        let g = &v.grid;
+        let cells = Vec3::new(g.counts[0] as f32, g.counts[1] as f32, g.counts[2] as f32);
+        let step = g.spacing / SUBDIVISION as f32;
+        assert!(
+            (b.scale - (g.spacing * cells + 2.0 * step))
+                .abs()
+                .max_element()
+                < 1e-5
+        );
+        // The grid's box (cells around the probes) has the same centre.
+        let box_min = g.origin - 0.5 * g.spacing;
+        assert!(
+            (b.translation - (box_min + 0.5 * g.spacing * cells))
+                .abs()
+                .max_element()
+                < 1e-5
+        );
         assert_eq!(b.intensity, 1.0);
+        // The probes stand at voxel centres: probe (0, 0, 0) at voxel (PAD + k/2) − ½ … for
+        // even k between two voxels, for k = 1 on voxel PAD.
+        let b1 = BevyVolume::resampled(&v, 1);
+        let c = centre(&v, &b1, 1, [PAD; 3]);
+        assert!(
+            (c - g.origin).abs().max_element() < 1e-5,
+            "{c} {}",
+            g.origin
+        );
+    }
+
+    #[test]
+    fn every_side_is_nearfields_lookup_for_a_surface_facing_it() {
+        let v = volume(|i| i != 5);
+        for k in [1, 2, 4] {
+            let b = BevyVolume::resampled(&v, k);
+            let r = v.grid.counts.map(|c| c * k + 2 * PAD);
+            for voxel in [
+                [0, 0, 0],
+                [PAD, PAD, PAD],
+                [r[0] / 2, 1, r[2] - 1],
+                [2, r[1] - 1, 3],
+            ] {
+                let p = centre(&v, &b, k, voxel);
+                for (side, &(axis, sign)) in SIDES.iter().enumerate() {
+                    let mut n = Vec3::ZERO;
+                    n[axis] = sign;
+                    let want = v.irradiance(p, n, n);
+                    let got = b.texels[texel_index(r, voxel, side)];
+                    assert!(
+                        (got - want).abs().max_element() <= 1e-5 * want.max_element().max(1.0),
+                        "k {k} voxel {voxel:?} side {side}: {got} {want}"
+                    );
+                }
+            }
+        }
     }
 
     #[test]
@@ -319,21 +421,18 @@ mod tests {
     }
 
     #[test]
-    fn switched_off_probes_take_their_neighbours_mean() {
-        let v = volume(|i| i != 0);
-        let b = BevyVolume::from_volume(&v);
-        let g = &v.grid;
-        // probe 0's neighbours: (1,0,0), (0,1,0), (0,0,1)
-        let neighbours = [g.index([1, 0, 0]), g.index([0, 1, 0]), g.index([0, 0, 1])];
-        let mut mean = [Vec3::ZERO; super::super::SH_COEFFS];
-        for &j in &neighbours {
-            for (m, s) in mean.iter_mut().zip(&v.probes[j].sh) {
-                *m += *s / 3.0;
-            }
-        }
-        let want = sh::irradiance_over_pi(&mean, Vec3::X).max(Vec3::ZERO);
-        let got = b.texels[texel_index(g.counts, [0, 0, 0], 0)];
+    fn where_no_probe_is_active_the_nearest_filled_one_stands_in() {
+        // Only probe (2, 1, 3) is on: the far corner's voxels read no active probe, and take
+        // the filled mean (the only active probe's light, spread to every probe).
+        let g = volume(|_| true).grid;
+        let on = g.index([2, 1, 3]);
+        let v = volume(|i| i == on);
+        let b = BevyVolume::resampled(&v, 1);
+        let r = g.counts.map(|c| c + 2 * PAD);
+        let want = sh::irradiance_over_pi(&v.probes[on].sh, Vec3::X).max(Vec3::ZERO);
+        let got = b.texels[texel_index(r, [PAD; 3], 0)];
         assert!((got - want).abs().max_element() < 1e-5, "{got} {want}");
+        assert!(got.max_element() > 0.0);
     }
 
     #[test]
