@@ -43,12 +43,14 @@ figures:
 # features of the first build and only nearfield's own crates compile again). Then the
 # Bevy plugin (its own workspace; Bevy 0.20.1 declares rust 1.97.1, so the nightly toolchain
 # builds it; its `ci` profile, release at opt-level 1, about 11 minutes cold on 2 cores against
-# 14 for release) and its one test binary.
+# 14 for release) and its one test binary, one test at a time: each test makes nearfield's own
+# GPU context beside Bevy's device, and wgpu tells two instances' devices apart by an id that
+# both may share (crates/render/src/pipeline_cache.rs).
 test: setup
 	$(CARGO) test --workspace
 	$(CARGO) test --workspace --features nearfield-render/scratch --test scratch
 	$(CARGO) test --workspace --features nearfield-render/scratch --lib settings_reach
-	cd bevy_nearfield && $(CARGO) +nightly test --profile ci --ignore-rust-version
+	cd bevy_nearfield && $(CARGO) +nightly test --profile ci --ignore-rust-version -- --test-threads=1
 
 lint:
 	$(CARGO) fmt --all -- --check

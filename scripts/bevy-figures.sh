@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # The book's and the README's pictures of the Bevy plugin (docs/src/bevy.md): Crytek Sponza in
-# the plugin's example, without nearfield and with vbgi High, 1280×720 after 60 frames, saved by
-# the example's --screenshot under Xvfb, then scaled (ImageMagick): bevy-sponza-off.png and
+# the plugin's example with its baked volume (`nearfield bake --format bevy`, the scene's own
+# light in Bevy's units), without nearfield and with vbgi High, 1280×720 after 60 frames, saved
+# by the example's --screenshot under Xvfb, then scaled (ImageMagick): bevy-sponza-off.png and
 # bevy-sponza-vbgi.png at 960×540, and bevy-sponza-pair.png, both at 640×360 side by side.
+# PROFILE=ci uses `make test`'s build of the example instead of a release build.
 # Needs the nightly toolchain (Bevy declares rust 1.97.1), xvfb-run and convert (scripts/setup.sh
 # installs both); about 7 minutes on lavapipe once Bevy is built.
 set -euo pipefail
@@ -12,10 +14,15 @@ export XDG_RUNTIME_DIR=${XDG_RUNTIME_DIR:-$(d=${TMPDIR:-/tmp}/nearfield-xdg-$(id
 img=docs/src/img
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-(cd bevy_nearfield && "$CARGO" +nightly build --release --ignore-rust-version --example sponza)
+profile=${PROFILE:-release}
+"$CARGO" build --release -p nearfield-cli
+target/release/nearfield bake ../shared/assets/scenes/crytek_sponza/Sponza.gltf --format bevy \
+    --out "$tmp/sponza.ktx2"
+(cd bevy_nearfield && "$CARGO" +nightly build --profile "$profile" --ignore-rust-version --example sponza)
 for technique in off vbgi; do
-    xvfb-run -a -s '-screen 0 1920x1080x24' bevy_nearfield/target/release/examples/sponza \
-        --technique "$technique" --frames 60 --screenshot "$tmp/$technique.png"
+    xvfb-run -a -s '-screen 0 1920x1080x24' "bevy_nearfield/target/$profile/examples/sponza" \
+        --technique "$technique" --volume "$tmp/sponza.ktx2" --frames 60 \
+        --screenshot "$tmp/$technique.png"
 done
 convert "$tmp/off.png" -resize 960x540 "$img/bevy-sponza-off.png"
 convert "$tmp/vbgi.png" -resize 960x540 "$img/bevy-sponza-vbgi.png"

@@ -1,5 +1,7 @@
 //! Crytek Sponza in Bevy with nearfield's near-field light, and nearfield's probe volume as Bevy's
-//! irradiance volume for the far field.
+//! irradiance volume for the far field. The light rig is the scene's own, as nearfield bakes and
+//! renders it: the glTF's lights and the environment's sun, in Bevy's units, at nearfield's
+//! exposure (docs/src/bevy.md, "Units").
 //!
 //! ```text
 //! cargo +nightly run --release --ignore-rust-version --example sponza -- [SCENE] [options]
@@ -8,10 +10,20 @@
 //!                                               gtao at Bevy SSAO High's 18 samples a pixel, at
 //!                                               half resolution, without denoiser (GTAO_BUDGET)
 //!   --quality low|medium|high|ultra             the preset (default high)
-//!   --volume FILE.ktx2                          `nearfield bake --format bevy`'s volume
+//!   --volume FILE.ktx2                          `nearfield bake --format bevy`'s volume,
+//!                                               baked with the same --env and --env-intensity
+//!   --env FILE.hdr|sky                          the environment whose sun is spawned (default:
+//!                                               the scene's, as nearfield's)
+//!   --env-intensity K                           its radiance × K, in cd/m² (default 1)
+//!   --exposure STOPS                            nearfield's exposure (default: 8 for Sponza's
+//!                                               view, the book's; 0 for a SCENE given)
 //!   --size WxH                                  window size (default 1280x720)
 //!   --screenshot FILE.png                       save the window after --frames frames and exit
 //!   --frames N                                  (default 60)
+//!   --mean                                      render into a linear image (no tone mapping,
+//!                                               black background) and print its mean after
+//!                                               --frames frames, then exit
+//!   --linear FILE.exr                           as --mean, and write that image (EXR)
 //!   --move                                      the camera walks (nearfield's `--walk` of the
 //!                                               view, back and forth) and a ball rolls across
 //!                                               the floor before it, at 60 frames a second
@@ -27,17 +39,18 @@
 
 use bevy::anti_alias::taa::TemporalAntiAliasing;
 use bevy::camera::Hdr;
+use bevy::camera::RenderTarget;
 use bevy::core_pipeline::prepass::{
     DeferredPrepass, DepthPrepass, MotionVectorPrepass, NormalPrepass,
 };
 use bevy::core_pipeline::tonemapping::Tonemapping;
-use bevy::light::{IrradianceVolume, LightProbe};
 use bevy::pbr::{ScreenSpaceAmbientOcclusion, ScreenSpaceAmbientOcclusionQualityLevel};
 use bevy::prelude::*;
-use bevy::render::render_resource::{Extent3d, TextureDimension, TextureFormat};
+use bevy::render::render_resource::{TextureFormat, TextureUsages};
 use bevy::render::view::Msaa;
-use bevy::render::view::screenshot::{Screenshot, save_to_disk};
+use bevy::render::view::screenshot::{Screenshot, ScreenshotCaptured, save_to_disk};
 use bevy::window::{PresentMode, WindowResolution};
+use bevy_nearfield::far::BakedVolume;
 use bevy_nearfield::scene::{self, Shading};
 use bevy_nearfield::{NearField, NearFieldPlugin, NearFieldQuality, NearFieldTechnique};
 use std::path::PathBuf;
@@ -51,8 +64,14 @@ struct Options {
     technique: String,
     quality: NearFieldQuality,
     volume: Option<PathBuf>,
+    env: Option<String>,
+    env_intensity: f32,
+    /// None: 8 for Sponza's view (the book's pictures of it), else nearfield's 0.
+    exposure: Option<f32>,
     size: (u32, u32),
     screenshot: Option<PathBuf>,
+    mean: bool,
+    linear: Option<PathBuf>,
     frames: u32,
     bench: bool,
     moving: bool,
@@ -74,8 +93,13 @@ fn options() -> Options {
         technique: "vbgi".into(),
         quality: NearFieldQuality::High,
         volume: None,
+        env: None,
+        env_intensity: 1.0,
+        exposure: None,
         size: (1280, 720),
         screenshot: None,
+        mean: false,
+        linear: None,
         frames: 60,
         bench: false,
         moving: false,
@@ -99,6 +123,24 @@ fn options() -> Options {
                 }
             }
             "--volume" => o.volume = Some(value().into()),
+            "--env" => o.env = Some(value()),
+            "--env-intensity" => {
+                let v = value();
+                o.env_intensity = v
+                    .parse()
+                    .ok()
+                    .filter(|k: &f32| k.is_finite() && *k > 0.0)
+                    .unwrap_or_else(|| fail(&format!("--env-intensity {v}: a number > 0")))
+            }
+            "--exposure" => {
+                let v = value();
+                o.exposure = Some(
+                    v.parse()
+                        .ok()
+                        .filter(|e: &f32| (-20.0..=20.0).contains(e))
+                        .unwrap_or_else(|| fail(&format!("--exposure {v}: stops in -20..=20"))),
+                )
+            }
             "--screenshot" => o.screenshot = Some(value().into()),
             "--frames" => {
                 o.frames = value()
@@ -116,6 +158,11 @@ fn options() -> Options {
                     .unwrap_or_else(|| fail(&format!("--size {v}: WxH, each 1..=8192")))
             }
             "--bench" => o.bench = true,
+            "--mean" => o.mean = true,
+            "--linear" => {
+                o.linear = Some(value().into());
+                o.mean = true;
+            }
             "--move" => o.moving = true,
             "--taa" => o.taa = true,
             s if !s.starts_with("--") => {
@@ -135,75 +182,30 @@ fn options() -> Options {
     o
 }
 
-/// Bevy's irradiance volume from `nearfield bake --format bevy`'s KTX2 (RGBA16F, 3D, with the
-/// volume's transform in the key/value `nearfield.transform`).
-fn load_volume(path: &std::path::Path) -> Result<(Image, Transform, f32), String> {
-    let bytes = std::fs::read(path).map_err(|e| format!("{}: {e}", path.display()))?;
-    let reader = ktx2::Reader::new(&bytes[..]).map_err(|e| format!("{}: {e:?}", path.display()))?;
-    let h = reader.header();
-    let level = reader
-        .levels()
-        .next()
-        .ok_or_else(|| format!("{}: no image level", path.display()))?;
-    let transform = reader
-        .key_value_data()
-        .find(|(k, _)| *k == "nearfield.transform")
-        .map(|(_, v)| {
-            String::from_utf8_lossy(v)
-                .trim_end_matches('\0')
-                .to_string()
-        })
-        .ok_or_else(|| {
-            format!(
-                "{}: not written by nearfield bake --format bevy",
-                path.display()
-            )
-        })?;
-    let t: serde_json::Value =
-        serde_json::from_str(&transform).map_err(|e| format!("{}: {e}", path.display()))?;
-    let v3 = |k: &str| -> Option<Vec3> {
-        let a = t.get(k)?.as_array()?;
-        Some(Vec3::new(
-            a.first()?.as_f64()? as f32,
-            a.get(1)?.as_f64()? as f32,
-            a.get(2)?.as_f64()? as f32,
-        ))
-    };
-    let (Some(translation), Some(scale)) = (v3("translation"), v3("scale")) else {
-        return Err(format!(
-            "{}: nearfield.transform without translation and scale",
-            path.display()
-        ));
-    };
-    let intensity = t.get("intensity").and_then(|i| i.as_f64()).unwrap_or(1.0) as f32;
-    let image = Image::new(
-        Extent3d {
-            width: h.pixel_width,
-            height: h.pixel_height,
-            depth_or_array_layers: h.pixel_depth,
-        },
-        TextureDimension::D3,
-        level.data.to_vec(),
-        TextureFormat::Rgba16Float,
-        bevy::asset::RenderAssetUsages::RENDER_WORLD,
-    );
-    Ok((
-        image,
-        Transform::from_translation(translation).with_scale(scale),
-        intensity,
-    ))
-}
-
 fn main() {
     let o = options();
-    if o.bench && o.screenshot.is_some() {
-        fail("--bench and --screenshot: one at a time");
+    if o.bench && (o.screenshot.is_some() || o.mean) {
+        fail("--bench and --screenshot or --mean: one at a time");
     }
     let loaded = nearfield_scene::load_scene(&o.scene).unwrap_or_else(|e| fail(&e.to_string()));
     let volume = o
         .volume
         .as_ref()
-        .map(|p| load_volume(p).unwrap_or_else(|e| fail(&e)));
+        .map(|p| BakedVolume::read(p).unwrap_or_else(|e| fail(&e)));
+    let source = match &o.env {
+        Some(e) => nearfield_scene::EnvSource::parse(e),
+        None => Ok(loaded.default_env.clone()),
+    };
+    // As nearfield's commands load it (`--sun auto`): the sun split out as a disc light, which
+    // Bevy draws as a directional light.
+    let (mut env, _) = source
+        .and_then(|s| s.load_split(nearfield_scene::sun::SunMode::Auto))
+        .unwrap_or_else(|e| fail(&nearfield_scene::one_line(&e.to_string())));
+    env.intensity = o.env_intensity;
+    // Without a volume, Bevy's ambient light stands in for the far field: the environment's
+    // E/π on an upward surface, unoccluded.
+    let sky = nearfield_scene::sh::project_environment(&env, 9);
+    let up = nearfield_scene::sh::irradiance_over_pi(&sky, glam::Vec3::Y);
     let (w, h) = o.size;
     App::new()
         .add_plugins(DefaultPlugins.set(WindowPlugin {
@@ -216,13 +218,25 @@ fn main() {
             ..default()
         }))
         .add_plugins(NearFieldPlugin)
+        // The plugin's indirect light reads ρ from Bevy's deferred G-buffer, which only
+        // deferred materials write; --bench times Bevy's forward path.
+        .insert_resource(if o.bench {
+            bevy::pbr::DefaultOpaqueRendererMethod::forward()
+        } else {
+            bevy::pbr::DefaultOpaqueRendererMethod::deferred()
+        })
         .insert_resource(GlobalAmbientLight {
-            color: Color::srgb(0.6, 0.75, 1.0),
-            brightness: if volume.is_some() { 0.0 } else { 1500.0 },
+            color: Color::linear_rgb(up.x, up.y, up.z),
+            brightness: if volume.is_some() { 0.0 } else { 1.0 },
             ..default()
         })
-        .insert_resource(ClearColor(Color::srgb(0.45, 0.6, 0.85)))
-        .insert_resource(Scene(loaded, volume.map(|v| (v.0, v.1, v.2))))
+        // With --mean the background is black: the mean is the surfaces' light over the frame.
+        .insert_resource(ClearColor(if o.mean {
+            Color::BLACK
+        } else {
+            Color::srgb(0.45, 0.6, 0.85)
+        }))
+        .insert_resource(Scene(loaded, volume, env))
         .insert_resource(Run {
             frame: 0,
             phase: 0,
@@ -236,7 +250,11 @@ fn main() {
 }
 
 #[derive(Resource)]
-struct Scene(nearfield_scene::Scene, Option<(Image, Transform, f32)>);
+struct Scene(
+    nearfield_scene::Scene,
+    Option<BakedVolume>,
+    nearfield_scene::Environment,
+);
 
 #[derive(Resource)]
 struct Run {
@@ -249,6 +267,14 @@ struct Run {
 
 #[derive(Component)]
 struct TheCamera;
+
+/// The exposure of Sponza's view (stops), the book's for its pictures of it: the arcade is lit
+/// by the sky's bounce, at nearfield's scale (an open upward surface E/π = 1).
+const SPONZA_EXPOSURE: f32 = 8.0;
+
+/// With `--mean`: the camera's linear target.
+#[derive(Resource)]
+struct MeanTarget(Handle<Image>);
 
 /// With `--move`: the camera's walk and the rolling ball.
 #[derive(Resource)]
@@ -335,8 +361,25 @@ fn setup(
             Msaa::Off,
             Hdr,
             Tonemapping::AcesFitted,
+            scene::exposure(options.exposure.unwrap_or(if options.scene_given {
+                0.0
+            } else {
+                SPONZA_EXPOSURE
+            })),
         ))
         .id();
+    if options.mean {
+        // The frame into a linear image of the window's size, read back by `step`.
+        let (w, h) = options.size;
+        let mut target = Image::new_target_texture(w, h, TextureFormat::Rgba16Float, None);
+        target.texture_descriptor.usage |= TextureUsages::COPY_SRC;
+        let target = images.add(target);
+        commands.entity(id).insert((
+            RenderTarget::Image(target.clone().into()),
+            Tonemapping::None,
+        ));
+        commands.insert_resource(MeanTarget(target));
+    }
     configure(&mut commands, id, &options.technique, &options);
     if options.taa {
         commands.entity(id).insert(TemporalAntiAliasing::default());
@@ -373,31 +416,17 @@ fn setup(
             Transform::from_translation(BALL_LINE.0 + Vec3::Y * BALL_RADIUS),
         ));
     }
-    commands.spawn((
-        DirectionalLight {
-            illuminance: 8000.0,
-            shadow_maps_enabled: true,
-            ..default()
-        },
-        Transform::from_xyz(2.0, 20.0, 3.0).looking_at(Vec3::ZERO, Vec3::Y),
-    ));
-    if let Some((image, t, intensity)) = loaded.1.take() {
-        commands.spawn((
-            LightProbe::default(),
-            IrradianceVolume {
-                voxels: images.add(image),
-                intensity: intensity * 2000.0,
-                ..default()
-            },
-            t,
-        ));
+    scene::spawn_lights(&mut commands, &loaded.0, &loaded.2);
+    if let Some(volume) = loaded.1.take() {
+        volume.spawn(&mut commands, &mut images);
     }
 }
 
-/// Puts configuration `name` on the camera: `off` is the camera without prepasses (what turning
-/// an effect on costs includes them); the techniques also get the motion-vector and deferred
-/// prepasses for their indirect term, except under `--bench`, which times all configurations in
-/// Bevy's forward path (the added indirect term's one full-screen pass is then not drawn).
+/// Puts configuration `name` on the camera. Under `--bench`, which times every configuration in
+/// Bevy's forward path (the added indirect term's one full-screen pass is then not drawn), `off`
+/// is the camera without prepasses (what turning an effect on costs includes them). Otherwise
+/// the materials are deferred: every configuration has Bevy's depth and deferred prepasses, and
+/// the techniques also the motion-vector prepass.
 fn configure(commands: &mut Commands, camera: Entity, name: &str, options: &Options) {
     let mut c = commands.entity(camera);
     c.remove::<(
@@ -408,6 +437,12 @@ fn configure(commands: &mut Commands, camera: Entity, name: &str, options: &Opti
         MotionVectorPrepass,
         DeferredPrepass,
     )>();
+    // Outside --bench the materials are drawn deferred (main): every configuration then
+    // needs Bevy's deferred and depth prepasses (its lighting pass rebuilds positions from the
+    // prepass depth), or nothing, or nonsense, is drawn.
+    if !options.bench {
+        c.insert((DepthPrepass, DeferredPrepass));
+    }
     let mut settings = Vec::new();
     let technique = match name {
         "gtao" => NearFieldTechnique::GTAO,
@@ -437,7 +472,7 @@ fn configure(commands: &mut Commands, camera: Entity, name: &str, options: &Opti
         ..default()
     });
     if !options.bench {
-        c.insert((MotionVectorPrepass, DeferredPrepass));
+        c.insert(MotionVectorPrepass);
     }
 }
 
@@ -486,24 +521,68 @@ fn median(v: &mut [f64]) -> f64 {
 
 /// Screenshot after `--frames`, or the benchmark's phases: round 0 untimed (pipelines compile),
 /// then every configuration in turn, `BENCH_ROUNDS` times.
+/// Prints the linear mean of the `--mean` target (RGBA16F, Bevy's exposure applied) and writes
+/// it to `linear` (EXR) when given.
+fn print_mean(shot: &ScreenshotCaptured, size: (u32, u32), linear: Option<&std::path::Path>) {
+    let px: Vec<[f32; 3]> = shot
+        .image
+        .data
+        .as_deref()
+        .unwrap_or_default()
+        .chunks_exact(8)
+        .map(|p| {
+            let c = |k: usize| half::f16::from_le_bytes([p[2 * k], p[2 * k + 1]]).to_f32();
+            [c(0), c(1), c(2)]
+        })
+        .collect();
+    let n = px.len().max(1) as f64;
+    let m = |k: usize| px.iter().map(|p| p[k] as f64).sum::<f64>() / n;
+    let (r, g, b) = (m(0), m(1), m(2));
+    println!(
+        "sponza: linear image mean {:.6} (r {r:.6}, g {g:.6}, b {b:.6}) over {} pixels",
+        (r + g + b) / 3.0,
+        px.len()
+    );
+    if let Some(path) = linear {
+        let image = nearfield_reference::ReferenceImage {
+            width: size.0,
+            height: size.1,
+            value: px.iter().map(|p| [p[0], p[1], p[2], 1.0]).collect(),
+            stderr: vec![[0.0; 3]; px.len()],
+            depth: vec![0.0; px.len()],
+            rays: 0,
+        };
+        if let Err(e) = nearfield_reference::exr_io::write(&image, path) {
+            eprintln!("sponza: {}: {e}", path.display());
+        }
+    }
+}
+
 fn step(
     mut commands: Commands,
     mut run: ResMut<Run>,
     options: Res<Options>,
     camera: Single<Entity, With<TheCamera>>,
+    mean_target: Option<Res<MeanTarget>>,
     mut exit: MessageWriter<AppExit>,
 ) {
     run.frame += 1;
     if !options.bench {
-        if let Some(path) = &options.screenshot {
-            if run.frame == options.frames {
+        if run.frame == options.frames {
+            if let Some(path) = &options.screenshot {
                 commands
                     .spawn(Screenshot::primary_window())
                     .observe(save_to_disk(path.clone()));
             }
-            if run.frame == options.frames + 5 {
-                exit.write(AppExit::Success);
+            if let Some(target) = &mean_target {
+                let (size, linear) = (options.size, options.linear.clone());
+                commands.spawn(Screenshot::image(target.0.clone())).observe(
+                    move |shot: On<ScreenshotCaptured>| print_mean(&shot, size, linear.as_deref()),
+                );
             }
+        }
+        if (options.screenshot.is_some() || options.mean) && run.frame == options.frames + 5 {
+            exit.write(AppExit::Success);
         }
         return;
     }

@@ -16,9 +16,12 @@ struct Glue {
     indirect_intensity: f32,
     // 0: Bevy's ambient light is not darkened (the ao written is 1).
     ambient_occlusion: u32,
-    _pad0: u32,
-    _pad1: u32,
-    _pad2: u32,
+    // How the technique's light meets Bevy's volume (cs_ao): FAR_PLAIN, FAR_OCCLUSION,
+    // FAR_REPLACE.
+    far_rule: u32,
+    // 1 where Bevy's deferred G-buffer is bound (ρ for the multi-bounce curve).
+    has_gbuffer: u32,
+    _pad: u32,
 }
 
 @group(0) @binding(0) var<uniform> glue: Glue;
@@ -151,9 +154,62 @@ fn fs_add_indirect(@builtin(position) p: vec4<f32>) -> @location(0) vec4<f32> {
 }
 
 // --- nearfield's ao → Bevy's PBR ---------------------------------------------------------------
+// (compiled after nearfield's common.wgsl, env.wgsl and far.wgsl)
+
+// Bevy multiplies the diffuse light of its irradiance volume, environment map and ambient
+// light by ssao_multibounce(s, ρ) of the s written here. Without a baked volume (or for a rule
+// of its own) s is the technique's ao. With one, the technique read the same volume as its far
+// field, and s keeps of Bevy's volume light only what the technique does not draw itself
+// (docs/src/bevy.md, "Counted once"):
+// - FAR_OCCLUSION (gtao, ssao): the occlusion the volume does not hold already,
+//   F(v)/F(ao_far), ao_far the volume's own visibility within R (far_ao_at);
+// - FAR_REPLACE (hbil, vbgi): the share of the volume's light that reaches the point through
+//   the directions the technique finds free, its env-irradiance over the volume's whole
+//   E/π; its near light is added after the main pass.
+// s is that share through the inverse of Bevy's curve at the receiver's ρ (its G-buffer's;
+// 0.5 where the materials are drawn forward and there is none).
+const FAR_PLAIN: u32 = 0u;
+const FAR_OCCLUSION: u32 = 1u;
+const FAR_REPLACE: u32 = 2u;
 
 @group(1) @binding(0) var near_field_ao: texture_2d<f32>;
 @group(1) @binding(1) var bevy_ao: texture_storage_2d<AO_FORMAT, write>;
+@group(1) @binding(2) var ao_view_depth: texture_2d<f32>;
+@group(1) @binding(3) var ao_normal: texture_2d<f32>;
+// The technique's env-irradiance (FAR_REPLACE), else any image.
+@group(1) @binding(4) var ao_env_irradiance: texture_2d<f32>;
+// Bevy's deferred G-buffer (`has_gbuffer`), else a 1×1 image.
+@group(1) @binding(5) var ao_gbuffer: texture_2d<u32>;
+
+// nearfield's view of the frame and its far field, as the technique read them.
+@group(2) @binding(0) var<uniform> ao_cam: View;
+@group(2) @binding(1) var ao_far_probes: texture_2d<f32>;
+@group(2) @binding(2) var ao_far_visibility: texture_2d<f32>;
+@group(2) @binding(3) var ao_far_atlas: texture_2d<f32>;
+@group(2) @binding(4) var ao_far_sampler: sampler;
+
+// Bevy's ssao_multibounce at a scalar ρ (Jimenez et al. 2016, Eq. 10).
+fn bevy_multibounce(x: f32, rho: f32) -> f32 {
+    let a = 2.0404 * rho - 0.3324;
+    let b = -4.7951 * rho + 0.6417;
+    let c = 2.7552 * rho + 0.6903;
+    return max(x, ((x * a + b) * x + c) * x);
+}
+
+// The s in [0, 1] with bevy_multibounce(s, rho) = y (the curve rises on [0, 1]; bisection).
+fn inverse_multibounce(y: f32, rho: f32) -> f32 {
+    var lo = 0.0;
+    var hi = 1.0;
+    for (var i = 0u; i < 16u; i++) {
+        let mid = 0.5 * (lo + hi);
+        if bevy_multibounce(mid, rho) < y {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    return 0.5 * (lo + hi);
+}
 
 @compute @workgroup_size(8, 8)
 fn cs_ao(@builtin(global_invocation_id) id: vec3<u32>) {
@@ -161,8 +217,29 @@ fn cs_ao(@builtin(global_invocation_id) id: vec3<u32>) {
         return;
     }
     var ao = 1.0;
+    let depth = textureLoad(ao_view_depth, id.xy, 0).r;
     if glue.ambient_occlusion != 0u {
         ao = textureLoad(near_field_ao, id.xy, 0).r;
+    }
+    if glue.far_rule != FAR_PLAIN && depth > 0.0 {
+        let p = world_position(ao_cam, id.xy, depth);
+        let n = normalize(textureLoad(ao_normal, id.xy, 0).xyz);
+        let v = normalize(ao_cam.camera_position.xyz - p);
+        var rho = 0.5;
+        if glue.has_gbuffer != 0u {
+            let base = pow(unpack4x8unorm(textureLoad(ao_gbuffer, id.xy, 0).x).rgb, vec3<f32>(2.2));
+            rho = luminance(base);
+        }
+        var share = 1.0;
+        if glue.far_rule == FAR_OCCLUSION {
+            let far_ao = far_ao_at(ao_far_probes, ao_far_visibility, ao_far_sampler, p, n, v);
+            share = min(1.0, bevy_multibounce(ao, rho) / max(bevy_multibounce(far_ao, rho), 1e-3));
+        } else {
+            let whole = far_irradiance_at(ao_far_probes, ao_far_visibility, ao_far_atlas, ao_far_sampler, p, n, v);
+            let free = textureLoad(ao_env_irradiance, id.xy, 0).rgb;
+            share = clamp(luminance(free) / max(luminance(whole), 1e-6), 0.0, 1.0);
+        }
+        ao = inverse_multibounce(share, rho);
     }
     textureStore(bevy_ao, id.xy, vec4<f32>(ao, 0.0, 0.0, 1.0));
 }

@@ -7,13 +7,20 @@
 //! - feeds its ambient occlusion to Bevy's PBR, where Bevy's own SSAO would (Bevy multiplies the
 //!   ambient, environment-map and irradiance-volume light by it);
 //! - adds its near-field indirect light as a diffuse term `ρ (1 − metallic) E/π` after the opaque
-//!   pass, where the camera has a `DeferredPrepass` (the base colour comes from Bevy's G-buffer).
-//!   The light it gathers is Bevy's lit colour of the frame before.
+//!   pass, where the camera has a `DeferredPrepass` and the materials are drawn deferred (the
+//!   base colour comes from Bevy's G-buffer). The light it gathers is Bevy's lit colour of the
+//!   frame before;
+//! - with a baked far field ([`far::BakedVolume`], `nearfield bake --format bevy`: Bevy's
+//!   `IrradianceVolume` in Bevy's units, and nearfield's volume beside it), reads that volume
+//!   beyond R, and keeps of Bevy's volume light only what the technique does not draw itself,
+//!   so that near and far are counted once. [`scene`] spawns a nearfield scene's meshes, lights
+//!   and exposure as `nearfield render` draws them.
 //!
 //! Settings that are out of range (or NaN) are refused with one logged line; the camera then
 //! renders without the effect. The book's page `docs/src/bevy.md` has the setup, the settings,
 //! the cost beside Bevy's SSAO, and pictures.
 
+pub mod far;
 pub mod readback;
 pub mod render;
 pub mod scene;
@@ -29,6 +36,7 @@ use bevy::pbr::{
 use bevy::prelude::*;
 use bevy::render::RenderApp;
 use bevy::render::extract_component::{ExtractComponent, ExtractComponentPlugin};
+use bevy::render::extract_resource::ExtractResourcePlugin;
 use bevy::render::sync_component::SyncComponent;
 use bevy::render::view::Msaa;
 use nearfield_render::technique::{self, TechniqueParams};
@@ -229,6 +237,7 @@ impl Plugin for NearFieldPlugin {
     fn build(&self, app: &mut App) {
         app.register_type::<NearField>()
             .add_plugins(ExtractComponentPlugin::<NearField>::default())
+            .add_plugins(ExtractResourcePlugin::<far::NearFieldVolume>::default())
             .add_systems(
                 Update,
                 (check_settings, apply_refusals.after(check_settings)),

@@ -1,20 +1,25 @@
 //! nearfield's scenes in Bevy: a scene loaded by `nearfield_scene` (a glTF file, or one written
-//! by `nearfield export`) spawned as Bevy meshes with `StandardMaterial`s, and nearfield's camera
-//! as a Bevy transform and projection — so that Bevy and `nearfield render` see the same thing.
+//! by `nearfield export`) spawned as Bevy meshes with `StandardMaterial`s, its lights (and the
+//! environment's sun) as Bevy's lights in Bevy's units, nearfield's camera as a Bevy transform
+//! and projection, and nearfield's exposure as Bevy's — so that Bevy and `nearfield render`
+//! see the same thing at the same exposure (docs/src/bevy.md, "Units").
 
 use bevy::asset::RenderAssetUsages;
-use bevy::camera::{PerspectiveProjection, Projection};
+use bevy::camera::{Exposure, PerspectiveProjection, Projection};
 use bevy::image::{ImageAddressMode, ImageSampler, ImageSamplerDescriptor};
 use bevy::mesh::{Indices, PrimitiveTopology};
 use bevy::prelude::*;
 use bevy::render::render_resource::{Extent3d, TextureDimension, TextureFormat};
-use nearfield_scene::{AlphaMode, Scene, TextureColorSpace};
+use nearfield_scene::{AlphaMode, Environment, LightKind, Scene, TextureColorSpace};
 
 /// How the spawned materials are shaded.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Shading {
     /// Bevy's PBR with the scene's base colour, metallic, roughness and emission.
     Lit,
+    /// As `Lit` without the specular lobe (reflectance 0, so F0 = 0): the diffuse part alone,
+    /// the quantity of nearfield's `lambertian` AOV and of its path tracer.
+    Diffuse,
     /// Unlit: each surface shows its base colour times this factor (what a constant sky of
     /// radiance `factor` gives a diffuse surface before occlusion).
     Unlit(f32),
@@ -68,7 +73,7 @@ pub fn spawn_scene(
             let texture_of = |i: Option<usize>| i.and_then(|i| textures.get(i).cloned());
             let texture = texture_of(m.base_color_texture);
             let (unlit, base_color) = match shading {
-                Shading::Lit => (false, Color::linear_rgba(c.x, c.y, c.z, c.w)),
+                Shading::Lit | Shading::Diffuse => (false, Color::linear_rgba(c.x, c.y, c.z, c.w)),
                 Shading::Unlit(f) => (true, Color::linear_rgba(f * c.x, f * c.y, f * c.z, c.w)),
             };
             materials.add(StandardMaterial {
@@ -83,13 +88,22 @@ pub fn spawn_scene(
                 emissive_texture: texture_of(m.emissive_texture),
                 emissive: LinearRgba::rgb(m.emissive.x, m.emissive.y, m.emissive.z),
                 double_sided: m.double_sided,
-                cull_mode: (!m.double_sided).then_some(bevy::render::render_resource::Face::Back),
+                // No culling, as nearfield's shadow maps: Bevy's shadow pass culls with the
+                // material's mode, so a single-sided wall lit from behind (the Cornell box's
+                // walls, Sponza's) would cast no shadow. From inside a scene the back faces are
+                // behind front ones; one seen from outside is shaded with its front normal.
+                cull_mode: None,
                 alpha_mode: match m.alpha_mode {
                     AlphaMode::Opaque => bevy::prelude::AlphaMode::Opaque,
                     AlphaMode::Mask { cutoff } => bevy::prelude::AlphaMode::Mask(cutoff),
                     AlphaMode::Blend => bevy::prelude::AlphaMode::Blend,
                 },
                 unlit,
+                reflectance: if shading == Shading::Diffuse {
+                    0.0
+                } else {
+                    0.5
+                },
                 ..default()
             })
         })
@@ -134,4 +148,89 @@ pub fn camera(
         ..default()
     });
     (transform, projection)
+}
+
+/// Bevy's luminous power (lm) of a point or spot light of `candela` (Bevy reads 4π lm as 1 cd).
+pub fn lumens(candela: f32) -> f32 {
+    4.0 * std::f32::consts::PI * candela
+}
+
+/// Spawns the scene's lights and the environment's sun (its disc as a parallel light) with
+/// shadows, in Bevy's units: a directional light's lux is its `illuminance`, a point or spot
+/// light's candela [`lumens`]. A light without a range gets ten times the scene's diagonal
+/// (Bevy windows every point and spot light by its range). Returns the lights spawned.
+pub fn spawn_lights(commands: &mut Commands, scene: &Scene, env: &Environment) -> Vec<Entity> {
+    let b = scene.bounds();
+    let reach = 10.0 * (b.max - b.min).length().max(1.0);
+    let colour = |c: glam::Vec3| Color::linear_rgb(c.x, c.y, c.z);
+    scene
+        .lights
+        .iter()
+        .chain(env.sun_light().as_ref())
+        .map(|l| {
+            let range = l.range.unwrap_or(reach);
+            match l.kind {
+                LightKind::Directional { direction, .. } => commands.spawn((
+                    DirectionalLight {
+                        color: colour(l.color),
+                        illuminance: l.intensity,
+                        shadow_maps_enabled: true,
+                        ..default()
+                    },
+                    Transform::default().looking_to(v3(direction), up_for(v3(direction))),
+                )),
+                LightKind::Point { position } => commands.spawn((
+                    PointLight {
+                        color: colour(l.color),
+                        intensity: lumens(l.intensity),
+                        range,
+                        shadow_maps_enabled: true,
+                        ..default()
+                    },
+                    Transform::from_translation(v3(position)),
+                )),
+                LightKind::Spot {
+                    position,
+                    direction,
+                    inner_cone,
+                    outer_cone,
+                } => commands.spawn((
+                    SpotLight {
+                        color: colour(l.color),
+                        intensity: lumens(l.intensity),
+                        range,
+                        // Bevy's cone must stay below π/2.
+                        inner_angle: inner_cone.min(MAX_CONE),
+                        outer_angle: outer_cone.min(MAX_CONE),
+                        shadow_maps_enabled: true,
+                        ..default()
+                    },
+                    Transform::from_translation(v3(position))
+                        .looking_to(v3(direction), up_for(v3(direction))),
+                )),
+            }
+            .id()
+        })
+        .collect()
+}
+
+/// The widest spot cone Bevy takes (its `outer_angle` must be below π/2).
+const MAX_CONE: f32 = std::f32::consts::FRAC_PI_2 - 1e-3;
+
+/// An up vector not parallel to `d`.
+fn up_for(d: Vec3) -> Vec3 {
+    if d.normalize_or_zero().y.abs() > 0.99 {
+        Vec3::Z
+    } else {
+        Vec3::Y
+    }
+}
+
+/// Bevy's camera exposure for nearfield's `--exposure` (stops): nearfield shows radiance ×
+/// 2^stops, Bevy radiance × 2^−ev100 / 1.2, so ev100 = −log2(1.2) − stops. At nearfield's
+/// default (0) a radiance of 1 cd/m² is 1 in both images before tone mapping.
+pub fn exposure(stops: f32) -> Exposure {
+    Exposure {
+        ev100: -(1.2f32).log2() - stops,
+    }
 }

@@ -4,18 +4,20 @@
 //! by copies inside Bevy's frame (`NearFieldReadback`), not from screenshots.
 //!
 //! One test binary (Bevy is built once): ao, indirect light, ao along a camera path (with Bevy's
-//! motion vectors, without them, under Bevy's TAA), refused settings.
+//! motion vectors, without them, under Bevy's TAA), refused settings; and the far field: the
+//! built-ins' volume baked and read by Bevy in Bevy's units, beside their lights.
 
 use bevy::anti_alias::taa::TemporalAntiAliasing;
 use bevy::camera::Hdr;
 use bevy::camera::RenderTarget;
-use bevy::core_pipeline::prepass::MotionVectorPrepass;
+use bevy::core_pipeline::prepass::{DeferredPrepass, MotionVectorPrepass};
 use bevy::core_pipeline::tonemapping::{DebandDither, Tonemapping};
 use bevy::prelude::*;
 use bevy::render::render_resource::{TextureFormat, TextureUsages};
 use bevy::render::view::Msaa;
 use bevy::render::view::screenshot::{Screenshot, ScreenshotCaptured};
 use bevy::window::ExitCondition;
+use bevy_nearfield::far::BakedVolume;
 use bevy_nearfield::scene::{self, Shading};
 use bevy_nearfield::{
     NearField, NearFieldChecked, NearFieldImages, NearFieldPlugin, NearFieldQuality,
@@ -31,12 +33,16 @@ const FRAMES: u32 = 24;
 /// Frames along the camera path (about a second of the walk at 30 fps).
 const PATH_FRAMES: u32 = 32;
 
-/// The Cornell box as `nearfield export` writes it, loaded back.
-fn exported_cornell() -> nearfield_scene::Scene {
-    let scene = nearfield_scene::builtin::scene("cornell").unwrap();
+/// A built-in scene as `nearfield export` writes it (with its lights), loaded back (a file of
+/// its own per call). The tests run one at a time (`--test-threads=1`, the Makefile): nearfield's
+/// `GpuContext` beside another test's Bevy device may be taken for it (pipeline_cache.rs).
+fn exported(name: &str) -> nearfield_scene::Scene {
+    static CALLS: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
+    let call = CALLS.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    let scene = nearfield_scene::builtin::scene(name).unwrap();
     let dir = std::env::temp_dir().join(format!("bevy-nearfield-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
-    let path = dir.join("cornell.glb");
+    let path = dir.join(format!("{name}-{call}.glb"));
     let camera = scene.default_camera();
     nearfield_scene::export::write_gltf(&scene, &camera, SIZE.0 as f32 / SIZE.1 as f32, &path)
         .unwrap();
@@ -50,7 +56,8 @@ const WARMUP: u32 = 6;
 /// How a headless Bevy app runs: the technique, its frames, and how the camera moves.
 struct Setup {
     shading: Shading,
-    near_field: NearField,
+    /// None: Bevy alone.
+    near_field: Option<NearField>,
     frames: u32,
     /// The camera first renders [`WARMUP`] frames at quality Low (below).
     warmup: bool,
@@ -62,18 +69,29 @@ struct Setup {
     motion_vectors: bool,
     /// Bevy's TAA on the camera (its jittered projection, its motion vectors).
     taa: bool,
+    /// The scene lit in Bevy's units: its lights and the environment's sun, a baked volume, and
+    /// nearfield's exposure 0 (None: no lights; the unlit parts need none).
+    lighting: Option<Lighting>,
+}
+
+/// What lights a scene in Bevy: [`scene::spawn_lights`] of the scene and `env`, and the volume.
+#[derive(Clone)]
+struct Lighting {
+    env: nearfield_scene::Environment,
+    volume: Option<BakedVolume>,
 }
 
 impl Setup {
     fn still(shading: Shading, near_field: NearField, frames: u32, warmup: bool) -> Self {
         Setup {
             shading,
-            near_field,
+            near_field: Some(near_field),
             frames,
             warmup,
             path: None,
             motion_vectors: false,
             taa: false,
+            lighting: None,
         }
     }
 }
@@ -93,6 +111,7 @@ fn run_bevy(scene: &nearfield_scene::Scene, setup: Setup) -> Run {
         path,
         motion_vectors,
         taa,
+        lighting,
     } = setup;
     let mut app = App::new();
     app.add_plugins(
@@ -111,12 +130,18 @@ fn run_bevy(scene: &nearfield_scene::Scene, setup: Setup) -> Run {
         ..default()
     })
     .insert_resource(ClearColor(Color::BLACK));
+    if lighting.is_some() && near_field.is_some() {
+        // Materials drawn deferred: the plugin's indirect light reads ρ from Bevy's G-buffer,
+        // which forward materials leave empty.
+        app.insert_resource(bevy::pbr::DefaultOpaqueRendererMethod::deferred());
+    }
     let scene_copy = scene.clone();
     let mut image = Image::new_target_texture(SIZE.0, SIZE.1, TextureFormat::Rgba16Float, None);
     image.texture_descriptor.usage |= TextureUsages::COPY_SRC;
     let target = app.world_mut().resource_mut::<Assets<Image>>().add(image);
     let target_copy = target.clone();
     let camera_entity = app.world_mut().spawn_empty().id();
+    let with_plugin = near_field.is_some();
     let start = path
         .as_ref()
         .map_or(scene.default_camera(), |p| p.camera(0));
@@ -134,6 +159,12 @@ fn run_bevy(scene: &nearfield_scene::Scene, setup: Setup) -> Run {
                 &scene_copy,
                 shading,
             );
+            if let Some(l) = &lighting {
+                scene::spawn_lights(&mut commands, &scene_copy, &l.env);
+                if let Some(v) = l.volume.clone() {
+                    v.spawn(&mut commands, &mut images);
+                }
+            }
             let (transform, projection) = scene::camera(&start, SIZE, 0.01);
             let mut camera = commands.entity(camera_entity);
             camera.insert((
@@ -153,11 +184,18 @@ fn run_bevy(scene: &nearfield_scene::Scene, setup: Setup) -> Run {
             if taa {
                 camera.insert(TemporalAntiAliasing::default());
             }
+            if lighting.is_some() {
+                camera.insert(scene::exposure(0.0));
+                // The plugin adds its indirect light where Bevy's deferred G-buffer is.
+                if with_plugin {
+                    camera.insert(DeferredPrepass);
+                }
+            }
         },
     );
     app.finish();
     app.cleanup();
-    if warmup {
+    if let Some(near_field) = near_field.as_ref().filter(|_| warmup) {
         let low = NearField {
             quality: NearFieldQuality::Low,
             ..near_field.clone()
@@ -167,7 +205,9 @@ fn run_bevy(scene: &nearfield_scene::Scene, setup: Setup) -> Run {
             app.update();
         }
     }
-    app.world_mut().entity_mut(camera_entity).insert(near_field);
+    if let Some(near_field) = near_field {
+        app.world_mut().entity_mut(camera_entity).insert(near_field);
+    }
     let mut sequence = Vec::new();
     for k in 0..frames {
         if let Some(path) = &path {
@@ -201,15 +241,20 @@ fn run_bevy(scene: &nearfield_scene::Scene, setup: Setup) -> Run {
         }
     }
     let bytes = presented.lock().unwrap().take().unwrap_or_default();
-    let lit = bytes
+    let presented: Vec<[f32; 3]> = bytes
         .chunks_exact(8)
-        .filter(|p| half::f16::from_le_bytes([p[0], p[1]]).to_f32() > 0.0)
-        .count();
+        .map(|p| {
+            let c = |k: usize| half::f16::from_le_bytes([p[2 * k], p[2 * k + 1]]).to_f32();
+            [c(0), c(1), c(2)]
+        })
+        .collect();
+    let lit = presented.iter().filter(|p| p[0] > 0.0).count();
     Run {
         images,
         sequence,
         checked,
         lit,
+        presented,
     }
 }
 
@@ -221,6 +266,8 @@ struct Run {
     checked: Option<NearFieldChecked>,
     /// Pixels of the camera's target with a red channel above 0.
     lit: usize,
+    /// The camera's target (linear, Bevy's exposure applied; no tone mapping), row 0 at the top.
+    presented: Vec<[f32; 3]>,
 }
 
 /// nearfield's own frames 1..=`frames` of the same view, frame k + 1 drawn from `camera(k)` (as
@@ -286,8 +333,9 @@ fn along(
     setup: Setup,
     metric: impl Fn(&ReadbackImages, &Reference) -> f64,
 ) -> Vec<f64> {
-    let technique = setup.near_field.technique;
-    let params = setup.near_field.params().unwrap();
+    let near_field = setup.near_field.as_ref().expect("a NearField");
+    let technique = near_field.technique;
+    let params = near_field.params().unwrap();
     let path = setup.path.clone().expect("a path");
     let frames = setup.frames;
     let run = run_bevy(scene, setup);
@@ -354,7 +402,7 @@ fn relative_error(a: &[[f32; 3]], b: &[[f32; 3]], covered: &[bool]) -> f64 {
 
 #[test]
 fn the_plugin_matches_nearfield_render() {
-    let scene = exported_cornell();
+    let scene = exported("cornell");
     let env = scene.default_env.load().unwrap();
 
     // 1. ao of each technique at the High preset: MAE ≤ 0.01 over the surface pixels.
@@ -538,5 +586,218 @@ fn the_plugin_matches_nearfield_render() {
             "{} pixels lit",
             run.lit
         );
+    }
+}
+
+/// The linear mean over the covered pixels.
+fn mean(image: &[[f32; 3]], covered: &[bool]) -> f64 {
+    let (sum, n) = image
+        .iter()
+        .zip(covered)
+        .filter(|(_, c)| **c)
+        .fold((0.0f64, 0usize), |(s, n), (p, _)| {
+            (s + (p[0] + p[1] + p[2]) as f64 / 3.0, n + 1)
+        });
+    sum / n.max(1) as f64
+}
+
+/// Samples per pixel of the path-traced truth of [`the_far_field_is_read_in_bevys_units`] (its
+/// image mean over 57 600 pixels is then known to well under 1 %, and its noise is the same
+/// floor under every frame it is compared with).
+const TRUTH_SPP: u32 = 64;
+
+/// The far field in Bevy's units (docs/src/bevy.md, "Units"): each built-in, exported with its
+/// lights, baked as `nearfield bake --format bevy` bakes it, and drawn by Bevy alone with the
+/// scene's lights, the environment's sun and the volume at the file's intensity, at nearfield's
+/// exposure 0 (Bevy's diffuse part: no specular lobe). The linear image mean over the surface
+/// is within 10 % of `nearfield render --method none --far volume` (its `lambertian` AOV) and
+/// within 15 % of the path tracer's. Controls: the volume left out, and its light counted at the
+/// example's old factor of 2000, are both far outside. With the plugin on the same frame, the
+/// volume its far field, gtao, hbil and vbgi leave the image error against the path tracer no
+/// worse than Bevy's without them; hbil without the volume (a white sky) is worse than with it.
+#[test]
+fn the_far_field_is_read_in_bevys_units() {
+    for name in ["cornell", "two-rooms", "closed-box"] {
+        let scene = exported(name);
+        // The environment as nearfield's commands load it (`--sun auto`: the sky's sun split
+        // out as a disc light, which Bevy draws as its directional light).
+        let (env, _) = scene
+            .default_env
+            .load_split(nearfield_scene::sun::SunMode::Auto)
+            .unwrap();
+        let camera = scene.default_camera();
+        let grid = nearfield_reference::bake::default_grid(&scene).unwrap();
+        let settings = nearfield_reference::bake::BakeSettings {
+            grid,
+            rays: nearfield_reference::bake::default_rays(&scene),
+            bounces: nearfield_reference::bake::DEFAULT_BOUNCES,
+        };
+        let volume = nearfield_reference::bake::bake(&scene, &env, settings, false, None).unwrap();
+        // BEVY_SUBDIVISION=K measures another resampling (docs/src/bevy.md, "The far field").
+        let k = std::env::var("BEVY_SUBDIVISION")
+            .ok()
+            .and_then(|k| k.parse().ok())
+            .unwrap_or(nearfield_scene::probes::bevy::SUBDIVISION);
+        let ktx2 = nearfield_scene::probes::bevy::BevyVolume::resampled(&volume, k).to_ktx2();
+        let baked = BakedVolume::from_ktx2(&ktx2).unwrap();
+
+        // nearfield: `none` with the volume as its far field, the lambertian AOV (its GPU
+        // context dropped before Bevy makes its own).
+        let lambertian = {
+            let ctx = GpuContext::new(None).expect("an adapter (lavapipe in CI)");
+            let none =
+                nearfield_render::technique::Spec::resolve("none", &TechniqueParams::default())
+                    .unwrap();
+            let render_settings = RenderSettings {
+                size: SIZE,
+                ..Default::default()
+            };
+            let mut r = Renderer::new(
+                &ctx,
+                &scene,
+                &env,
+                Some(&volume),
+                camera,
+                &none,
+                render_settings,
+            )
+            .unwrap();
+            r.render_frame();
+            r.read_aov(Aov::Lambertian)
+        };
+        let covered: Vec<bool> = lambertian.pixels.iter().map(|p| p[3] > 0.0).collect();
+        let rgb = |p: &[f32; 4]| [p[0], p[1], p[2]];
+        let nearfield: Vec<[f32; 3]> = lambertian.pixels.iter().map(rgb).collect();
+
+        // The path tracer (Lambertian surfaces, the environment and lights, 8 segments).
+        let truth = nearfield_reference::render(
+            &scene,
+            &env,
+            &camera,
+            &nearfield_reference::ReferenceSettings {
+                aov: nearfield_reference::ReferenceAov::Radiance,
+                size: SIZE,
+                spp: TRUTH_SPP,
+                max_depth: 8,
+                ..Default::default()
+            },
+            false,
+        );
+        let truth: Vec<[f32; 3]> = truth.value.iter().map(rgb).collect();
+
+        let bevy = |volume: Option<BakedVolume>| {
+            let setup = Setup {
+                near_field: None,
+                lighting: Some(Lighting {
+                    env: env.clone(),
+                    volume,
+                }),
+                ..Setup::still(Shading::Diffuse, NearField::default(), FRAMES, false)
+            };
+            run_bevy(&scene, setup).presented
+        };
+        let with_volume = bevy(Some(baked.clone()));
+        let without = bevy(None);
+        let scaled = bevy(Some(BakedVolume {
+            intensity: baked.intensity * 2000.0,
+            ..baked.clone()
+        }));
+        assert_eq!(with_volume.len(), covered.len(), "the target's size");
+
+        let (m_bevy, m_nf, m_truth) = (
+            mean(&with_volume, &covered),
+            mean(&nearfield, &covered),
+            mean(&truth, &covered),
+        );
+        let (m_without, m_scaled) = (mean(&without, &covered), mean(&scaled, &covered));
+        eprintln!(
+            "{name}: relative error of Bevy + volume against nearfield {:.4}, against the path \
+             tracer {:.4} (nearfield's {:.4})",
+            relative_error(&with_volume, &nearfield, &covered),
+            relative_error(&with_volume, &truth, &covered),
+            relative_error(&nearfield, &truth, &covered)
+        );
+        eprintln!(
+            "{name}: image mean Bevy + volume {m_bevy:.4}, nearfield none --far volume \
+             {m_nf:.4} ({:.3}×), path tracer {m_truth:.4} ({:.3}×); Bevy without the volume \
+             {m_without:.4} ({:.3}×), volume × 2000 {m_scaled:.2} ({:.1}×); {} surface pixels",
+            m_bevy / m_nf,
+            m_bevy / m_truth,
+            m_without / m_truth,
+            m_scaled / m_truth,
+            covered.iter().filter(|c| **c).count()
+        );
+        assert!(
+            (m_bevy / m_nf - 1.0).abs() <= 0.10,
+            "{name}: Bevy {m_bevy} against nearfield {m_nf}"
+        );
+        assert!(
+            (m_bevy / m_truth - 1.0).abs() <= 0.15,
+            "{name}: Bevy {m_bevy} against the path tracer {m_truth}"
+        );
+        // The plugin on Bevy's volume-lit frame (its ao into Bevy's, its indirect light added),
+        // the baked volume its far field: counted once, no technique makes the frame worse.
+        // Control: hbil without the volume as its far field (a white sky, its near light added
+        // on top of the volume's, which holds it already) is worse than with it.
+        let bevy_alone = relative_error(&with_volume, &truth, &covered);
+        let plugin = |technique: NearFieldTechnique, far: bool| {
+            let volume = BakedVolume {
+                volume: baked.volume.clone().filter(|_| far),
+                ..baked.clone()
+            };
+            let setup = Setup {
+                lighting: Some(Lighting {
+                    env: env.clone(),
+                    volume: Some(volume),
+                }),
+                ..Setup::still(
+                    Shading::Diffuse,
+                    NearField {
+                        technique,
+                        quality: NearFieldQuality::High,
+                        ..default()
+                    },
+                    FRAMES,
+                    true,
+                )
+            };
+            let frame = run_bevy(&scene, setup).presented;
+            let error = relative_error(&frame, &truth, &covered);
+            eprintln!(
+                "{name}: Bevy + volume + {}{}: relative error {error:.4} (Bevy + volume \
+                 {bevy_alone:.4}), mean {:.3}× the truth's",
+                technique.name(),
+                if far { "" } else { " (a white sky)" },
+                mean(&frame, &covered) / m_truth
+            );
+            error
+        };
+        let mut once = 0.0;
+        for technique in [
+            NearFieldTechnique::GTAO,
+            NearFieldTechnique::HBIL,
+            NearFieldTechnique::VBGI,
+        ] {
+            let error = plugin(technique, true);
+            assert!(
+                error <= bevy_alone,
+                "{name}: {} {error} against Bevy + volume {bevy_alone}",
+                technique.name()
+            );
+            if technique == NearFieldTechnique::HBIL {
+                once = error;
+            }
+        }
+        let twice = plugin(NearFieldTechnique::HBIL, false);
+        assert!(
+            twice > once,
+            "{name}: hbil on a white sky {twice}, counted once {once}"
+        );
+        // The controls: the volume's light matters, and its units are not off by a factor.
+        assert!(
+            (m_without / m_truth - 1.0).abs() > 0.15,
+            "{name}: without the volume"
+        );
+        assert!(m_scaled / m_truth > 2.0, "{name}: the volume at × 2000");
     }
 }

@@ -109,6 +109,17 @@ pub(super) fn inputs_and_technique(
         let ao_group = AoBindings {
             near_field_ao: &nf.images.ao.view,
             bevy_ao: &target.default_view,
+            ao_view_depth: &nf.images.view_depth.view,
+            ao_normal: &nf.images.normal.view,
+            ao_env_irradiance: nf
+                .images
+                .env_irradiance
+                .as_ref()
+                .map_or(&nf.images.ao.view, |i| &i.view),
+            ao_gbuffer: prepass
+                .deferred
+                .as_ref()
+                .map_or(&pipelines.no_gbuffer, |g| &*g.texture.default_view),
         }
         .bind_group(device, &pipelines.ao_layout);
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
@@ -118,6 +129,7 @@ pub(super) fn inputs_and_technique(
         pass.set_pipeline(&pipelines.ao);
         pass.set_bind_group(0, &nf.glue_group, &[]);
         pass.set_bind_group(1, &ao_group, &[]);
+        pass.set_bind_group(2, &nf.far_group, &[]);
         pass.dispatch_workgroups(nf.size.x.div_ceil(8), nf.size.y.div_ceil(8), 1);
     }
     if readback.is_some() {

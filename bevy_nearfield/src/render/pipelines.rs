@@ -17,9 +17,9 @@ nearfield_render::gpu_struct! {
         pub has_motion: u32,
         pub indirect_intensity: f32,
         pub ambient_occlusion: u32,
-        pub _pad0: u32,
-        pub _pad1: u32,
-        pub _pad2: u32,
+        pub far_rule: u32,
+        pub has_gbuffer: u32,
+        pub _pad: u32,
     }
 }
 
@@ -65,10 +65,29 @@ nearfield_render::bind_group! {
 
 nearfield_render::bind_group! {
     /// Group 1 of `cs_ao`: nearfield's ao into Bevy's ao image (whose format the adapter
-    /// decides: [`ao_layout`]).
+    /// decides: [`ao_layout`]), with what the far rule reads of the pixel.
     pub struct AoBindings: COMPUTE {
         near_field_ao: view = kind::TEXTURE_UNFILTERABLE,
         bevy_ao: view = kind::write(wgpu::TextureFormat::R16Float),
+        /// nearfield's view depth and world normal (the inputs pass's).
+        ao_view_depth: view = kind::TEXTURE_UNFILTERABLE,
+        ao_normal: view = kind::TEXTURE_UNFILTERABLE,
+        /// The technique's env-irradiance, or any image where it writes none.
+        ao_env_irradiance: view = kind::TEXTURE_UNFILTERABLE,
+        /// Bevy's deferred G-buffer, or [`GluePipelines::no_gbuffer`].
+        ao_gbuffer: view = kind::TEXTURE_UINT,
+    }
+}
+
+nearfield_render::bind_group! {
+    /// Group 2 of `cs_ao`: nearfield's view of the frame and the far field the technique read
+    /// (the sky's or a baked volume's, `GpuFarField`), with the environment's sampler.
+    pub struct FarBindings: COMPUTE {
+        ao_cam: buffer = kind::UNIFORM,
+        ao_far_probes: view = kind::TEXTURE_UNFILTERABLE,
+        ao_far_visibility: view = kind::TEXTURE,
+        ao_far_atlas: view = kind::TEXTURE,
+        ao_far_sampler: sampler = kind::SAMPLER,
     }
 }
 
@@ -79,11 +98,22 @@ fn ao_layout(device: &wgpu::Device, format: wgpu::TextureFormat) -> wgpu::BindGr
     nearfield_render::bindings::layout(device, "AoBindings", &slots, AoBindings::STAGES)
 }
 
+/// The section of the glue that reads nearfield's far field ([`glue_section`]).
+pub(super) const AO_SECTION: usize = 4;
+
 /// The glue shader's header (the `Glue` uniform, the full-screen triangle) with one of its
-/// sections (split at the lines that start with `// --- `).
+/// sections (split at the lines that start with `// --- `); the ao section after nearfield's
+/// libraries common.wgsl, env.wgsl and far.wgsl, whose far-field lookups it makes.
 pub(super) fn glue_section(index: usize, ao_format: &str) -> String {
+    use nearfield_render::util::{COMMON_WGSL, ENV_WGSL, FAR_WGSL};
     let sections: Vec<&str> = GLUE.split("\n// --- ").collect();
-    format!("{}\n// --- {}", sections[0], sections[index]).replace("AO_FORMAT", ao_format)
+    let libraries = if index == AO_SECTION {
+        format!("{COMMON_WGSL}\n{ENV_WGSL}\n{FAR_WGSL}\n")
+    } else {
+        String::new()
+    };
+    format!("{libraries}{}\n// --- {}", sections[0], sections[index])
+        .replace("AO_FORMAT", ao_format)
 }
 
 /// The glue's pipelines, made once on Bevy's device.
@@ -99,7 +129,10 @@ pub(crate) struct GluePipelines {
     /// The additive pass, by Bevy's main-texture format (hdr and not).
     pub add: Vec<(wgpu::TextureFormat, wgpu::RenderPipeline)>,
     pub ao_layout: wgpu::BindGroupLayout,
+    pub far_layout: wgpu::BindGroupLayout,
     pub ao: wgpu::ComputePipeline,
+    /// A 1×1 rgba32uint image bound where Bevy's G-buffer is not (`has_gbuffer` = 0).
+    pub no_gbuffer: wgpu::TextureView,
 }
 
 /// A full-screen triangle's pipeline over the glue's group and `groups[1]`, with fragment
@@ -160,6 +193,7 @@ impl FromWorld for GluePipelines {
         let capture_layout = CaptureBindings::layout(&device);
         let add_layout = AddBindings::layout(&device);
         let ao_layout = ao_layout(&device, ao_format);
+        let far_layout = FarBindings::layout(&device);
         let module = |label, index| {
             let format = match ao_format {
                 wgpu::TextureFormat::R16Float => "r16float",
@@ -223,12 +257,28 @@ impl FromWorld for GluePipelines {
                 (format, p)
             })
             .collect();
-        let ao_module = module("nearfield glue ao", 4);
+        let ao_module = module("nearfield glue ao", AO_SECTION);
         let ao_pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some("nearfield glue ao"),
-            bind_group_layouts: &[Some(&glue_layout), Some(&ao_layout)],
+            bind_group_layouts: &[Some(&glue_layout), Some(&ao_layout), Some(&far_layout)],
             immediate_size: 0,
         });
+        let no_gbuffer = device
+            .create_texture(&wgpu::TextureDescriptor {
+                label: Some("nearfield no G-buffer"),
+                size: wgpu::Extent3d {
+                    width: 1,
+                    height: 1,
+                    depth_or_array_layers: 1,
+                },
+                mip_level_count: 1,
+                sample_count: 1,
+                dimension: wgpu::TextureDimension::D2,
+                format: F::Rgba32Uint,
+                usage: wgpu::TextureUsages::TEXTURE_BINDING,
+                view_formats: &[],
+            })
+            .create_view(&Default::default());
         let ao = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
             label: Some("nearfield glue ao"),
             layout: Some(&ao_pipeline_layout),
@@ -246,7 +296,9 @@ impl FromWorld for GluePipelines {
             add_layout,
             add,
             ao_layout,
+            far_layout,
             ao,
+            no_gbuffer,
         }
     }
 }
@@ -260,7 +312,7 @@ mod tests {
         ("fs_inputs", 1),
         ("fs_capture", 2),
         ("fs_add_indirect", 3),
-        ("cs_ao", 4),
+        ("cs_ao", AO_SECTION),
     ];
 
     /// Each section's bindings and the `Glue` uniform agree with their declarations here.
@@ -275,11 +327,17 @@ mod tests {
         let mut errors = Vec::new();
         for ((entry, index), group1) in SECTIONS.into_iter().zip(own) {
             let source = glue_section(index, "r16float");
+            let far: &[_] = if index == AO_SECTION {
+                FarBindings::SLOTS
+            } else {
+                &[]
+            };
+            let groups: Vec<_> = [GlueBindings::SLOTS, group1, far]
+                .into_iter()
+                .filter(|g| !g.is_empty())
+                .collect();
             errors.extend(nearfield_render::reflect::group_mismatches(
-                entry,
-                &source,
-                entry,
-                &[GlueBindings::SLOTS, group1],
+                entry, &source, entry, &groups,
             ));
             errors.extend(nearfield_render::reflect::struct_mismatches(
                 &source,

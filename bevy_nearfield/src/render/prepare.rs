@@ -1,6 +1,7 @@
 //! Each view's nearfield, made (or remade) and given this frame's uniforms before the graph runs.
 
-use super::pipelines::{Glue, GlueBindings, GluePipelines};
+use super::pipelines::{FarBindings, Glue, GlueBindings, GluePipelines};
+use crate::far::NearFieldVolume;
 use crate::readback::ReadbackBuffers;
 use crate::{ExtractedNearField, NearFieldTechnique};
 use bevy::core_pipeline::prepass::ViewPrepassTextures;
@@ -18,9 +19,11 @@ use nearfield_render::gpu_env::GpuEnvironment;
 use nearfield_render::passes::FrameGroup;
 use nearfield_render::profiler::GpuProfiler;
 use nearfield_render::technique::{
-    self, FrameInfo, Output, Technique, TechniqueContext, TechniqueParams,
+    self, FarRule, FrameInfo, Output, Technique, TechniqueContext, TechniqueParams,
 };
 use nearfield_render::wgpu;
+use nearfield_scene::probes::ProbeVolume;
+use std::sync::Arc;
 use std::sync::Mutex;
 use wgpu::util::DeviceExt;
 
@@ -42,7 +45,7 @@ pub struct Images {
     pub(super) ao: Image,
     /// The outputs the technique declares besides ao (`TechniqueDesc::writes`): gtao writes
     /// none of these three, hbil and vbgi env- and indirect-irradiance.
-    env_irradiance: Option<Image>,
+    pub(super) env_irradiance: Option<Image>,
     pub(super) indirect_irradiance: Option<Image>,
     light_irradiance: Option<Image>,
 }
@@ -106,7 +109,22 @@ pub struct NearFieldView {
     pub(super) state: Mutex<State>,
     pub(super) ambient_occlusion: bool,
     pub(super) readback: Mutex<Option<ReadbackBuffers>>,
+    /// The baked volume the technique reads as its far field (None: a white sky).
+    pub(super) far_volume: Option<Arc<ProbeVolume>>,
+    /// glue.wgsl's `far_rule`: how the ao written into Bevy's meets Bevy's volume.
+    far_rule: u32,
+    /// Group 2 of the ao pass: nearfield's view and the technique's far field.
+    pub(super) far_group: wgpu::BindGroup,
     _keep: (GpuEnvironment, GpuFarField),
+}
+
+/// glue.wgsl's `far_rule` for a technique's rule, with a baked volume or without.
+fn glue_far_rule(rule: FarRule, volume: bool) -> u32 {
+    match (volume, rule) {
+        (true, FarRule::Occlusion) => 1,
+        (true, FarRule::Replace) => 2,
+        _ => 0,
+    }
 }
 
 /// nearfield's camera of a Bevy view: eye, view direction, up and vertical field of view; near
@@ -159,8 +177,13 @@ impl NearFieldView {
         size: UVec2,
         near_field: &ExtractedNearField,
         view: &ExtractedView,
+        volume: Option<&NearFieldVolume>,
     ) -> Result<Self, String> {
         let desc = technique::find(near_field.technique.name()).map_err(|e| e.to_string())?;
+        let radius = technique::radius_of(near_field.technique.name(), &near_field.params)
+            .map_err(|e| e.to_string())?
+            .filter(|r| r.is_finite() && *r > 0.0)
+            .unwrap_or(1.0);
         let images = Images::new(device, size, desc.writes);
         let (near, far) = near_far(view);
         let (camera, matrices) = camera_of(view, near, far);
@@ -180,11 +203,23 @@ impl NearFieldView {
             contents: bytemuck::bytes_of(&uniforms),
             usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
         });
-        // A white sky: the technique's env-irradiance is then its unoccluded fraction; Bevy's
-        // own environment light is shaded by Bevy and darkened by the ao.
+        // Without a baked volume a white sky: the technique's env-irradiance is then its
+        // unoccluded fraction; Bevy's own environment light is shaded by Bevy and darkened by
+        // the ao. With one, the technique reads it beyond R (docs/src/bevy.md, "Counted once").
         let env = nearfield_scene::Environment::constant(glam::Vec3::ONE);
         let gpu_env = GpuEnvironment::new(device, queue, &env);
-        let far_field = GpuFarField::sky(device, queue);
+        let far_field = match volume {
+            Some(v) => GpuFarField::volume(device, queue, &v.0, radius),
+            None => GpuFarField::sky(device, queue),
+        };
+        let far_group = FarBindings {
+            ao_cam: &view_buffer,
+            ao_far_probes: &far_field.probes_view,
+            ao_far_visibility: &far_field.visibility_view,
+            ao_far_atlas: &far_field.irradiance_view,
+            ao_far_sampler: &gpu_env.sampler,
+        }
+        .bind_group(device, &pipelines.far_layout);
         // gtao, hbil and vbgi read nothing of nearfield's own frame: no `Frame` buffer.
         let frame_group = FrameGroup::new(device, &view_buffer, None, &gpu_env, &far_field);
         let inputs = NearFieldInputs {
@@ -252,6 +287,9 @@ impl NearFieldView {
             }),
             ambient_occlusion: near_field.ambient_occlusion,
             readback: Mutex::new(None),
+            far_volume: volume.map(|v| v.0.clone()),
+            far_rule: glue_far_rule(desc.far_rule, volume.is_some()),
+            far_group,
             _keep: (gpu_env, far_field),
         })
     }
@@ -267,6 +305,7 @@ impl NearFieldView {
         view: &ExtractedView,
         jitter: Option<&TemporalJitter>,
         has_motion: bool,
+        has_gbuffer: bool,
         intensity: f32,
     ) {
         let (near, far) = near_far(view);
@@ -307,9 +346,9 @@ impl NearFieldView {
             has_motion: has_motion as u32,
             indirect_intensity: intensity,
             ambient_occlusion: self.ambient_occlusion as u32,
-            _pad0: 0,
-            _pad1: 0,
-            _pad2: 0,
+            far_rule: self.far_rule,
+            has_gbuffer: has_gbuffer as u32,
+            _pad: 0,
         };
         queue.write_buffer(&self.glue_buffer, 0, bytemuck::bytes_of(&glue));
         self.technique.prepare(queue, &camera);
@@ -329,6 +368,7 @@ pub(super) fn prepare_views(
     queue: Res<RenderQueue>,
     pipelines: Res<GluePipelines>,
     refusals: Res<crate::Refusals>,
+    volume: Option<Res<NearFieldVolume>>,
     views: Query<(
         Entity,
         &MainEntity,
@@ -351,11 +391,18 @@ pub(super) fn prepare_views(
             continue;
         }
         let has_motion = prepass.is_some_and(|p| p.motion_vectors.is_some());
+        let has_gbuffer = prepass.is_some_and(|p| p.deferred.is_some());
+        let volume = volume.as_deref();
         let current = existing.filter(|v| {
             v.size == size
                 && v.technique_name == near_field.technique
                 && v.params == near_field.params
                 && v.ambient_occlusion == near_field.ambient_occlusion
+                && match (&v.far_volume, volume) {
+                    (None, None) => true,
+                    (Some(a), Some(b)) => Arc::ptr_eq(a, &b.0),
+                    _ => false,
+                }
         });
         // A view made anew where the size or the settings changed (or the first frame).
         let fresh = match current {
@@ -367,6 +414,7 @@ pub(super) fn prepare_views(
                 size,
                 near_field,
                 view,
+                volume,
             ) {
                 Ok(v) => Some(v),
                 Err(e) => {
@@ -388,6 +436,7 @@ pub(super) fn prepare_views(
             view,
             jitter,
             has_motion,
+            has_gbuffer,
             near_field.indirect_intensity,
         );
         if let Some(v) = fresh {
