@@ -119,7 +119,7 @@ pub(super) fn inputs_and_technique(
             ao_gbuffer: prepass
                 .deferred
                 .as_ref()
-                .map_or(&pipelines.no_gbuffer, |g| &*g.texture.default_view),
+                .map_or(&pipelines.no_gbuffer.view, |g| &*g.texture.default_view),
         }
         .bind_group(device, &pipelines.ao_layout);
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {

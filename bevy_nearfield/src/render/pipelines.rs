@@ -132,7 +132,7 @@ pub(crate) struct GluePipelines {
     pub far_layout: wgpu::BindGroupLayout,
     pub ao: wgpu::ComputePipeline,
     /// A 1×1 rgba32uint image bound where Bevy's G-buffer is not (`has_gbuffer` = 0).
-    pub no_gbuffer: wgpu::TextureView,
+    pub no_gbuffer: nearfield_render::targets::Target,
 }
 
 /// A full-screen triangle's pipeline over the glue's group and `groups[1]`, with fragment
@@ -263,22 +263,13 @@ impl FromWorld for GluePipelines {
             bind_group_layouts: &[Some(&glue_layout), Some(&ao_layout), Some(&far_layout)],
             immediate_size: 0,
         });
-        let no_gbuffer = device
-            .create_texture(&wgpu::TextureDescriptor {
-                label: Some("nearfield no G-buffer"),
-                size: wgpu::Extent3d {
-                    width: 1,
-                    height: 1,
-                    depth_or_array_layers: 1,
-                },
-                mip_level_count: 1,
-                sample_count: 1,
-                dimension: wgpu::TextureDimension::D2,
-                format: F::Rgba32Uint,
-                usage: wgpu::TextureUsages::TEXTURE_BINDING,
-                view_formats: &[],
-            })
-            .create_view(&Default::default());
+        let no_gbuffer = nearfield_render::targets::Target::new(
+            &device,
+            "nearfield no G-buffer",
+            (1, 1),
+            F::Rgba32Uint,
+            wgpu::TextureUsages::TEXTURE_BINDING,
+        );
         let ao = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
             label: Some("nearfield glue ao"),
             layout: Some(&ao_pipeline_layout),
