@@ -176,7 +176,13 @@ impl Running {
         if size.width > 0 && size.height > 0 {
             surface.configure(&ctx.device, &config);
         }
-        let session = Session::new(ctx, plan.start)?;
+        let mut session = Session::new(ctx, plan.start)?;
+        // `--frames N` renders what `render --frames N` renders: every frame with the far field
+        // it will have (interactively the window opens at once with the sky and the volume
+        // comes in when its background bake is ready, at a frame that depends on the load).
+        if plan.frames.is_some() {
+            session.wait_bake().map_err(anyhow::Error::msg)?;
+        }
         let egui_ctx = egui::Context::default();
         let egui_state = egui_winit::State::new(
             egui_ctx.clone(),
