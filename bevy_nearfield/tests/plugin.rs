@@ -79,6 +79,10 @@ struct Setup {
 struct Lighting {
     env: nearfield_scene::Environment,
     volume: Option<BakedVolume>,
+    /// With the plugin: the materials drawn deferred, with Bevy's deferred prepass (the
+    /// plugin's indirect light reads ρ from that G-buffer, which forward materials leave empty);
+    /// false: forward, and the ao pass takes ρ = 0.5.
+    deferred: bool,
 }
 
 impl Setup {
@@ -130,9 +134,8 @@ fn run_bevy(scene: &nearfield_scene::Scene, setup: Setup) -> Run {
         ..default()
     })
     .insert_resource(ClearColor(Color::BLACK));
-    if lighting.is_some() && near_field.is_some() {
-        // Materials drawn deferred: the plugin's indirect light reads ρ from Bevy's G-buffer,
-        // which forward materials leave empty.
+    let deferred = near_field.is_some() && lighting.as_ref().is_some_and(|l| l.deferred);
+    if deferred {
         app.insert_resource(bevy::pbr::DefaultOpaqueRendererMethod::deferred());
     }
     let scene_copy = scene.clone();
@@ -141,7 +144,6 @@ fn run_bevy(scene: &nearfield_scene::Scene, setup: Setup) -> Run {
     let target = app.world_mut().resource_mut::<Assets<Image>>().add(image);
     let target_copy = target.clone();
     let camera_entity = app.world_mut().spawn_empty().id();
-    let with_plugin = near_field.is_some();
     let start = path
         .as_ref()
         .map_or(scene.default_camera(), |p| p.camera(0));
@@ -186,10 +188,9 @@ fn run_bevy(scene: &nearfield_scene::Scene, setup: Setup) -> Run {
             }
             if lighting.is_some() {
                 camera.insert(scene::exposure(0.0));
-                // The plugin adds its indirect light where Bevy's deferred G-buffer is.
-                if with_plugin {
-                    camera.insert(DeferredPrepass);
-                }
+            }
+            if deferred {
+                camera.insert(DeferredPrepass);
             }
         },
     );
@@ -691,6 +692,7 @@ fn the_far_field_is_read_in_bevys_units() {
                 lighting: Some(Lighting {
                     env: env.clone(),
                     volume,
+                    deferred: false,
                 }),
                 ..Setup::still(Shading::Diffuse, NearField::default(), FRAMES, false)
             };
@@ -740,7 +742,7 @@ fn the_far_field_is_read_in_bevys_units() {
         // Control: hbil without the volume as its far field (a white sky, its near light added
         // on top of the volume's, which holds it already) is worse than with it.
         let bevy_alone = relative_error(&with_volume, &truth, &covered);
-        let plugin = |technique: NearFieldTechnique, far: bool| {
+        let plugin = |technique: NearFieldTechnique, far: bool, deferred: bool| {
             let volume = BakedVolume {
                 volume: baked.volume.clone().filter(|_| far),
                 ..baked.clone()
@@ -749,6 +751,7 @@ fn the_far_field_is_read_in_bevys_units() {
                 lighting: Some(Lighting {
                     env: env.clone(),
                     volume: Some(volume),
+                    deferred,
                 }),
                 ..Setup::still(
                     Shading::Diffuse,
@@ -764,10 +767,11 @@ fn the_far_field_is_read_in_bevys_units() {
             let frame = run_bevy(&scene, setup).presented;
             let error = relative_error(&frame, &truth, &covered);
             eprintln!(
-                "{name}: Bevy + volume + {}{}: relative error {error:.4} (Bevy + volume \
+                "{name}: Bevy + volume + {}{}{}: relative error {error:.4} (Bevy + volume \
                  {bevy_alone:.4}), mean {:.3}× the truth's",
                 technique.name(),
                 if far { "" } else { " (a white sky)" },
+                if deferred { "" } else { " (forward, ρ = 0.5)" },
                 mean(&frame, &covered) / m_truth
             );
             error
@@ -778,7 +782,7 @@ fn the_far_field_is_read_in_bevys_units() {
             NearFieldTechnique::HBIL,
             NearFieldTechnique::VBGI,
         ] {
-            let error = plugin(technique, true);
+            let error = plugin(technique, true, true);
             assert!(
                 error <= bevy_alone,
                 "{name}: {} {error} against Bevy + volume {bevy_alone}",
@@ -788,7 +792,13 @@ fn the_far_field_is_read_in_bevys_units() {
                 once = error;
             }
         }
-        let twice = plugin(NearFieldTechnique::HBIL, false);
+        // gtao on forward materials: no G-buffer, ρ = 0.5 in the ao pass.
+        let forward = plugin(NearFieldTechnique::GTAO, true, false);
+        assert!(
+            forward <= bevy_alone,
+            "{name}: gtao forward {forward} against Bevy + volume {bevy_alone}"
+        );
+        let twice = plugin(NearFieldTechnique::HBIL, false, true);
         assert!(
             twice > once,
             "{name}: hbil on a white sky {twice}, counted once {once}"
