@@ -125,12 +125,15 @@ impl BevyVolume {
                     for (side, &(axis, sign)) in SIDES.iter().enumerate() {
                         let mut n = Vec3::ZERO;
                         n[axis] = sign;
-                        let read = volume.weights(p, n, n).weights.iter().any(|w| *w > 0.0);
-                        texels[texel_index(r, [x, y, z], side)] = if read {
-                            volume.irradiance(p, n, n)
+                        // ProbeVolume::irradiance, its weights computed once.
+                        let w = volume.weights(p, n, n);
+                        let sh = if w.weights.iter().any(|w| *w > 0.0) {
+                            &volume.sh_with(&w)
                         } else {
-                            sh::irradiance_over_pi(nearest, n).max(Vec3::ZERO)
+                            nearest
                         };
+                        texels[texel_index(r, [x, y, z], side)] =
+                            sh::irradiance_over_pi(sh, n).max(Vec3::ZERO);
                     }
                 }
             }

@@ -236,7 +236,11 @@ impl ProbeVolume {
 
     /// The interpolated radiance SH at `p` (normal `n`, seen from `v`).
     pub fn sh_at(&self, p: Vec3, n: Vec3, v: Vec3) -> [Vec3; SH_COEFFS] {
-        let w = self.weights(p, n, v);
+        self.sh_with(&self.weights(p, n, v))
+    }
+
+    /// The radiance SH of the probes and weights `w` ([`Self::weights`]).
+    pub fn sh_with(&self, w: &Weights) -> [Vec3; SH_COEFFS] {
         let mut sh = [Vec3::ZERO; SH_COEFFS];
         for (&i, &wi) in w.probes.iter().zip(&w.weights) {
             if wi > 0.0 {
