@@ -137,3 +137,65 @@ impl BakedVolume {
             .id()
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A small baked volume as `nearfield bake --format bevy` writes it.
+    fn file() -> Vec<u8> {
+        let grid = nearfield_scene::probes::ProbeGrid::with_counts(
+            nearfield_scene::Aabb {
+                min: glam::Vec3::ZERO,
+                max: glam::Vec3::splat(2.0),
+            },
+            [2, 2, 2],
+        )
+        .unwrap();
+        let n = grid.count();
+        let mut sh = [glam::Vec3::ZERO; nearfield_scene::probes::SH_COEFFS];
+        sh[0] = glam::Vec3::splat(1.0);
+        let tile = (nearfield_scene::probes::VIS_TILE * nearfield_scene::probes::VIS_TILE) as usize;
+        let volume = ProbeVolume {
+            grid,
+            max_distance: 3.0,
+            probes: vec![
+                nearfield_scene::probes::Probe {
+                    offset: glam::Vec3::ZERO,
+                    active: true,
+                    sh,
+                };
+                n
+            ],
+            visibility: vec![[1.0, 1.0]; n * tile],
+            rays: 1,
+            bounces: 0,
+            key: 0,
+        };
+        nearfield_scene::probes::bevy::BevyVolume::from_volume(&volume).to_ktx2()
+    }
+
+    #[test]
+    fn the_bakes_file_is_read_with_its_volume() {
+        let v = BakedVolume::from_ktx2(&file()).unwrap();
+        assert_eq!(v.intensity, 1.0);
+        assert_eq!(v.volume.as_ref().map(|v| v.probes.len()), Some(8));
+    }
+
+    #[test]
+    fn a_bad_file_is_one_error() {
+        let good = file();
+        let mut foreign = good.clone();
+        let key = b"nearfield.transform";
+        let at = foreign.windows(key.len()).position(|w| w == key).unwrap();
+        foreign[at] = b'x';
+        for (bytes, want) in [
+            (b"not a ktx2 file".to_vec(), "not a KTX2 file"),
+            (good[..good.len() / 2].to_vec(), "not a KTX2 file"),
+            (foreign, "no nearfield.transform"),
+        ] {
+            let e = BakedVolume::from_ktx2(&bytes).unwrap_err();
+            assert!(e.contains(want) && !e.contains('\n'), "{e}");
+        }
+    }
+}
