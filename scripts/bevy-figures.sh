@@ -5,7 +5,8 @@
 # by the example's --screenshot under Xvfb, then scaled (ImageMagick): bevy-sponza-off.png and
 # bevy-sponza-vbgi.png at 960×540, and bevy-sponza-pair.png, both at 640×360 side by side.
 # Then the far field's strip, bevy-sponza-far.png: the example's linear frames at 640×360
-# (`--linear`, exposure 0, 30 frames) alone, with the volume, with the volume and vbgi, beside
+# (`--linear`, exposure 0, 30 frames) with the environment map alone and with vbgi reading it,
+# with the volume alone and with the volume and vbgi, beside
 # nearfield's `none` (its lambertian part) and the path tracer (`nearfield compare --image …
 # --strip`, 256 spp), all at +8 EV; its report (target/figures/bevy-far/compare) has the errors
 # and means the book lists.
@@ -38,7 +39,8 @@ echo "  $img/bevy-sponza-off.png, bevy-sponza-vbgi.png, bevy-sponza-pair.png"
 far=target/figures/bevy-far
 mkdir -p "$far"
 images=()
-for run in "bevy:off:" "bevy-volume:off:--volume $tmp/sponza.ktx2" "bevy-volume-vbgi:vbgi:--volume $tmp/sponza.ktx2"; do
+for run in "bevy:off:" "bevy-vbgi:vbgi:" "bevy-volume:off:--volume $tmp/sponza.ktx2" \
+    "bevy-volume-vbgi:vbgi:--volume $tmp/sponza.ktx2"; do
     IFS=: read -r name technique volume <<<"$run"
     # shellcheck disable=SC2086 # $volume is two words or none
     xvfb-run -a -s '-screen 0 1920x1080x24' "bevy_nearfield/target/$profile/examples/sponza" \

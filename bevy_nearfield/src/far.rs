@@ -23,7 +23,8 @@ use std::sync::Arc;
 
 /// The baked volume the near-field techniques read as their far field: the light from beyond R
 /// in the directions they find free, and the volume's own occlusion within R. [`BakedVolume::spawn`]
-/// inserts it; without it the techniques see a white sky.
+/// inserts it; without it the techniques read the camera's environment map as their sky
+/// (docs/src/bevy.md, "The camera's environment map"), or a white sky where it has none.
 #[derive(Resource, Clone, ExtractResource)]
 #[extract_app(RenderApp)]
 pub struct NearFieldVolume(pub Arc<ProbeVolume>);

@@ -1,7 +1,8 @@
 // bevy_nearfield's glue: the only shader of the plugin. It turns Bevy's prepass images into
 // nearfield's documented inputs (docs/src/architecture.md, "Lifting a pass into another engine"),
-// hands nearfield's ao to Bevy's PBR, keeps Bevy's lit colour as next frame's radiance, and adds
-// the near-field indirect light as a diffuse term (docs/src/bevy.md).
+// hands nearfield's ao to Bevy's PBR, keeps Bevy's lit colour as next frame's radiance, adds
+// the near-field indirect light as a diffuse term, and reads the camera's environment map as the
+// technique's sky (docs/src/bevy.md).
 
 struct Glue {
     // Bevy's inverse projection (clip → view), infinite reverse-z, with the frame's TAA jitter.
@@ -166,11 +167,15 @@ fn fs_add_indirect(@builtin(position) p: vec4<f32>) -> @location(0) vec4<f32> {
 // - FAR_REPLACE (hbil, vbgi): the share of the volume's light that reaches the point through
 //   the directions the technique finds free, its env-irradiance over the volume's whole
 //   E/π; its near light is added after the main pass.
+// - FAR_REPLACE_SKY (hbil, vbgi without a volume, the view's environment map read as the
+//   technique's sky): the share of the environment's light that reaches the point through the
+//   free directions, its env-irradiance over the environment's unoccluded E/π.
 // s is that share through the inverse of Bevy's curve at the receiver's ρ (its G-buffer's;
 // 0.5 where the materials are drawn forward and there is none).
 const FAR_PLAIN: u32 = 0u;
 const FAR_OCCLUSION: u32 = 1u;
 const FAR_REPLACE: u32 = 2u;
+const FAR_REPLACE_SKY: u32 = 3u;
 
 @group(1) @binding(0) var near_field_ao: texture_2d<f32>;
 @group(1) @binding(1) var bevy_ao: texture_storage_2d<AO_FORMAT, write>;
@@ -187,6 +192,8 @@ const FAR_REPLACE: u32 = 2u;
 @group(2) @binding(2) var ao_far_visibility: texture_2d<f32>;
 @group(2) @binding(3) var ao_far_atlas: texture_2d<f32>;
 @group(2) @binding(4) var ao_far_sampler: sampler;
+// The technique's environment (FAR_REPLACE_SKY: its SH, for the unoccluded E/π).
+@group(2) @binding(5) var<uniform> ao_env: EnvUniforms;
 
 // Bevy's ssao_multibounce at a scalar ρ (Jimenez et al. 2016, Eq. 10).
 fn bevy_multibounce(x: f32, rho: f32) -> f32 {
@@ -235,11 +242,56 @@ fn cs_ao(@builtin(global_invocation_id) id: vec3<u32>) {
             let far_ao = far_ao_at(ao_far_probes, ao_far_visibility, ao_far_sampler, p, n, v);
             share = min(1.0, bevy_multibounce(ao, rho) / max(bevy_multibounce(far_ao, rho), 1e-3));
         } else {
-            let whole = far_irradiance_at(ao_far_probes, ao_far_visibility, ao_far_atlas, ao_far_sampler, p, n, v);
+            var whole: vec3<f32>;
+            if glue.far_rule == FAR_REPLACE_SKY {
+                whole = env_irradiance_sh(ao_env, n);
+            } else {
+                whole = far_irradiance_at(ao_far_probes, ao_far_visibility, ao_far_atlas, ao_far_sampler, p, n, v);
+            }
             let free = textureLoad(ao_env_irradiance, id.xy, 0).rgb;
             share = clamp(luminance(free) / max(luminance(whole), 1e-6), 0.0, 1.0);
         }
         ao = inverse_multibounce(share, rho);
     }
     textureStore(bevy_ao, id.xy, vec4<f32>(ao, 0.0, 0.0, 1.0));
+}
+
+// --- Bevy's environment map → nearfield's environment ------------------------------------------
+
+// The view's environment map (its radiance cube), read once into a lat-long map in nearfield's
+// convention (docs/src/conventions.md): world direction d sees the cube at
+// cube_from_world · d, Bevy's lookup (the map's rotation undone, z negated: environment_map.wesl).
+struct EnvRead {
+    cube_from_world: mat4x4<f32>,
+    size: vec2<f32>,
+    _pad: vec2<f32>,
+}
+
+@group(1) @binding(0) var<uniform> env_read: EnvRead;
+@group(1) @binding(1) var env_cube: texture_cube<f32>;
+@group(1) @binding(2) var env_cube_sampler: sampler;
+@group(1) @binding(3) var env_latlong: texture_storage_2d<rgba32float, write>;
+
+// Taps per side of each lat-long texel (its mean over the texel's footprint on the cube).
+const ENV_TAPS: u32 = 4u;
+const ENV_PI: f32 = 3.14159265358979;
+
+@compute @workgroup_size(8, 8)
+fn cs_env(@builtin(global_invocation_id) id: vec3<u32>) {
+    if any(vec2<f32>(id.xy) >= env_read.size) {
+        return;
+    }
+    var sum = vec3<f32>(0.0);
+    for (var j = 0u; j < ENV_TAPS; j++) {
+        for (var i = 0u; i < ENV_TAPS; i++) {
+            let tap = (vec2<f32>(f32(i), f32(j)) + 0.5) / f32(ENV_TAPS);
+            let uv = (vec2<f32>(id.xy) + tap) / env_read.size;
+            let theta = uv.y * ENV_PI;
+            let phi = uv.x * 2.0 * ENV_PI;
+            let d = vec3<f32>(sin(theta) * sin(phi), cos(theta), -sin(theta) * cos(phi));
+            let c = (env_read.cube_from_world * vec4<f32>(d, 0.0)).xyz;
+            sum += textureSampleLevel(env_cube, env_cube_sampler, c, 0.0).rgb;
+        }
+    }
+    textureStore(env_latlong, id.xy, vec4<f32>(sum / f32(ENV_TAPS * ENV_TAPS), 1.0));
 }

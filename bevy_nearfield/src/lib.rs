@@ -13,8 +13,10 @@
 //! - with a baked far field ([`far::BakedVolume`], `nearfield bake --format bevy`: Bevy's
 //!   `IrradianceVolume` in Bevy's units, and nearfield's volume beside it), reads that volume
 //!   beyond R, and keeps of Bevy's volume light only what the technique does not draw itself,
-//!   so that near and far are counted once. [`scene`] spawns a nearfield scene's meshes, lights
-//!   and exposure as `nearfield render` draws them.
+//!   so that near and far are counted once. Without one, it reads the camera's environment map
+//!   (`EnvironmentMapLight`, `GeneratedEnvironmentMapLight`) as its sky. [`scene`] spawns a
+//!   nearfield scene's meshes, lights, environment map and exposure as `nearfield render` draws
+//!   them.
 //!
 //! Settings that are out of range (or NaN) are refused with one logged line; the camera then
 //! renders without the effect. The book's page `docs/src/bevy.md` has the setup, the settings,
@@ -341,6 +343,8 @@ pub struct ExtractedNearField {
     params: TechniqueParams,
     ambient_occlusion: bool,
     indirect_intensity: f32,
+    /// The camera's environment map (read as the technique's sky where there is no volume).
+    environment: Option<render::ViewEnvironment>,
 }
 
 impl SyncComponent<RenderApp> for NearField {
@@ -357,12 +361,18 @@ impl SyncComponent<RenderApp> for NearField {
 }
 
 impl ExtractComponent<RenderApp> for NearField {
-    type QueryData = (&'static NearField, &'static NearFieldChecked);
+    type QueryData = (
+        &'static NearField,
+        &'static NearFieldChecked,
+        Option<&'static bevy::light::EnvironmentMapLight>,
+        Option<&'static bevy::light::GeneratedEnvironmentMapLight>,
+        Option<&'static bevy::light::AtmosphereEnvironmentMapLight>,
+    );
     type QueryFilter = ();
     type Out = (ExtractedNearField, ScreenSpaceAmbientOcclusion);
 
     fn extract_component(
-        (near_field, checked): QueryItem<'_, '_, Self::QueryData>,
+        (near_field, checked, light, generated, atmosphere): QueryItem<'_, '_, Self::QueryData>,
     ) -> Option<Self::Out> {
         if checked.of != *near_field {
             return None;
@@ -373,6 +383,7 @@ impl ExtractComponent<RenderApp> for NearField {
             params,
             ambient_occlusion: near_field.ambient_occlusion,
             indirect_intensity: near_field.indirect_intensity,
+            environment: render::ViewEnvironment::of_camera(light, generated, atmosphere),
         };
         // Bevy's PBR reads a view's ao image where the view has ScreenSpaceAmbientOcclusion;
         // the plugin skips Bevy's own SSAO passes and writes nearfield's ao there (1 where

@@ -25,8 +25,12 @@ pub struct ReadbackImages {
     pub frames: u32,
     /// `ao`: (1/π) ∫ V_R cos θ dω.
     pub ao: Vec<f32>,
-    /// `indirect-irradiance`: (1/π) ∫ (1 − V_R) L_o cos θ dω (rgb).
+    /// `indirect-irradiance`: (1/π) ∫ (1 − V_R) L_o cos θ dω (rgb; zero where the technique
+    /// writes none).
     pub indirect_irradiance: Vec<[f32; 3]>,
+    /// `env-irradiance`: (1/π) ∫ V_R L_far cos θ dω, the far field the technique read in the
+    /// directions it found free (rgb; zero where it writes none).
+    pub env_irradiance: Vec<[f32; 3]>,
     /// Bevy's lit colour of the frame, as kept for the next frame's gathering (rgb).
     pub radiance: Vec<[f32; 3]>,
 }
@@ -73,11 +77,12 @@ pub(crate) fn build(app: &mut App) {
     }
 }
 
-/// Three mappable buffers of a view's size.
+/// Four mappable buffers of a view's size.
 pub struct ReadbackBuffers {
     size: (u32, u32),
     ao: wgpu::Buffer,
     indirect: wgpu::Buffer,
+    env: wgpu::Buffer,
     radiance: wgpu::Buffer,
 }
 
@@ -118,14 +123,14 @@ fn copy_to(
 }
 
 impl ReadbackBuffers {
-    /// Records the copies of the ao and the indirect irradiance (after the technique) into the
-    /// view's buffers, made (again) at the images' size.
+    /// Records the copies of the ao and the indirect and env irradiance (after the technique)
+    /// into the view's buffers, made (again) at the images' size.
     pub(crate) fn copy(
         slot: &Mutex<Option<ReadbackBuffers>>,
         device: &wgpu::Device,
         encoder: &mut wgpu::CommandEncoder,
         ao: &wgpu::Texture,
-        indirect: Option<&wgpu::Texture>,
+        [indirect, env]: [Option<&wgpu::Texture>; 2],
     ) {
         let mut slot = slot.lock().unwrap();
         let size = (ao.width(), ao.height());
@@ -142,14 +147,18 @@ impl ReadbackBuffers {
                 size,
                 ao: buffer("nearfield readback ao", 4),
                 indirect: buffer("nearfield readback indirect", 8),
+                env: buffer("nearfield readback env", 8),
                 radiance: buffer("nearfield readback radiance", 8),
             });
         }
         let b = slot.as_ref().unwrap();
         copy_to(encoder, ao, &b.ao, 4);
-        // gtao writes no indirect light: its buffer stays zero.
+        // gtao writes no indirect or env light: those buffers stay zero.
         if let Some(indirect) = indirect {
             copy_to(encoder, indirect, &b.indirect, 8);
+        }
+        if let Some(env) = env {
+            copy_to(encoder, env, &b.env, 8);
         }
     }
 
@@ -162,22 +171,18 @@ impl ReadbackBuffers {
         copy_to(encoder, texture, &self.radiance, 8);
     }
 
-    /// Maps the copies (after the frame is submitted): the size, ao, indirect irradiance and
-    /// radiance.
-    #[allow(clippy::type_complexity)]
-    pub(crate) fn read(
-        &self,
-        device: &wgpu::Device,
-    ) -> ((u32, u32), Vec<f32>, Vec<[f32; 3]>, Vec<[f32; 3]>) {
-        let ao = read(device, &self.ao, self.size, 4);
-        let indirect = read(device, &self.indirect, self.size, 8);
-        let radiance = read(device, &self.radiance, self.size, 8);
-        (
-            self.size,
-            bytemuck::pod_collect_to_vec(&ao),
-            rgb_of_half(&indirect),
-            rgb_of_half(&radiance),
-        )
+    /// Maps the copies (after the frame is submitted): the images of the view's frame
+    /// `frames`.
+    pub(crate) fn read(&self, device: &wgpu::Device, frames: u32) -> ReadbackImages {
+        let rgb = |buffer| rgb_of_half(&read(device, buffer, self.size, 8));
+        ReadbackImages {
+            size: self.size,
+            frames,
+            ao: bytemuck::pod_collect_to_vec(&read(device, &self.ao, self.size, 4)),
+            indirect_irradiance: rgb(&self.indirect),
+            env_irradiance: rgb(&self.env),
+            radiance: rgb(&self.radiance),
+        }
     }
 }
 

@@ -226,6 +226,131 @@ fn up_for(d: Vec3) -> Vec3 {
     }
 }
 
+/// Side of the radiance cube [`environment_map_light`] makes (0.35° texels at the faces'
+/// centres), and of its diffuse cube.
+pub const ENVIRONMENT_SIZE: u32 = 256;
+const DIFFUSE_SIZE: u32 = 32;
+
+/// The environment as Bevy's `EnvironmentMapLight` in Bevy's units (docs/src/bevy.md, "The far
+/// field"): the specular map holds the radiance (level 0: the map itself, 2 × 2 bilinear taps
+/// a texel; each level below the 2 × 2 mean of the one above, a box chain and not Bevy's GGX
+/// prefiltering, so rough reflections are sharper than Bevy's own filtering would draw them),
+/// the diffuse map E/π from the map's SH (bands 0–2, nearfield's `env_irradiance_sh`); the
+/// intensity is the environment's, so that radiance × intensity is cd/m². The map's sun, where
+/// it was split out, is not in it: [`spawn_lights`] spawns it.
+pub fn environment_map_light(images: &mut Assets<Image>, env: &Environment) -> EnvironmentMapLight {
+    let raw = Environment {
+        intensity: 1.0,
+        ..env.clone()
+    };
+    let n = ENVIRONMENT_SIZE;
+    let radiance = cube_faces(n, 2, |d| raw.radiance(d));
+    let levels = n.ilog2() + 1;
+    let specular = cube_image(n, levels, |face| {
+        let mut chain = vec![radiance[face].clone()];
+        for level in 1..levels {
+            let (above, side) = (chain.last().unwrap(), n >> (level - 1));
+            let half = side / 2;
+            let at = |x: u32, y: u32| above[(y * side + x) as usize];
+            chain.push(
+                (0..half * half)
+                    .map(|k| {
+                        let (x, y) = (2 * (k % half), 2 * (k / half));
+                        0.25 * (at(x, y) + at(x + 1, y) + at(x, y + 1) + at(x + 1, y + 1))
+                    })
+                    .collect(),
+            );
+        }
+        chain
+    });
+    let sh = nearfield_scene::sh::project_environment(&raw, 9);
+    let diffuse_faces = cube_faces(DIFFUSE_SIZE, 1, |d| {
+        nearfield_scene::sh::irradiance_over_pi(&sh, d).max(glam::Vec3::ZERO)
+    });
+    let diffuse = cube_image(DIFFUSE_SIZE, 1, |face| vec![diffuse_faces[face].clone()]);
+    EnvironmentMapLight {
+        diffuse_map: images.add(diffuse),
+        specular_map: images.add(specular),
+        intensity: env.intensity,
+        ..default()
+    }
+}
+
+/// The world direction of texel (x, y) of cube face `face` (wgpu's face order +X, −X, +Y, −Y,
+/// +Z, −Z and texel orientation), as Bevy reads its environment maps: the cube's z negated.
+fn cube_direction(face: usize, n: u32, x: f32, y: f32) -> glam::Vec3 {
+    let s = 2.0 * x / n as f32 - 1.0;
+    let t = 2.0 * y / n as f32 - 1.0;
+    let c = match face {
+        0 => glam::Vec3::new(1.0, -t, -s),
+        1 => glam::Vec3::new(-1.0, -t, s),
+        2 => glam::Vec3::new(s, 1.0, t),
+        3 => glam::Vec3::new(s, -1.0, -t),
+        4 => glam::Vec3::new(s, -t, 1.0),
+        _ => glam::Vec3::new(-s, -t, -1.0),
+    };
+    glam::Vec3::new(c.x, c.y, -c.z).normalize()
+}
+
+/// Each face's n × n texels of `f` (the mean of `taps` × `taps` directions in each texel).
+fn cube_faces(n: u32, taps: u32, f: impl Fn(glam::Vec3) -> glam::Vec3) -> Vec<Vec<glam::Vec3>> {
+    (0..6)
+        .map(|face| {
+            (0..n * n)
+                .map(|k| {
+                    let (x, y) = ((k % n) as f32, (k / n) as f32);
+                    let mut sum = glam::Vec3::ZERO;
+                    for j in 0..taps {
+                        for i in 0..taps {
+                            let (dx, dy) = (
+                                (i as f32 + 0.5) / taps as f32,
+                                (j as f32 + 0.5) / taps as f32,
+                            );
+                            sum += f(cube_direction(face, n, x + dx, y + dy));
+                        }
+                    }
+                    sum / (taps * taps) as f32
+                })
+                .collect()
+        })
+        .collect()
+}
+
+/// A cube image (rgba16float) of side `n` with `levels` mip levels, `chain(face)` each face's
+/// levels (layer-major, as Bevy uploads an image's data).
+fn cube_image(n: u32, levels: u32, chain: impl Fn(usize) -> Vec<Vec<glam::Vec3>>) -> Image {
+    let mut data = Vec::new();
+    for face in 0..6 {
+        for level in chain(face) {
+            for t in level {
+                for c in [t.x, t.y, t.z, 1.0] {
+                    data.extend_from_slice(&half::f16::from_f32(c.min(F16_MAX)).to_le_bytes());
+                }
+            }
+        }
+    }
+    let mut image = Image::new_uninit(
+        Extent3d {
+            width: n,
+            height: n,
+            depth_or_array_layers: 6,
+        },
+        TextureDimension::D2,
+        TextureFormat::Rgba16Float,
+        RenderAssetUsages::RENDER_WORLD,
+    );
+    image.data = Some(data);
+    image.texture_descriptor.mip_level_count = levels;
+    image.texture_view_descriptor = Some(bevy::render::render_resource::TextureViewDescriptor {
+        dimension: Some(bevy::render::render_resource::TextureViewDimension::Cube),
+        ..default()
+    });
+    image
+}
+
+/// The largest radiance an rgba16float texel holds (brighter ones are clamped).
+const F16_MAX: f32 = 65000.0;
+
 /// Bevy's camera exposure for nearfield's `--exposure` (stops): nearfield shows radiance ×
 /// 2^stops, Bevy radiance × 2^−ev100 / 1.2, so ev100 = −log2(1.2) − stops. At nearfield's
 /// default (0) a radiance of 1 cd/m² is 1 in both images before tone mapping.

@@ -74,11 +74,23 @@ struct Setup {
     lighting: Option<Lighting>,
 }
 
+/// How a run gives the camera the environment (its sun aside) as Bevy's environment light.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum EnvMap {
+    None,
+    /// `scene::environment_map_light`'s maps as an `EnvironmentMapLight`.
+    Prefiltered,
+    /// Its radiance cube as a `GeneratedEnvironmentMapLight` (Bevy filters it on the GPU).
+    Generated,
+}
+
 /// What lights a scene in Bevy: [`scene::spawn_lights`] of the scene and `env`, and the volume.
 #[derive(Clone)]
 struct Lighting {
     env: nearfield_scene::Environment,
     volume: Option<BakedVolume>,
+    /// The environment (its sun aside) as the camera's environment light.
+    env_map: EnvMap,
     /// With the plugin: the materials drawn deferred, with Bevy's deferred prepass (the
     /// plugin's indirect light reads ρ from that G-buffer, which forward materials leave empty);
     /// false: forward, and the ao pass takes ρ = 0.5.
@@ -186,8 +198,23 @@ fn run_bevy(scene: &nearfield_scene::Scene, setup: Setup) -> Run {
             if taa {
                 camera.insert(TemporalAntiAliasing::default());
             }
-            if lighting.is_some() {
+            if let Some(l) = &lighting {
                 camera.insert(scene::exposure(0.0));
+                let map = |images: &mut Assets<Image>| scene::environment_map_light(images, &l.env);
+                match l.env_map {
+                    EnvMap::None => {}
+                    EnvMap::Prefiltered => {
+                        camera.insert(map(&mut images));
+                    }
+                    EnvMap::Generated => {
+                        let m = map(&mut images);
+                        camera.insert(bevy::light::GeneratedEnvironmentMapLight {
+                            environment_map: m.specular_map,
+                            intensity: m.intensity,
+                            ..default()
+                        });
+                    }
+                }
             }
             if deferred {
                 camera.insert(DeferredPrepass);
@@ -301,11 +328,13 @@ fn references(
                     .collect()
             };
             let indirect = rgb(Aov::IndirectIrradiance);
+            let env = rgb(Aov::EnvIrradiance);
             let direct = rgb(Aov::DirectRadiance);
             Reference {
                 covered: ao.pixels.iter().map(|p| p[3] > 0.0).collect(),
                 ao: ao.pixels.iter().map(|p| p[0]).collect(),
                 indirect,
+                env,
                 direct,
             }
         })
@@ -380,6 +409,7 @@ fn ao_mae(a: &[f32], b: &[f32], covered: &[bool]) -> (f64, usize) {
 struct Reference {
     ao: Vec<f32>,
     indirect: Vec<[f32; 3]>,
+    env: Vec<[f32; 3]>,
     /// The radiance its techniques gather (the plugin's is Bevy's colour).
     direct: Vec<[f32; 3]>,
     /// Where the frame sees a surface.
@@ -692,6 +722,7 @@ fn the_far_field_is_read_in_bevys_units() {
                 lighting: Some(Lighting {
                     env: env.clone(),
                     volume,
+                    env_map: EnvMap::None,
                     deferred: false,
                 }),
                 ..Setup::still(Shading::Diffuse, NearField::default(), FRAMES, false)
@@ -751,6 +782,7 @@ fn the_far_field_is_read_in_bevys_units() {
                 lighting: Some(Lighting {
                     env: env.clone(),
                     volume: Some(volume),
+                    env_map: EnvMap::None,
                     deferred,
                 }),
                 ..Setup::still(
@@ -809,5 +841,193 @@ fn the_far_field_is_read_in_bevys_units() {
             "{name}: without the volume"
         );
         assert!(m_scaled / m_truth > 2.0, "{name}: the volume at × 2000");
+    }
+}
+
+/// nearfield's `lambertian` AOV of `scene`'s view under `env`, drawn with `none` (no
+/// occlusion): its direct light and the environment's unoccluded diffuse light.
+fn lambertian_none(
+    scene: &nearfield_scene::Scene,
+    env: &nearfield_scene::Environment,
+) -> Vec<[f32; 4]> {
+    let ctx = GpuContext::new(None).expect("an adapter (lavapipe in CI)");
+    let none =
+        nearfield_render::technique::Spec::resolve("none", &TechniqueParams::default()).unwrap();
+    let settings = RenderSettings {
+        size: SIZE,
+        ..Default::default()
+    };
+    let camera = scene.default_camera();
+    let mut r = Renderer::new(&ctx, scene, env, None, camera, &none, settings).unwrap();
+    r.render_frame();
+    r.read_aov(Aov::Lambertian).pixels
+}
+
+/// The view's environment map as the technique's sky (docs/src/bevy.md, "The far field"): each
+/// open built-in, exported with its lights, drawn by Bevy with its lights, the environment's
+/// sun, and the rest of the sky as the camera's `EnvironmentMapLight` (or the same radiance as a
+/// `GeneratedEnvironmentMapLight`, filtered by Bevy) and no volume, at
+/// nearfield's exposure 0, diffuse part only.
+/// - The map's light in Bevy (the frame with it less the frame without) is within 5 % of the
+///   environment's in `nearfield render --method none` (its `lambertian` AOV with the sky less
+///   without it) in the image mean, and within 2 % relative error pixel by pixel (a sky lit
+///   from one side, turned, among the cases: a mirrored or turned map would not be).
+/// - The plugin's hbil and vbgi read it as their sky: their env-irradiance in Bevy is within
+///   10 % (relative error) of nearfield's own under the same environment, and at least 3 times
+///   farther from a white sky's.
+/// - With the plugin, hbil and vbgi leave the image error against the path tracer no worse
+///   than Bevy's frame without them.
+#[test]
+fn the_environment_map_is_read_as_the_sky() {
+    // A sky lit from one side (+X, towards −Z: an orientation any mirroring or turn of the map
+    // would move), turned 40° about +Y as `--env-rotation 40` turns a map.
+    let mut one_side = nearfield_scene::Environment::from_fn("one side", 256, 128, |d| {
+        let k = (d.x - d.z).max(0.0).powi(3);
+        glam::Vec3::new(0.05 + 1.5 * k, 0.05 + 0.9 * k, 0.1 + 0.4 * k)
+    });
+    one_side.rotation = 40f32.to_radians();
+    let cases = [
+        ("boxes", None, EnvMap::Prefiltered),
+        ("columns", None, EnvMap::Generated),
+        ("boxes", Some(one_side), EnvMap::Prefiltered),
+    ];
+    for (name, sky, kind) in cases {
+        let scene = exported(name);
+        let (scene_env, _) = scene
+            .default_env
+            .load_split(nearfield_scene::sun::SunMode::Auto)
+            .unwrap();
+        let name = format!(
+            "{name}{} ({kind:?})",
+            if sky.is_some() {
+                ", a sky lit from one side"
+            } else {
+                ""
+            }
+        );
+        // The default sky's sun (split out) lights the one-sided sky's scene too.
+        let env = match sky {
+            Some(sky) => nearfield_scene::Environment {
+                sun: scene_env.sun,
+                ..sky
+            },
+            None => scene_env,
+        };
+        let mut sunlit = env.clone();
+        sunlit.texels.fill(glam::Vec3::ZERO);
+        let with_sky = lambertian_none(&scene, &env);
+        let sun_only = lambertian_none(&scene, &sunlit);
+        let covered: Vec<bool> = with_sky.iter().map(|p| p[3] > 0.0).collect();
+        let rgb = |p: &[f32; 4]| [p[0], p[1], p[2]];
+        let camera = scene.default_camera();
+        let truth = nearfield_reference::render(
+            &scene,
+            &env,
+            &camera,
+            &nearfield_reference::ReferenceSettings {
+                aov: nearfield_reference::ReferenceAov::Radiance,
+                size: SIZE,
+                spp: TRUTH_SPP,
+                max_depth: 8,
+                ..Default::default()
+            },
+            false,
+        );
+        let truth: Vec<[f32; 3]> = truth.value.iter().map(rgb).collect();
+        let run = |technique: Option<NearFieldTechnique>, env_map: EnvMap| {
+            let near_field = technique.map(|technique| NearField {
+                technique,
+                quality: NearFieldQuality::High,
+                ..default()
+            });
+            let setup = Setup {
+                near_field: near_field.clone(),
+                lighting: Some(Lighting {
+                    env: env.clone(),
+                    volume: None,
+                    env_map,
+                    deferred: near_field.is_some(),
+                }),
+                ..Setup::still(
+                    Shading::Diffuse,
+                    near_field.unwrap_or_default(),
+                    FRAMES,
+                    technique.is_some(),
+                )
+            };
+            run_bevy(&scene, setup)
+        };
+        let alone = run(None, kind).presented;
+        let dark = run(None, EnvMap::None).presented;
+        assert_eq!(alone.len(), covered.len(), "the target's size");
+        let m = |image: &[[f32; 3]]| mean(image, &covered);
+        let m_rgba = |image: &[[f32; 4]]| m(&image.iter().map(rgb).collect::<Vec<_>>());
+        let bevy_map = m(&alone) - m(&dark);
+        let nearfield_map = m_rgba(&with_sky) - m_rgba(&sun_only);
+        let bevy_alone = relative_error(&alone, &truth, &covered);
+        // The map's light pixel by pixel (a mirrored or turned map moves it).
+        let difference = |a: &[[f32; 3]], b: &[[f32; 3]]| -> Vec<[f32; 3]> {
+            a.iter()
+                .zip(b)
+                .map(|(a, b)| [a[0] - b[0], a[1] - b[1], a[2] - b[2]])
+                .collect()
+        };
+        let map_error = relative_error(
+            &difference(&alone, &dark),
+            &difference(
+                &with_sky.iter().map(rgb).collect::<Vec<_>>(),
+                &sun_only.iter().map(rgb).collect::<Vec<_>>(),
+            ),
+            &covered,
+        );
+        eprintln!(
+            "{name}: the environment map's light in Bevy {bevy_map:.4}, in nearfield \
+             {nearfield_map:.4} ({:.3}×), relative error {map_error:.4}; image mean Bevy + map {:.4}, nearfield none {:.4}, \
+             path tracer {:.4}; relative error of Bevy + map against the path tracer \
+             {bevy_alone:.4}",
+            bevy_map / nearfield_map,
+            m(&alone),
+            m_rgba(&with_sky),
+            m(&truth)
+        );
+        assert!(
+            (bevy_map / nearfield_map - 1.0).abs() <= 0.05 && map_error <= 0.02,
+            "{name}: the map's light in Bevy {bevy_map}, in nearfield {nearfield_map} \
+             (relative error {map_error})"
+        );
+        let white = nearfield_scene::Environment::constant(glam::Vec3::ONE);
+        for technique in [NearFieldTechnique::HBIL, NearFieldTechnique::VBGI] {
+            let r = run(Some(technique), kind);
+            let error = relative_error(&r.presented, &truth, &covered);
+            let images = r.images.expect("the plugin's images");
+            let params = NearField {
+                technique,
+                quality: NearFieldQuality::High,
+                ..default()
+            }
+            .params()
+            .unwrap();
+            let own = reference(&scene, &env, technique.name(), &params, images.frames);
+            let on_white = reference(&scene, &white, technique.name(), &params, images.frames);
+            let read = relative_error(&images.env_irradiance, &own.env, &covered);
+            let not_read = relative_error(&images.env_irradiance, &on_white.env, &covered);
+            eprintln!(
+                "{name}: Bevy + map + {}: relative error {error:.4} (Bevy + map {bevy_alone:.4}), \
+                 mean {:.3}× the truth's; its env-irradiance against nearfield's {read:.4}, \
+                 against a white sky's {not_read:.4}",
+                technique.name(),
+                m(&r.presented) / m(&truth)
+            );
+            assert!(
+                read <= 0.10 && not_read >= 3.0 * read,
+                "{name}: {} env-irradiance {read} against nearfield's, {not_read} a white sky's",
+                technique.name()
+            );
+            assert!(
+                error <= bevy_alone,
+                "{name}: {} {error} against Bevy + map {bevy_alone}",
+                technique.name()
+            );
+        }
     }
 }

@@ -12,8 +12,10 @@
 //!   --quality low|medium|high|ultra             the preset (default high)
 //!   --volume FILE.ktx2                          `nearfield bake --format bevy`'s volume,
 //!                                               baked with the same --env and --env-intensity
-//!   --env FILE.hdr|sky                          the environment whose sun is spawned (default:
-//!                                               the scene's, as nearfield's)
+//!   --env FILE.hdr|sky                          the environment: its sun is spawned, and
+//!                                               without --volume the rest is the camera's
+//!                                               environment map (default: the scene's, as
+//!                                               nearfield's)
 //!   --env-intensity K                           its radiance × K, in cd/m² (default 1)
 //!   --exposure STOPS                            nearfield's exposure (default: 8 for Sponza's
 //!                                               view, the book's; 0 for a SCENE given)
@@ -79,10 +81,6 @@ fn main() {
         .and_then(|s| s.load_split(nearfield_scene::sun::SunMode::Auto))
         .unwrap_or_else(|e| fail(&nearfield_scene::one_line(&e.to_string())));
     env.intensity = o.env_intensity;
-    // Without a volume, Bevy's ambient light stands in for the far field: the environment's
-    // E/π on an upward surface, unoccluded.
-    let sky = nearfield_scene::sh::project_environment(&env, 9);
-    let up = nearfield_scene::sh::irradiance_over_pi(&sky, glam::Vec3::Y);
     let (w, h) = o.size;
     App::new()
         .add_plugins(DefaultPlugins.set(WindowPlugin {
@@ -102,9 +100,9 @@ fn main() {
         } else {
             bevy::pbr::DefaultOpaqueRendererMethod::deferred()
         })
+        // The far field is the volume, or without one the camera's environment map.
         .insert_resource(GlobalAmbientLight {
-            color: Color::linear_rgb(up.x, up.y, up.z),
-            brightness: if volume.is_some() { 0.0 } else { 1.0 },
+            brightness: 0.0,
             ..default()
         })
         // With --mean the background is black: the mean is the surfaces' light over the frame.
@@ -245,6 +243,12 @@ fn setup(
             })),
         ))
         .id();
+    // Without a volume, the environment (its sun aside) is the camera's environment map: Bevy's
+    // far field, which the technique reads as its sky.
+    if loaded.1.is_none() {
+        let map = scene::environment_map_light(&mut images, &loaded.2);
+        commands.entity(id).insert(map);
+    }
     if options.mean {
         // The frame into a linear image of the window's size, read back by `step`.
         let (w, h) = options.size;

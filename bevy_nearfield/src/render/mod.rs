@@ -6,6 +6,7 @@
 //! after the main pass, `nodes::capture_and_add` (Bevy's lit colour kept as next frame's radiance;
 //! the indirect light added where the camera has Bevy's deferred G-buffer).
 
+mod environment;
 mod nodes;
 mod pipelines;
 mod prepare;
@@ -13,6 +14,7 @@ mod prepare;
 use bevy::core_pipeline::schedule::{Core3d, Core3dSystems};
 use bevy::prelude::*;
 use bevy::render::{Render, RenderSystems};
+pub use environment::ViewEnvironment;
 pub use prepare::{Image, Images, NearFieldView};
 
 pub(crate) fn build(render_app: &mut bevy::app::SubApp) {

@@ -4,7 +4,7 @@
 use super::pipelines::{AddBindings, AoBindings, CaptureBindings, GluePipelines, InputsBindings};
 use super::prepare::NearFieldView;
 use crate::ExtractedNearField;
-use crate::readback::{ExtractedReadback, NearFieldImages, ReadbackBuffers, ReadbackImages};
+use crate::readback::{ExtractedReadback, NearFieldImages, ReadbackBuffers};
 use bevy::core_pipeline::prepass::ViewPrepassTextures;
 use bevy::pbr::ScreenSpaceAmbientOcclusionResources;
 use bevy::prelude::*;
@@ -133,13 +133,14 @@ pub(super) fn inputs_and_technique(
         pass.dispatch_workgroups(nf.size.x.div_ceil(8), nf.size.y.div_ceil(8), 1);
     }
     if readback.is_some() {
-        let indirect = nf.images.indirect_irradiance.as_ref().map(|i| &i.texture);
+        let images = &nf.images;
         ReadbackBuffers::copy(
             &nf.readback,
             device,
             encoder,
-            &nf.images.ao.texture,
-            indirect,
+            &images.ao.texture,
+            [&images.indirect_irradiance, &images.env_irradiance]
+                .map(|i| i.as_ref().map(|i| &i.texture)),
         );
     }
     encoder.pop_debug_group();
@@ -226,14 +227,6 @@ pub(super) fn collect(
     for (main, nf) in &views {
         let slot = nf.readback.lock().unwrap();
         let Some(b) = slot.as_ref() else { continue };
-        let (size, ao, indirect_irradiance, radiance) = b.read(device.wgpu_device());
-        let out = ReadbackImages {
-            size,
-            frames: nf.frames(),
-            ao,
-            indirect_irradiance,
-            radiance,
-        };
-        images.insert(main.id(), out);
+        images.insert(main.id(), b.read(device.wgpu_device(), nf.frames()));
     }
 }

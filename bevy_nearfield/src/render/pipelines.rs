@@ -88,6 +88,32 @@ nearfield_render::bind_group! {
         ao_far_visibility: view = kind::TEXTURE,
         ao_far_atlas: view = kind::TEXTURE,
         ao_far_sampler: sampler = kind::SAMPLER,
+        /// The technique's `EnvUniforms` (its SH: the environment's unoccluded E/π).
+        ao_env: buffer = kind::UNIFORM,
+    }
+}
+
+nearfield_render::gpu_struct! {
+    /// `EnvRead` in glue.wgsl: how `cs_env` reads a view's environment map.
+    pub struct EnvRead {
+        /// Direction in the cube of a world direction (Bevy's lookup).
+        pub cube_from_world: [[f32; 4]; 4],
+        /// The lat-long map's size.
+        pub size: [f32; 2],
+        pub _pad: [f32; 2],
+    }
+}
+
+nearfield_render::bind_group! {
+    /// Group 1 of `cs_env` (group 0 is not used): a view's environment map into a lat-long map.
+    pub struct EnvReadBindings: COMPUTE {
+        /// [`EnvRead`].
+        env_read: buffer = kind::UNIFORM,
+        /// The environment map's radiance cube.
+        env_cube: view = kind::TEXTURE_CUBE,
+        env_cube_sampler: sampler = kind::SAMPLER,
+        /// The lat-long map (rgba32float).
+        env_latlong: view = kind::write(wgpu::TextureFormat::Rgba32Float),
     }
 }
 
@@ -100,6 +126,8 @@ fn ao_layout(device: &wgpu::Device, format: wgpu::TextureFormat) -> wgpu::BindGr
 
 /// The section of the glue that reads nearfield's far field ([`glue_section`]).
 pub(super) const AO_SECTION: usize = 4;
+/// The section that reads a view's environment map.
+const ENV_SECTION: usize = 5;
 
 /// The glue shader's header (the `Glue` uniform, the full-screen triangle) with one of its
 /// sections (split at the lines that start with `// --- `); the ao section after nearfield's
@@ -133,6 +161,11 @@ pub(crate) struct GluePipelines {
     pub ao: wgpu::ComputePipeline,
     /// A 1×1 rgba32uint image bound where Bevy's G-buffer is not (`has_gbuffer` = 0).
     pub no_gbuffer: nearfield_render::targets::Target,
+    pub env_layout: wgpu::BindGroupLayout,
+    /// A view's environment map into a lat-long map (render/environment.rs).
+    pub env: wgpu::ComputePipeline,
+    /// Bilinear, clamped: how `cs_env` samples the cube.
+    pub env_sampler: wgpu::Sampler,
 }
 
 /// A full-screen triangle's pipeline over the glue's group and `groups[1]`, with fragment
@@ -278,7 +311,31 @@ impl FromWorld for GluePipelines {
             compilation_options: Default::default(),
             cache: None,
         });
+        let env_layout = EnvReadBindings::layout(&device);
+        let env_module = module("nearfield glue environment", ENV_SECTION);
+        let env_pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("nearfield glue environment"),
+            bind_group_layouts: &[None, Some(&env_layout)],
+            immediate_size: 0,
+        });
+        let env = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+            label: Some("nearfield glue environment"),
+            layout: Some(&env_pipeline_layout),
+            module: &env_module,
+            entry_point: Some("cs_env"),
+            compilation_options: Default::default(),
+            cache: None,
+        });
+        let env_sampler = device.create_sampler(&wgpu::SamplerDescriptor {
+            label: Some("nearfield glue environment"),
+            mag_filter: wgpu::FilterMode::Linear,
+            min_filter: wgpu::FilterMode::Linear,
+            ..Default::default()
+        });
         GluePipelines {
+            env_layout,
+            env,
+            env_sampler,
             glue_layout,
             inputs_layout,
             inputs,
@@ -299,21 +356,23 @@ mod tests {
     use super::*;
 
     /// The glue's sections: (entry point, section index) of each program.
-    const SECTIONS: [(&str, usize); 4] = [
+    const SECTIONS: [(&str, usize); 5] = [
         ("fs_inputs", 1),
         ("fs_capture", 2),
         ("fs_add_indirect", 3),
         ("cs_ao", AO_SECTION),
+        ("cs_env", ENV_SECTION),
     ];
 
     /// Each section's bindings and the `Glue` uniform agree with their declarations here.
     #[test]
     fn the_glue_declarations_agree_with_glue_wgsl() {
-        let own: [&[(&str, nearfield_render::bindings::Slot)]; 4] = [
+        let own: [&[(&str, nearfield_render::bindings::Slot)]; 5] = [
             InputsBindings::SLOTS,
             CaptureBindings::SLOTS,
             AddBindings::SLOTS,
             AoBindings::SLOTS,
+            EnvReadBindings::SLOTS,
         ];
         let mut errors = Vec::new();
         for ((entry, index), group1) in SECTIONS.into_iter().zip(own) {
@@ -337,6 +396,12 @@ mod tests {
                 Glue::FIELDS,
             ));
         }
+        errors.extend(nearfield_render::reflect::struct_mismatches(
+            &glue_section(ENV_SECTION, "r16float"),
+            "EnvRead",
+            std::mem::size_of::<EnvRead>(),
+            EnvRead::FIELDS,
+        ));
         assert!(errors.is_empty(), "{}", errors.join("\n"));
         // The check fails where the WGSL and the declaration part.
         let renamed = glue_section(1, "r16float").replace("bevy_normal", "bevy_normals");

@@ -1,5 +1,6 @@
 //! Each view's nearfield, made (or remade) and given this frame's uniforms before the graph runs.
 
+use super::environment::ViewEnvironment;
 use super::pipelines::{FarBindings, Glue, GlueBindings, GluePipelines};
 use crate::far::NearFieldVolume;
 use crate::readback::ReadbackBuffers;
@@ -9,8 +10,10 @@ use bevy::log::error;
 use bevy::pbr::SsaoPipelineId;
 use bevy::prelude::*;
 use bevy::render::camera::{ExtractedCamera, TemporalJitter};
+use bevy::render::render_asset::RenderAssets;
 use bevy::render::renderer::{RenderDevice, RenderQueue};
 use bevy::render::sync_world::MainEntity;
+use bevy::render::texture::GpuImage;
 use bevy::render::view::ExtractedView;
 use nearfield_render::contract::io::{NearFieldInputs, NearFieldOutputs};
 use nearfield_render::far::GpuFarField;
@@ -22,6 +25,7 @@ use nearfield_render::technique::{
     self, FarRule, FrameInfo, Output, Technique, TechniqueContext, TechniqueParams,
 };
 use nearfield_render::wgpu;
+use nearfield_scene::Environment;
 use nearfield_scene::probes::ProbeVolume;
 use std::sync::Arc;
 use std::sync::Mutex;
@@ -109,8 +113,12 @@ pub struct NearFieldView {
     pub(super) state: Mutex<State>,
     pub(super) ambient_occlusion: bool,
     pub(super) readback: Mutex<Option<ReadbackBuffers>>,
-    /// The baked volume the technique reads as its far field (None: a white sky).
+    /// The baked volume the technique reads as its far field (None: its sky, below).
     pub(super) far_volume: Option<Arc<ProbeVolume>>,
+    /// Without a volume, the camera's environment map the view was made for (None: there was
+    /// none, or its image was not yet on the GPU) and, where it could be read, the technique's
+    /// sky read from it (None: a white sky).
+    environment: Option<(ViewEnvironment, Option<Arc<Environment>>)>,
     /// glue.wgsl's `far_rule`: how the ao written into Bevy's meets Bevy's volume.
     far_rule: u32,
     /// Group 2 of the ao pass: nearfield's view and the technique's far field.
@@ -118,11 +126,20 @@ pub struct NearFieldView {
     _keep: (GpuEnvironment, GpuFarField),
 }
 
-/// glue.wgsl's `far_rule` for a technique's rule, with a baked volume or without.
-fn glue_far_rule(rule: FarRule, volume: bool) -> u32 {
-    match (volume, rule) {
-        (true, FarRule::Occlusion) => 1,
-        (true, FarRule::Replace) => 2,
+/// What a view's technique reads beyond R: the baked volume, or without one the camera's
+/// environment map (its key, and the sky read from it where it could be).
+struct Far<'a> {
+    volume: Option<&'a NearFieldVolume>,
+    environment: Option<(ViewEnvironment, Option<Arc<Environment>>)>,
+}
+
+/// glue.wgsl's `far_rule` for a technique's rule, with a baked volume or without, and without
+/// one with the view's environment map read as the technique's sky or not.
+fn glue_far_rule(rule: FarRule, volume: bool, environment: bool) -> u32 {
+    match (volume, environment, rule) {
+        (true, _, FarRule::Occlusion) => 1,
+        (true, _, FarRule::Replace) => 2,
+        (false, true, FarRule::Replace) => 3,
         _ => 0,
     }
 }
@@ -177,7 +194,10 @@ impl NearFieldView {
         size: UVec2,
         near_field: &ExtractedNearField,
         view: &ExtractedView,
-        volume: Option<&NearFieldVolume>,
+        Far {
+            volume,
+            environment,
+        }: Far,
     ) -> Result<Self, String> {
         let desc = technique::find(near_field.technique.name()).map_err(|e| e.to_string())?;
         let radius = technique::radius_of(near_field.technique.name(), &near_field.params)
@@ -203,10 +223,15 @@ impl NearFieldView {
             contents: bytemuck::bytes_of(&uniforms),
             usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
         });
-        // Without a baked volume a white sky: the technique's env-irradiance is then its
-        // unoccluded fraction; Bevy's own environment light is shaded by Bevy and darkened by
-        // the ao. With one, the technique reads it beyond R (docs/src/bevy.md, "Counted once").
-        let env = nearfield_scene::Environment::constant(glam::Vec3::ONE);
+        // With a baked volume the technique reads it beyond R; without one, its sky is the
+        // camera's environment map where there is one (docs/src/bevy.md, "Counted once"). Else
+        // a white sky: the technique's env-irradiance is then its unoccluded fraction, and
+        // Bevy's own ambient light is darkened by the ao.
+        let sky = environment.as_ref().and_then(|(_, e)| e.clone());
+        let env = match &sky {
+            Some(e) if volume.is_none() => (**e).clone(),
+            _ => Environment::constant(glam::Vec3::ONE),
+        };
         let gpu_env = GpuEnvironment::new(device, queue, &env);
         let far_field = match volume {
             Some(v) => GpuFarField::volume(device, queue, &v.0, radius),
@@ -218,6 +243,7 @@ impl NearFieldView {
             ao_far_visibility: &far_field.visibility_view,
             ao_far_atlas: &far_field.irradiance_view,
             ao_far_sampler: &gpu_env.sampler,
+            ao_env: &gpu_env.uniform_buffer,
         }
         .bind_group(device, &pipelines.far_layout);
         // gtao, hbil and vbgi read nothing of nearfield's own frame: no `Frame` buffer.
@@ -288,7 +314,8 @@ impl NearFieldView {
             ambient_occlusion: near_field.ambient_occlusion,
             readback: Mutex::new(None),
             far_volume: volume.map(|v| v.0.clone()),
-            far_rule: glue_far_rule(desc.far_rule, volume.is_some()),
+            far_rule: glue_far_rule(desc.far_rule, volume.is_some(), sky.is_some()),
+            environment,
             far_group,
             _keep: (gpu_env, far_field),
         })
@@ -361,7 +388,7 @@ impl NearFieldView {
 
 /// Makes (or remakes, when the size or the settings change) each view's nearfield and writes
 /// this frame's uniforms. A view whose technique cannot be made logs one line and goes without.
-#[allow(clippy::type_complexity)]
+#[allow(clippy::type_complexity, clippy::too_many_arguments)]
 pub(super) fn prepare_views(
     mut commands: Commands,
     device: Res<RenderDevice>,
@@ -369,6 +396,7 @@ pub(super) fn prepare_views(
     pipelines: Res<GluePipelines>,
     refusals: Res<crate::Refusals>,
     volume: Option<Res<NearFieldVolume>>,
+    gpu_images: Res<RenderAssets<GpuImage>>,
     views: Query<(
         Entity,
         &MainEntity,
@@ -393,6 +421,11 @@ pub(super) fn prepare_views(
         let has_motion = prepass.is_some_and(|p| p.motion_vectors.is_some());
         let has_gbuffer = prepass.is_some_and(|p| p.deferred.is_some());
         let volume = volume.as_deref();
+        // The environment map the view is made for: none beside a volume, and none until its
+        // image is on the GPU.
+        let wanted = near_field
+            .environment
+            .filter(|e| volume.is_none() && gpu_images.get(e.image).is_some());
         let current = existing.filter(|v| {
             v.size == size
                 && v.technique_name == near_field.technique
@@ -403,6 +436,7 @@ pub(super) fn prepare_views(
                     (Some(a), Some(b)) => Arc::ptr_eq(a, &b.0),
                     _ => false,
                 }
+                && v.environment.as_ref().map(|e| e.0) == wanted
         });
         // A view made anew where the size or the settings changed (or the first frame).
         let fresh = match current {
@@ -414,7 +448,20 @@ pub(super) fn prepare_views(
                 size,
                 near_field,
                 view,
-                volume,
+                Far {
+                    volume,
+                    environment: wanted.map(|key| {
+                        let e = environment_of(
+                            &key,
+                            existing,
+                            &device,
+                            &queue,
+                            &pipelines,
+                            &gpu_images,
+                        );
+                        (key, e)
+                    }),
+                },
             ) {
                 Ok(v) => Some(v),
                 Err(e) => {
@@ -441,6 +488,32 @@ pub(super) fn prepare_views(
         );
         if let Some(v) = fresh {
             commands.entity(entity).insert(v);
+        }
+    }
+}
+
+/// The technique's sky read from the view's environment map `key`: the one `existing` holds
+/// where it was made for the same map, else read from Bevy's image (None, with one logged line,
+/// where it cannot be read: the technique then sees a white sky).
+fn environment_of(
+    key: &ViewEnvironment,
+    existing: Option<&NearFieldView>,
+    device: &RenderDevice,
+    queue: &RenderQueue,
+    pipelines: &GluePipelines,
+    gpu_images: &RenderAssets<GpuImage>,
+) -> Option<Arc<Environment>> {
+    if let Some((k, e)) = existing.and_then(|v| v.environment.as_ref())
+        && k == key
+    {
+        return e.clone();
+    }
+    let image = gpu_images.get(key.image)?;
+    match key.read(device.wgpu_device(), queue, pipelines, image) {
+        Ok(e) => Some(Arc::new(e)),
+        Err(e) => {
+            error!("NearField: {e}; the technique sees a white sky");
+            None
         }
     }
 }

@@ -128,6 +128,11 @@ pub mod kind {
         sample: T::Float { filterable: false },
         dimension: D::D2Array,
     };
+    /// `texture_cube<f32>`, filterable.
+    pub const TEXTURE_CUBE: Slot = Slot::Texture {
+        sample: T::Float { filterable: true },
+        dimension: D::Cube,
+    };
     /// `texture_depth_2d_array`.
     pub const TEXTURE_DEPTH_ARRAY: Slot = Slot::Texture {
         sample: T::Depth,

@@ -37,6 +37,18 @@ fn storage_format(f: naga::StorageFormat) -> Option<TextureFormat> {
     })
 }
 
+/// naga's dimension and arrayness of a view dimension.
+fn image_dimension(dimension: D) -> (ImageDimension, bool) {
+    match dimension {
+        D::D2Array => (ImageDimension::D2, true),
+        D::Cube => (ImageDimension::Cube, false),
+        D::CubeArray => (ImageDimension::Cube, true),
+        D::D3 => (ImageDimension::D3, false),
+        D::D1 => (ImageDimension::D1, false),
+        D::D2 => (ImageDimension::D2, false),
+    }
+}
+
 /// Why the WGSL declaration of a global disagrees with `slot`, if it does.
 fn mismatch(module: &naga::Module, var: &naga::GlobalVariable, slot: Slot) -> Option<String> {
     let inner = &module.types[var.ty].inner;
@@ -49,12 +61,12 @@ fn mismatch(module: &naga::Module, var: &naga::GlobalVariable, slot: Slot) -> Op
             Slot::Texture { sample, dimension },
             AddressSpace::Handle,
             TypeInner::Image {
-                dim: ImageDimension::D2,
+                dim,
                 arrayed,
                 class,
             },
         ) => {
-            *arrayed == (dimension == D::D2Array)
+            (*dim, *arrayed) == image_dimension(dimension)
                 && match (sample, class) {
                     (T::Float { .. }, ImageClass::Sampled { kind, multi }) => {
                         *kind == ScalarKind::Float && !multi
@@ -74,7 +86,7 @@ fn mismatch(module: &naga::Module, var: &naga::GlobalVariable, slot: Slot) -> Op
             },
             AddressSpace::Handle,
             TypeInner::Image {
-                dim: ImageDimension::D2,
+                dim,
                 arrayed,
                 class:
                     ImageClass::Storage {
@@ -91,7 +103,7 @@ fn mismatch(module: &naga::Module, var: &naga::GlobalVariable, slot: Slot) -> Op
                 (true, false) => StorageTextureAccess::ReadOnly,
                 _ => StorageTextureAccess::WriteOnly,
             };
-            *arrayed == (dimension == D::D2Array)
+            (*dim, *arrayed) == image_dimension(dimension)
                 && storage_format(*f) == Some(format)
                 && wgsl_access == access
         }
