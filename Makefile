@@ -50,6 +50,7 @@ test: setup
 	$(CARGO) test --workspace
 	$(CARGO) test --workspace --features nearfield-render/scratch --test scratch
 	$(CARGO) test --workspace --features nearfield-render/scratch --lib settings_reach
+	BIN=$${CARGO_TARGET_DIR:-target}/debug/nearfield bash scripts/device-bench.sh --lavapipe
 	cd bevy_nearfield && $(CARGO) +nightly test --profile ci --ignore-rust-version -- --test-threads=1
 
 lint:

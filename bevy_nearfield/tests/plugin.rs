@@ -656,7 +656,6 @@ fn the_far_field_is_read_in_bevys_units() {
             .default_env
             .load_split(nearfield_scene::sun::SunMode::Auto)
             .unwrap();
-        let camera = scene.default_camera();
         let grid = nearfield_reference::bake::default_grid(&scene).unwrap();
         let settings = nearfield_reference::bake::BakeSettings {
             grid,
@@ -672,49 +671,11 @@ fn the_far_field_is_read_in_bevys_units() {
         let ktx2 = nearfield_scene::probes::bevy::BevyVolume::resampled(&volume, k).to_ktx2();
         let baked = BakedVolume::from_ktx2(&ktx2).unwrap();
 
-        // nearfield: `none` with the volume as its far field, the lambertian AOV (its GPU
-        // context dropped before Bevy makes its own).
-        let lambertian = {
-            let ctx = GpuContext::new(None).expect("an adapter (lavapipe in CI)");
-            let none =
-                nearfield_render::technique::Spec::resolve("none", &TechniqueParams::default())
-                    .unwrap();
-            let render_settings = RenderSettings {
-                size: SIZE,
-                ..Default::default()
-            };
-            let mut r = Renderer::new(
-                &ctx,
-                &scene,
-                &env,
-                Some(&volume),
-                camera,
-                &none,
-                render_settings,
-            )
-            .unwrap();
-            r.render_frame();
-            r.read_aov(Aov::Lambertian)
-        };
-        let covered: Vec<bool> = lambertian.pixels.iter().map(|p| p[3] > 0.0).collect();
-        let rgb = |p: &[f32; 4]| [p[0], p[1], p[2]];
-        let nearfield: Vec<[f32; 3]> = lambertian.pixels.iter().map(rgb).collect();
-
-        // The path tracer (Lambertian surfaces, the environment and lights, 8 segments).
-        let truth = nearfield_reference::render(
-            &scene,
-            &env,
-            &camera,
-            &nearfield_reference::ReferenceSettings {
-                aov: nearfield_reference::ReferenceAov::Radiance,
-                size: SIZE,
-                spp: TRUTH_SPP,
-                max_depth: 8,
-                ..Default::default()
-            },
-            false,
-        );
-        let truth: Vec<[f32; 3]> = truth.value.iter().map(rgb).collect();
+        // nearfield: `none` with the volume as its far field.
+        let lambertian = lambertian_none(&scene, &env, Some(&volume));
+        let covered: Vec<bool> = lambertian.iter().map(|p| p[3] > 0.0).collect();
+        let nearfield: Vec<[f32; 3]> = lambertian.iter().map(rgb).collect();
+        let truth = truth(&scene, &env);
 
         let bevy = |volume: Option<BakedVolume>| {
             let setup = Setup {
@@ -844,11 +805,33 @@ fn the_far_field_is_read_in_bevys_units() {
     }
 }
 
-/// nearfield's `lambertian` AOV of `scene`'s view under `env`, drawn with `none` (no
-/// occlusion): its direct light and the environment's unoccluded diffuse light.
+/// The rgb of an rgba pixel.
+fn rgb(p: &[f32; 4]) -> [f32; 3] {
+    [p[0], p[1], p[2]]
+}
+
+/// The path tracer's radiance of `scene`'s view under `env` (Lambertian surfaces, the
+/// environment and lights, 8 segments, [`TRUTH_SPP`]).
+fn truth(scene: &nearfield_scene::Scene, env: &nearfield_scene::Environment) -> Vec<[f32; 3]> {
+    let settings = nearfield_reference::ReferenceSettings {
+        aov: nearfield_reference::ReferenceAov::Radiance,
+        size: SIZE,
+        spp: TRUTH_SPP,
+        max_depth: 8,
+        ..Default::default()
+    };
+    let camera = scene.default_camera();
+    let truth = nearfield_reference::render(scene, env, &camera, &settings, false);
+    truth.value.iter().map(rgb).collect()
+}
+
+/// nearfield's `lambertian` AOV of `scene`'s view under `env`, drawn with `none`: its direct
+/// light and the far field's diffuse light (the volume's, or the environment's unoccluded). Its
+/// GPU context is dropped before Bevy makes its own.
 fn lambertian_none(
     scene: &nearfield_scene::Scene,
     env: &nearfield_scene::Environment,
+    volume: Option<&nearfield_scene::probes::ProbeVolume>,
 ) -> Vec<[f32; 4]> {
     let ctx = GpuContext::new(None).expect("an adapter (lavapipe in CI)");
     let none =
@@ -858,7 +841,7 @@ fn lambertian_none(
         ..Default::default()
     };
     let camera = scene.default_camera();
-    let mut r = Renderer::new(&ctx, scene, env, None, camera, &none, settings).unwrap();
+    let mut r = Renderer::new(&ctx, scene, env, volume, camera, &none, settings).unwrap();
     r.render_frame();
     r.read_aov(Aov::Lambertian).pixels
 }
@@ -915,25 +898,10 @@ fn the_environment_map_is_read_as_the_sky() {
         };
         let mut sunlit = env.clone();
         sunlit.texels.fill(glam::Vec3::ZERO);
-        let with_sky = lambertian_none(&scene, &env);
-        let sun_only = lambertian_none(&scene, &sunlit);
+        let with_sky = lambertian_none(&scene, &env, None);
+        let sun_only = lambertian_none(&scene, &sunlit, None);
         let covered: Vec<bool> = with_sky.iter().map(|p| p[3] > 0.0).collect();
-        let rgb = |p: &[f32; 4]| [p[0], p[1], p[2]];
-        let camera = scene.default_camera();
-        let truth = nearfield_reference::render(
-            &scene,
-            &env,
-            &camera,
-            &nearfield_reference::ReferenceSettings {
-                aov: nearfield_reference::ReferenceAov::Radiance,
-                size: SIZE,
-                spp: TRUTH_SPP,
-                max_depth: 8,
-                ..Default::default()
-            },
-            false,
-        );
-        let truth: Vec<[f32; 3]> = truth.value.iter().map(rgb).collect();
+        let truth = truth(&scene, &env);
         let run = |technique: Option<NearFieldTechnique>, env_map: EnvMap| {
             let near_field = technique.map(|technique| NearField {
                 technique,

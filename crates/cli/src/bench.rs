@@ -183,15 +183,15 @@ impl Timed {
         bench_frame(&mut self.renderer, scene, index, orbit);
         self.renderer.wait();
         self.walls.push(t0.elapsed().as_secs_f64() * 1e3);
-        let mut total = 0.0;
-        for (pass, ms) in self.renderer.timings() {
+        let timings = self.renderer.timings();
+        for &(pass, ms) in &timings {
             if !self.order.iter().any(|o| o == pass) {
                 self.order.push(pass.to_string());
             }
             self.per_pass.entry(pass.to_string()).or_default().push(ms);
-            total += ms;
         }
-        self.totals.push(total);
+        self.totals
+            .push(nearfield_render::profiler::frame_total(&timings));
     }
 
     /// The statistics of the frames timed (the GPU total only with `timestamps`).

@@ -1,9 +1,26 @@
 //! GPU pass timings with timestamp queries. Every pass asks for a slot by name; after the frame's
 //! submission, [`GpuProfiler::read`] returns (name, milliseconds) per slot. Without
 //! `TIMESTAMP_QUERY` the profiler hands out no timestamp writes and reads nothing.
+//!
+//! A frame's first timed pass ([`GpuProfiler::lead`], named [`LEAD`]) is empty: a first
+//! timestamp can be written while the GPU still works on what was submitted before, or take the
+//! queue's start-up, and the first real pass (the G-buffer) would read that wait as its own
+//! time. The lead absorbs it; [`frame_total`] leaves it out (docs/src/results.md, "Costs").
 
 /// Most timed passes per frame.
 pub const MAX_PASSES: u32 = 64;
+
+/// The name of the empty pass timed first in each frame.
+pub const LEAD: &str = "lead";
+
+/// A frame's GPU time: the sum of its passes' times, the [`LEAD`] left out.
+pub fn frame_total(timings: &[(&'static str, f64)]) -> f64 {
+    timings
+        .iter()
+        .filter(|(name, _)| *name != LEAD)
+        .map(|(_, ms)| ms)
+        .sum()
+}
 
 pub struct GpuProfiler {
     queries: Option<wgpu::QuerySet>,
@@ -58,6 +75,19 @@ impl GpuProfiler {
         }
         self.labels.push(label);
         Some((q, 2 * (self.labels.len() as u32 - 1)))
+    }
+
+    /// Encodes the frame's [`LEAD`]: an empty compute pass, timed, before every other pass
+    /// (nothing without timestamps).
+    pub fn lead(&mut self, encoder: &mut wgpu::CommandEncoder) {
+        if !self.enabled() {
+            return;
+        }
+        let timestamp_writes = self.compute(LEAD);
+        drop(encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some(LEAD),
+            timestamp_writes,
+        }));
     }
 
     /// Timestamp writes for a compute pass named `label`.

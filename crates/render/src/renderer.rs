@@ -566,6 +566,7 @@ impl Renderer {
         let run = |pass| self.left_out != Some(pass);
         let p = &mut self.profiler;
         p.begin_frame();
+        p.lead(&mut encoder);
         if run(FramePass::Gbuffer) {
             self.gbuffer
                 .encode(&mut encoder, p, &self.targets, &self.scene);
@@ -601,7 +602,9 @@ impl Renderer {
         self.last_frame = info;
     }
 
-    /// Per-pass GPU milliseconds of the last frame (waits for it).
+    /// Per-pass GPU milliseconds of the last frame (waits for it), its empty
+    /// [`profiler::LEAD`](crate::profiler::LEAD) first; [`crate::profiler::frame_total`] sums
+    /// the frame.
     pub fn timings(&self) -> Vec<(&'static str, f64)> {
         self.profiler.read(&self.device)
     }

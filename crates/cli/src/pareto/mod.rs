@@ -86,7 +86,7 @@ fn time_frames(r: &mut Renderer, warmup: u32, timed: u32, gpu: bool) -> Result<f
         r.wait();
         let wall = t0.elapsed().as_secs_f64() * 1e3;
         v.push(if gpu {
-            r.timings().iter().map(|(_, ms)| ms).sum()
+            nearfield_render::profiler::frame_total(&r.timings())
         } else {
             wall
         });

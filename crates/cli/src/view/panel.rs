@@ -415,7 +415,7 @@ impl Panel {
             if t.is_empty() {
                 continue;
             }
-            let total: f64 = t.iter().map(|(_, ms)| ms).sum();
+            let total = nearfield_render::profiler::frame_total(t);
             egui::CollapsingHeader::new(format!(
                 "GPU {}: {total:.2} ms ({})",
                 side_name(side),
