@@ -50,8 +50,10 @@ test: setup
 	$(CARGO) test --workspace
 	$(CARGO) test --workspace --features nearfield-render/scratch --test scratch
 	$(CARGO) test --workspace --features nearfield-render/scratch --lib settings_reach
-	BIN=$${CARGO_TARGET_DIR:-target}/debug/nearfield bash scripts/device-bench.sh --lavapipe
 	cd bevy_nearfield && $(CARGO) +nightly test --profile ci --ignore-rust-version -- --test-threads=1
+	BIN=$${CARGO_TARGET_DIR:-target}/debug/nearfield \
+		BEVY=$${CARGO_TARGET_DIR:-bevy_nearfield/target}/ci/examples/sponza \
+		bash scripts/device-bench.sh --lavapipe
 
 lint:
 	$(CARGO) fmt --all -- --check

@@ -14,6 +14,7 @@
 # The device machine has no Rust toolchain and no network, so the release binary is built here
 # and carried:
 #   bash scripts/device-bench.sh --prepare     # here: release build → .device/nearfield,
+#                                              # the plugin's example → .device/sponza.xz,
 #                                              # Vulkan/EGL loader packages → .gl/
 # then on the device (device tool `run`, carry [".device", ".gl"], timeout_s 600):
 #   bash scripts/device-bench.sh
@@ -26,7 +27,8 @@
 # give. The lead takes that wait, and the frame's total leaves it out; the table lists it.
 #
 #   bash scripts/device-bench.sh --lavapipe    # the same run on a CPU adapter, small and short
-#                                              # (CI, `make test`): every method must report
+#                                              # (CI, `make test`, with BEVY= the example its
+#                                              # plugin tests built): every method must report
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -52,6 +54,11 @@ if [ "${1:-}" = "--prepare" ]; then
     mkdir -p .device
     cp target/release/nearfield .device/nearfield
     strip .device/nearfield 2>/dev/null || true
+    # The plugin's example for Bevy's side (its --bench --headless), compressed to fit the carry.
+    (cd bevy_nearfield && cargo +nightly build --release --ignore-rust-version --example sponza)
+    cp bevy_nearfield/target/release/examples/sponza .device/sponza
+    strip .device/sponza 2>/dev/null || true
+    xz -T0 -6 -f .device/sponza
     grep -qx '/.device/' .git/info/exclude 2>/dev/null || echo /.device/ >>.git/info/exclude
     grep -qx '/.gl/' .git/info/exclude 2>/dev/null || echo /.gl/ >>.git/info/exclude
     if [ ! -d .gl ] || [ -z "$(ls .gl/*.deb 2>/dev/null)" ]; then
@@ -113,6 +120,33 @@ done
 [ "$LAVAPIPE" = 1 ] || timeout 150 "$BIN" pareto "$SCENE" --size "$PARETO_SIZE" --methods gtao --aov ao --radius 1 --spp 16 \
     --warmup 10 --timed 30 --out "$OUT/pareto-gtao" || echo "device-bench: pareto did not finish"
 echo "device-bench: $(($(date +%s) - start)) s of benchmarks"
+
+# Bevy's side on the same card and in the same run: the plugin's example, headless, on the
+# Cornell box as `nearfield export` writes it, at the last size: off, Bevy's SSAO Low, Medium,
+# High and Ultra, gtao, hbil, vbgi and gtao at Bevy High's budget inside Bevy, A B A B, each
+# effect's GPU time from Bevy's render diagnostics (its `ssao` span, the plugin's `nearfield`
+# spans). BEVY names the example's binary; else the carried .device/sponza.xz.
+BEVY=${BEVY:-}
+if [ -z "$BEVY" ] && [ -f .device/sponza.xz ]; then
+    python3 -c 'import lzma, shutil, sys; shutil.copyfileobj(lzma.open(sys.argv[1]), open(sys.argv[2], "wb"))' \
+        .device/sponza.xz "$OUT/sponza"
+    chmod +x "$OUT/sponza"
+    BEVY=$OUT/sponza
+fi
+if [ -n "$BEVY" ]; then
+    bevy_size=${SIZES[${#SIZES[@]} - 1]}
+    "$BIN" export builtin:cornell --size "$bevy_size" --out "$OUT/cornell.glb"
+    timeout 300 "$BEVY" "$OUT/cornell.glb" --bench --headless --size "$bevy_size" \
+        --bench-frames "${BEVY_FRAMES:-$FRAMES}" | grep '^|' >"$OUT/bevy-bench.md"
+    echo "### Bevy at $bevy_size, the exported Cornell box (the plugin's example --bench --headless)"
+    echo
+    cat "$OUT/bevy-bench.md"
+    # Every configuration has its row.
+    [ "$(grep -c '^| [a-z]' "$OUT/bevy-bench.md")" -ge 10 ] ||
+        { echo "device-bench: Bevy's table is incomplete" >&2; exit 1; }
+else
+    echo "device-bench: no Bevy example (BEVY=… or .device/sponza.xz): Bevy's side not run"
+fi
 
 python3 - "$OUT" "${SIZES[@]}" <<'PY'
 import json, sys

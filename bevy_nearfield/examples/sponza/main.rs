@@ -5,7 +5,7 @@
 //!
 //! ```text
 //! cargo +nightly run --release --ignore-rust-version --example sponza -- [SCENE] [options]
-//!   --technique gtao|hbil|vbgi|off|bevy-ssao|gtao-budget
+//!   --technique gtao|hbil|vbgi|off|bevy-ssao[-low|-medium|-ultra]|gtao-budget
 //!                                               what the camera runs (default vbgi); gtao-budget:
 //!                                               gtao at Bevy SSAO High's 18 samples a pixel, at
 //!                                               half resolution, without denoiser (GTAO_BUDGET)
@@ -30,9 +30,15 @@
 //!                                               view, back and forth) and a ball rolls across
 //!                                               the floor before it, at 60 frames a second
 //!   --taa                                       Bevy's TAA on the camera
-//!   --bench                                     time off, bevy-ssao, the three techniques and
-//!                                               gtao-budget
-//!                                               A B A B and print a table
+//!   --bench                                     time off, Bevy's SSAO Low, Medium, High
+//!                                               (bevy-ssao) and Ultra, the three techniques
+//!                                               and gtao-budget A B A B and print a table,
+//!                                               with each effect's GPU time (Bevy's render
+//!                                               diagnostics)
+//!   --bench-frames N                            timed frames per configuration and round
+//!                                               (default 30)
+//!   --headless                                  no window: the camera draws into an image
+//!                                               (with --bench, --mean or --linear)
 //! ```
 //! Keys in the window: 0 off, 1 gtao, 2 hbil, 3 vbgi, 4 Bevy's SSAO High, 5 gtao-budget.
 //!
@@ -57,14 +63,19 @@ use bevy_nearfield::scene::{self, Shading};
 use bevy_nearfield::{NearField, NearFieldPlugin, NearFieldTechnique};
 use std::time::Instant;
 
+mod bench;
 mod options;
 
+use bench::BENCH;
 use options::{Options, fail, options};
 
 fn main() {
     let o = options();
     if o.bench && (o.screenshot.is_some() || o.mean) {
         fail("--bench and --screenshot or --mean: one at a time");
+    }
+    if o.headless && !(o.bench || o.mean) || o.headless && o.screenshot.is_some() {
+        fail("--headless: with --bench, --mean or --linear (no window to screenshot)");
     }
     let loaded = nearfield_scene::load_scene(&o.scene).unwrap_or_else(|e| fail(&e.to_string()));
     let volume = o
@@ -82,8 +93,24 @@ fn main() {
         .unwrap_or_else(|e| fail(&nearfield_scene::one_line(&e.to_string())));
     env.intensity = o.env_intensity;
     let (w, h) = o.size;
-    App::new()
-        .add_plugins(DefaultPlugins.set(WindowPlugin {
+    let mut app = App::new();
+    if o.headless {
+        // No window: the camera draws into an image (setup), frame after frame.
+        app.add_plugins(
+            DefaultPlugins
+                .set(WindowPlugin {
+                    primary_window: None,
+                    exit_condition: bevy::window::ExitCondition::DontExit,
+                    close_when_requested: false,
+                    ..default()
+                })
+                .disable::<bevy::winit::WinitPlugin>(),
+        )
+        .add_plugins(bevy::app::ScheduleRunnerPlugin::run_loop(
+            std::time::Duration::ZERO,
+        ));
+    } else {
+        app.add_plugins(DefaultPlugins.set(WindowPlugin {
             primary_window: Some(Window {
                 title: "bevy_nearfield: sponza".into(),
                 resolution: WindowResolution::new(w, h).with_scale_factor_override(1.0),
@@ -91,8 +118,16 @@ fn main() {
                 ..default()
             }),
             ..default()
-        }))
-        .add_plugins(NearFieldPlugin)
+        }));
+    }
+    if o.bench {
+        // GPU time of each effect's span (Bevy's `ssao`, the plugin's `nearfield`).
+        app.add_plugins(bevy::render::diagnostic::RenderDiagnosticsPlugin);
+        app.add_systems(Update, (keys, bench::step, animate).chain());
+    } else {
+        app.add_systems(Update, (keys, step, animate).chain());
+    }
+    app.add_plugins(NearFieldPlugin)
         // The plugin's indirect light reads ρ from Bevy's deferred G-buffer, which only
         // deferred materials write; --bench times Bevy's forward path.
         .insert_resource(if o.bench {
@@ -117,10 +152,11 @@ fn main() {
             phase: 0,
             last: None,
             times: Vec::new(),
+            gpu: Vec::new(),
+            span_seen: None,
         })
         .insert_resource(o)
         .add_systems(Startup, setup)
-        .add_systems(Update, (keys, step, animate).chain())
         .run();
 }
 
@@ -138,6 +174,10 @@ struct Run {
     last: Option<Instant>,
     /// (configuration, frame time in ms) of every timed frame.
     times: Vec<(String, f64)>,
+    /// (configuration, its effect's GPU time in ms) of every diagnostics measurement in timed
+    /// frames, and when the latest counted was synced.
+    gpu: Vec<(String, f64)>,
+    span_seen: Option<Instant>,
 }
 
 #[derive(Component)]
@@ -249,8 +289,8 @@ fn setup(
         let map = scene::environment_map_light(&mut images, &loaded.2);
         commands.entity(id).insert(map);
     }
-    if options.mean {
-        // The frame into a linear image of the window's size, read back by `step`.
+    if options.mean || options.headless {
+        // The frame into a linear image of the window's size (read back by `step` for --mean).
         let (w, h) = options.size;
         let mut target = Image::new_target_texture(w, h, TextureFormat::Rgba16Float, None);
         target.texture_descriptor.usage |= TextureUsages::COPY_SRC;
@@ -258,6 +298,7 @@ fn setup(
         commands.entity(id).insert((
             RenderTarget::Image(target.clone().into()),
             Tonemapping::None,
+            bevy::core_pipeline::tonemapping::DebandDither::Disabled,
         ));
         commands.insert_resource(MeanTarget(target));
     }
@@ -336,9 +377,16 @@ fn configure(commands: &mut Commands, camera: Entity, name: &str, options: &Opti
         }
         "hbil" => NearFieldTechnique::HBIL,
         "vbgi" => NearFieldTechnique::VBGI,
-        "bevy-ssao" => {
+        s if s.starts_with("bevy-ssao") => {
+            use ScreenSpaceAmbientOcclusionQualityLevel as Q;
+            let quality_level = match s {
+                "bevy-ssao-low" => Q::Low,
+                "bevy-ssao-medium" => Q::Medium,
+                "bevy-ssao-ultra" => Q::Ultra,
+                _ => Q::High,
+            };
             c.insert(ScreenSpaceAmbientOcclusion {
-                quality_level: ScreenSpaceAmbientOcclusionQualityLevel::High,
+                quality_level,
                 ..default()
             });
             return;
@@ -377,8 +425,6 @@ fn keys(
     }
 }
 
-const BENCH: [&str; 6] = ["off", "bevy-ssao", "gtao", "hbil", "vbgi", "gtao-budget"];
-
 /// gtao at Bevy SSAO High's budget (3 slices × 3 steps a side: 18 samples a pixel), the cheapest
 /// configuration the book's peer run found at least as accurate as Bevy High (results.md,
 /// "Costs"): half resolution, no interleaving, no blur, no running mean.
@@ -391,17 +437,6 @@ const GTAO_BUDGET: [(&str, &str); 7] = [
     ("denoise", "off"),
     ("temporal", "off"),
 ];
-const BENCH_WARMUP: u32 = 10;
-const BENCH_FRAMES: u32 = 30;
-const BENCH_ROUNDS: usize = 2;
-
-fn median(v: &mut [f64]) -> f64 {
-    v.sort_by(f64::total_cmp);
-    v[v.len() / 2]
-}
-
-/// Screenshot after `--frames`, or the benchmark's phases: round 0 untimed (pipelines compile),
-/// then every configuration in turn, `BENCH_ROUNDS` times.
 /// Prints the linear mean of the `--mean` target (RGBA16F, Bevy's exposure applied) and writes
 /// it to `linear` (EXR) when given.
 fn print_mean(shot: &ScreenshotCaptured, size: (u32, u32), linear: Option<&std::path::Path>) {
@@ -439,77 +474,29 @@ fn print_mean(shot: &ScreenshotCaptured, size: (u32, u32), linear: Option<&std::
     }
 }
 
+/// Outside `--bench`: the screenshot or the linear mean after `--frames`, then exit.
 fn step(
     mut commands: Commands,
     mut run: ResMut<Run>,
     options: Res<Options>,
-    camera: Single<Entity, With<TheCamera>>,
     mean_target: Option<Res<MeanTarget>>,
     mut exit: MessageWriter<AppExit>,
 ) {
     run.frame += 1;
-    if !options.bench {
-        if run.frame == options.frames {
-            if let Some(path) = &options.screenshot {
-                commands
-                    .spawn(Screenshot::primary_window())
-                    .observe(save_to_disk(path.clone()));
-            }
-            if let Some(target) = &mean_target {
-                let (size, linear) = (options.size, options.linear.clone());
-                commands.spawn(Screenshot::image(target.0.clone())).observe(
-                    move |shot: On<ScreenshotCaptured>| print_mean(&shot, size, linear.as_deref()),
-                );
-            }
+    if run.frame == options.frames {
+        if let Some(path) = &options.screenshot {
+            commands
+                .spawn(Screenshot::primary_window())
+                .observe(save_to_disk(path.clone()));
         }
-        if (options.screenshot.is_some() || options.mean) && run.frame == options.frames + 5 {
-            exit.write(AppExit::Success);
-        }
-        return;
-    }
-    let now = Instant::now();
-    let per_phase = BENCH_WARMUP + BENCH_FRAMES;
-    let phase = (run.frame / per_phase) as usize;
-    let in_phase = run.frame % per_phase;
-    let phases = BENCH.len() * (BENCH_ROUNDS + 1);
-    if phase >= phases {
-        let mut table: Vec<(String, f64)> = Vec::new();
-        for name in BENCH {
-            let mut t: Vec<f64> = run
-                .times
-                .iter()
-                .filter(|(n, _)| n == name)
-                .map(|(_, t)| *t)
-                .collect();
-            table.push((name.to_string(), median(&mut t)));
-        }
-        let off = table[0].1;
-        let ssao = table[1].1 - off;
-        println!(
-            "| configuration | median frame (ms) | overhead (ms) | overhead / Bevy SSAO High |"
-        );
-        println!("|---|---:|---:|---:|");
-        for (name, t) in &table {
-            println!(
-                "| {name} | {t:.2} | {:.2} | {:.2} |",
-                t - off,
-                (t - off) / ssao
+        if let Some(target) = &mean_target {
+            let (size, linear) = (options.size, options.linear.clone());
+            commands.spawn(Screenshot::image(target.0.clone())).observe(
+                move |shot: On<ScreenshotCaptured>| print_mean(&shot, size, linear.as_deref()),
             );
         }
+    }
+    if (options.screenshot.is_some() || options.mean) && run.frame == options.frames + 5 {
         exit.write(AppExit::Success);
-        return;
     }
-    if phase != run.phase || run.frame == 1 {
-        run.phase = phase;
-        configure(&mut commands, *camera, BENCH[phase % BENCH.len()], &options);
-        run.last = None;
-    }
-    let timed = phase >= BENCH.len() && in_phase >= BENCH_WARMUP;
-    if let Some(last) = run.last
-        && timed
-    {
-        let ms = (now - last).as_secs_f64() * 1e3;
-        run.times.push((BENCH[phase % BENCH.len()].to_string(), ms));
-    }
-    run.last = Some(now);
 }

@@ -23,6 +23,10 @@ pub struct Options {
     pub linear: Option<PathBuf>,
     pub frames: u32,
     pub bench: bool,
+    /// Timed frames per configuration and round of `--bench`.
+    pub bench_frames: u32,
+    /// No window: the camera draws into an image (with --bench, --mean, --linear).
+    pub headless: bool,
     pub moving: bool,
     pub taa: bool,
 }
@@ -51,6 +55,8 @@ pub fn options() -> Options {
         linear: None,
         frames: 60,
         bench: false,
+        bench_frames: 30,
+        headless: false,
         moving: false,
         taa: false,
     };
@@ -107,6 +113,14 @@ pub fn options() -> Options {
                     .unwrap_or_else(|| fail(&format!("--size {v}: WxH, each 1..=8192")))
             }
             "--bench" => o.bench = true,
+            "--bench-frames" => {
+                o.bench_frames = value()
+                    .parse()
+                    .ok()
+                    .filter(|n| (1..=10_000).contains(n))
+                    .unwrap_or_else(|| fail("--bench-frames: a whole number in 1..=10000"))
+            }
+            "--headless" => o.headless = true,
             "--mean" => o.mean = true,
             "--linear" => {
                 o.linear = Some(value().into());

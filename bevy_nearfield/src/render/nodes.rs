@@ -1,5 +1,7 @@
 //! The glue's passes in Bevy's `Core3d` schedule: after the prepasses and after the main pass,
-//! and the readback of the images a test or a tool asked for.
+//! and the readback of the images a test or a tool asked for. Each of the two is a time span of
+//! Bevy's render diagnostics, `nearfield` and `nearfield add` (GPU and CPU time where Bevy's
+//! `RenderDiagnosticsPlugin` is on, as Bevy's own `ssao`).
 
 use super::pipelines::{AddBindings, AoBindings, CaptureBindings, GluePipelines, InputsBindings};
 use super::prepare::NearFieldView;
@@ -8,6 +10,7 @@ use crate::readback::{ExtractedReadback, NearFieldImages, ReadbackBuffers};
 use bevy::core_pipeline::prepass::ViewPrepassTextures;
 use bevy::pbr::ScreenSpaceAmbientOcclusionResources;
 use bevy::prelude::*;
+use bevy::render::diagnostic::RecordDiagnostics;
 use bevy::render::renderer::{RenderContext, RenderDevice, ViewQuery};
 use bevy::render::sync_world::MainEntity;
 use bevy::render::view::ViewTarget;
@@ -83,7 +86,10 @@ pub(super) fn inputs_and_technique(
     }
     .bind_group(device, &pipelines.inputs_layout);
     let info = *nf.info.lock().unwrap();
+    let diagnostics = ctx.diagnostic_recorder();
+    let diagnostics = diagnostics.as_deref();
     let encoder = ctx.command_encoder();
+    let span = diagnostics.time_span(encoder, "nearfield");
     encoder.push_debug_group("nearfield");
     fullscreen(
         encoder,
@@ -144,6 +150,7 @@ pub(super) fn inputs_and_technique(
         );
     }
     encoder.pop_debug_group();
+    span.end(encoder);
 }
 
 /// After Bevy's main pass: its colour is kept as the radiance the next frame gathers (before
@@ -163,6 +170,27 @@ pub(super) fn capture_and_add(
 ) {
     let (nf, target, prepass, near_field, readback) = view.into_inner();
     let device = device.wgpu_device();
+    // The indirect light's pass, where there is one to draw (hbil and vbgi, a G-buffer, a main
+    // texture whose format has a pipeline).
+    let add = prepass
+        .deferred
+        .as_ref()
+        .filter(|_| near_field.technique.has_indirect() && near_field.indirect_intensity != 0.0)
+        .zip(nf.images.indirect_irradiance.as_ref())
+        .zip(
+            pipelines
+                .add
+                .iter()
+                .find(|(f, _)| *f == target.main_texture_format()),
+        )
+        .map(|((gbuffer, indirect), (_, pipeline))| {
+            let group = AddBindings {
+                bevy_gbuffer: &gbuffer.texture.default_view,
+                indirect_irradiance: &indirect.view,
+            }
+            .bind_group(device, &pipelines.add_layout);
+            (pipeline, group)
+        });
     // Bevy's colour of this frame is what the next frame gathers (reprojected by its inputs
     // pass), with this frame's view depth for that pass's same-surface test.
     let next = &nf.images.captured.view;
@@ -171,7 +199,10 @@ pub(super) fn capture_and_add(
         view_depth: &nf.images.view_depth.view,
     }
     .bind_group(device, &pipelines.capture_layout);
+    let diagnostics = ctx.diagnostic_recorder();
+    let diagnostics = diagnostics.as_deref();
     let encoder = ctx.command_encoder();
+    let span = diagnostics.time_span(encoder, "nearfield add");
     fullscreen(
         encoder,
         "nearfield capture radiance",
@@ -186,36 +217,18 @@ pub(super) fn capture_and_add(
     {
         b.copy_radiance(encoder, &nf.images.captured.texture);
     }
-    if !near_field.technique.has_indirect() || near_field.indirect_intensity == 0.0 {
-        return;
+    if let Some((pipeline, group)) = &add {
+        fullscreen(
+            encoder,
+            "nearfield add indirect",
+            pipeline,
+            &nf.glue_group,
+            group,
+            &[target.main_texture_view()],
+            wgpu::LoadOp::Load,
+        );
     }
-    let Some(gbuffer) = prepass.deferred.as_ref() else {
-        return;
-    };
-    let Some(indirect) = nf.images.indirect_irradiance.as_ref() else {
-        return;
-    };
-    let Some((_, add)) = pipelines
-        .add
-        .iter()
-        .find(|(f, _)| *f == target.main_texture_format())
-    else {
-        return;
-    };
-    let add_group = AddBindings {
-        bevy_gbuffer: &gbuffer.texture.default_view,
-        indirect_irradiance: &indirect.view,
-    }
-    .bind_group(device, &pipelines.add_layout);
-    fullscreen(
-        encoder,
-        "nearfield add indirect",
-        add,
-        &nf.glue_group,
-        &add_group,
-        &[target.main_texture_view()],
-        wgpu::LoadOp::Load,
-    );
+    span.end(encoder);
 }
 
 /// After the frame is submitted: maps the copies and stores them by camera.
