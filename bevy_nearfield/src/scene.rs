@@ -324,7 +324,10 @@ fn cube_image(n: u32, levels: u32, chain: impl Fn(usize) -> Vec<Vec<glam::Vec3>>
         for level in chain(face) {
             for t in level {
                 for c in [t.x, t.y, t.z, 1.0] {
-                    data.extend_from_slice(&half::f16::from_f32(c.min(F16_MAX)).to_le_bytes());
+                    data.extend_from_slice(
+                        &half::f16::from_f32(c.min(nearfield_render::gpu_env::F16_MAX))
+                            .to_le_bytes(),
+                    );
                 }
             }
         }
@@ -347,9 +350,6 @@ fn cube_image(n: u32, levels: u32, chain: impl Fn(usize) -> Vec<Vec<glam::Vec3>>
     });
     image
 }
-
-/// The largest radiance an rgba16float texel holds (brighter ones are clamped).
-const F16_MAX: f32 = 65000.0;
 
 /// Bevy's camera exposure for nearfield's `--exposure` (stops): nearfield shows radiance ×
 /// 2^stops, Bevy radiance × 2^−ev100 / 1.2, so ev100 = −log2(1.2) − stops. At nearfield's
