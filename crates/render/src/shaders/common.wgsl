@@ -75,7 +75,9 @@ struct LayerView {
     peel: u32,
     // 1: an exit layer (normal stored facing away from the camera).
     exit: u32,
-    _pad0: u32,
+    // 1: a single-sided back face behind the G-buffer's layer (which culls them) is never that
+    // layer re-rasterized: the peel keeps it however close it lies (peel.wgsl).
+    after_front: u32,
     _pad1: u32,
     _pad2: vec4<f32>,
 }

@@ -69,7 +69,9 @@ crate::gpu_struct! {
         pub peel: u32,
         /// 1: an exit layer (normal stored facing away from the camera).
         pub exit: u32,
-        pub _pad0: u32,
+        /// 1: keep a single-sided back face behind the G-buffer's layer however close it lies
+        /// ([`LayerStack::back_faces_exit`]).
+        pub after_front: u32,
         pub _pad1: u32,
         pub _pad2: [f32; 4],
     }
@@ -92,7 +94,7 @@ impl LayerView {
             tan_half_fov: (0.5 * camera.yfov).tan(),
             peel: peel as u32,
             exit: exit as u32,
-            _pad0: 0,
+            after_front: 0,
             _pad1: 0,
             _pad2: [0.0; 4],
         }
@@ -228,6 +230,11 @@ pub struct LayerStack {
     /// Shade the layers (their direct radiance, for bounces); off where only their depth is
     /// read (vbgi's thickness). On by default.
     pub shade: bool,
+    /// Take a single-sided back face behind the G-buffer's layer as the second layer however
+    /// close it lies (peel.wgsl): the exit through a solid's outermost pixel, which the
+    /// re-rasterization tolerance drops where R spans few pixels. Off by default (vbgi's
+    /// `resolution=half`; the book, vbgi, "Half resolution").
+    pub back_faces_exit: bool,
     peel: LayerImages,
     cams: LayerImages,
     views: wgpu::Buffer,
@@ -338,6 +345,7 @@ impl LayerStack {
         Ok(LayerStack {
             settings,
             shade: true,
+            back_faces_exit: false,
             peel,
             cams,
             views,
@@ -363,7 +371,10 @@ impl LayerStack {
         for k in 0..CAMERA_VIEW_BASE {
             // Layers 2 and 4 (k = 0, 2) are exits.
             let exit = k % 2 == 0;
-            data[k as usize] = LayerView::new(camera, self.main_size, self.bounds, true, exit);
+            data[k as usize] = LayerView {
+                after_front: (k == 0 && self.back_faces_exit) as u32,
+                ..LayerView::new(camera, self.main_size, self.bounds, true, exit)
+            };
         }
         for c in 0..self.settings.cameras {
             let view = camera_view(camera, self.bounds, &self.settings, c);

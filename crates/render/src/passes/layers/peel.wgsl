@@ -24,7 +24,7 @@ struct LayerOut {
 }
 
 @fragment
-fn fs_layer(in: VertexOut) -> LayerOut {
+fn fs_layer(in: VertexOut, @builtin(front_facing) front_facing: bool) -> LayerOut {
     let duv_dx = dpdx(in.uv);
     let duv_dy = dpdy(in.uv);
     let depth = -(layer_view.view_from_world * vec4<f32>(in.world, 1.0)).z;
@@ -38,7 +38,13 @@ fn fs_layer(in: VertexOut) -> LayerOut {
         // The layer before is re-rasterized with the same matrix, so its fragments land on the
         // stored depth to within a few ulps; a relative view-depth tolerance alone fails where the
         // buffer's resolution (≈ t² ulp / near) is coarser than it (small near planes).
-        if d >= 1.0 || in.clip.z <= d + 4.0 * 1.2e-7 || depth <= before * (1.0 + 1e-4) + 1e-6 {
+        // With `after_front` (vbgi at half resolution), a back face behind the G-buffer's layer,
+        // which culls single-sided back faces, is never that layer again: it needs only to lie
+        // behind it, so that the exit through a thin chord (a solid's outermost pixel, seen from
+        // far with a small near plane) is not taken for the layer before.
+        let exempt = layer_view.after_front == 1u && !front_facing;
+        let same = in.clip.z <= d + 4.0 * 1.2e-7 || depth <= before * (1.0 + 1e-4) + 1e-6;
+        if d >= 1.0 || in.clip.z <= d || (same && !exempt) {
             discard;
         }
     }

@@ -8,6 +8,7 @@ use crate::contract::technique::{TechniqueParams, layered_texture, screen_textur
 use crate::passes::ComputeStep;
 use crate::passes::layers::{LayerSettings, LayerStack};
 use crate::profiler::GpuProfiler;
+use crate::settings::march::Resolution;
 use crate::settings::{Declared, count_constants};
 use crate::technique::horizon::{March, MarchContext, MarchIo};
 use crate::util;
@@ -66,6 +67,7 @@ pub fn create(m: &MarchContext) -> Result<Box<dyn March>, RenderError> {
                 }
             })?;
         stack.shade = false;
+        stack.back_faces_exit = m.settings.march.resolution == Resolution::Half;
         Some(stack)
     } else {
         None
