@@ -10,7 +10,8 @@ use bevy::image::{ImageAddressMode, ImageSampler, ImageSamplerDescriptor};
 use bevy::mesh::{Indices, PrimitiveTopology};
 use bevy::prelude::*;
 use bevy::render::render_resource::{Extent3d, TextureDimension, TextureFormat};
-use nearfield_scene::{AlphaMode, Environment, LightKind, Scene, TextureColorSpace};
+use nearfield_scene::{AlphaMode, Animation, Environment, LightKind, Scene, TextureColorSpace};
+use std::sync::Arc;
 
 /// How the spawned materials are shaded.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -29,7 +30,41 @@ fn v3(v: glam::Vec3) -> Vec3 {
     Vec3::new(v.x, v.y, v.z)
 }
 
-/// Spawns every mesh of `scene` with its material.
+/// A mesh of the scene that follows an animated node (glTF node animation, a `*-moving`
+/// built-in): spawned at rest, its `Transform` is the node's motion from the rest pose
+/// ([`SceneMotion::transform_at`]), which [`play_scene_motion`] sets from Bevy's clock.
+#[derive(Component, Clone)]
+pub struct SceneMotion {
+    /// Index into the animation's nodes.
+    pub node: u32,
+    pub animation: Arc<Animation>,
+}
+
+impl SceneMotion {
+    /// The mesh's transform at time `t` (s): world from its rest pose, as `nearfield render`
+    /// poses it at the same time.
+    pub fn transform_at(&self, t: f32) -> Transform {
+        let m = self.animation.motion_at(self.node, t);
+        Transform::from_matrix(Mat4::from_cols_array(&m.to_cols_array()))
+    }
+}
+
+/// Plays the scene's animation in a loop on Bevy's clock (`Time`'s elapsed seconds, modulo the
+/// animation's duration): add it to `Update` to see a moving scene move.
+pub fn play_scene_motion(time: Res<Time>, mut moving: Query<(&SceneMotion, &mut Transform)>) {
+    for (m, mut transform) in &mut moving {
+        let period = m.animation.duration();
+        let t = if period > 0.0 {
+            time.elapsed_secs() % period
+        } else {
+            0.0
+        };
+        *transform = m.transform_at(t);
+    }
+}
+
+/// Spawns every mesh of `scene` with its material; a moving mesh at rest with its
+/// [`SceneMotion`], posed at time 0.
 pub fn spawn_scene(
     commands: &mut Commands,
     meshes: &mut Assets<Mesh>,
@@ -108,9 +143,14 @@ pub fn spawn_scene(
             })
         })
         .collect();
+    let animation = Arc::new(scene.animation.clone());
     for mesh in &scene.meshes {
-        let positions: Vec<[f32; 3]> = mesh.positions.iter().map(|p| p.to_array()).collect();
-        let normals: Vec<[f32; 3]> = mesh.normals.iter().map(|n| n.to_array()).collect();
+        let (rest_positions, rest_normals) = match &mesh.motion {
+            Some(mm) => (&mm.rest_positions, &mm.rest_normals),
+            None => (&mesh.positions, &mesh.normals),
+        };
+        let positions: Vec<[f32; 3]> = rest_positions.iter().map(|p| p.to_array()).collect();
+        let normals: Vec<[f32; 3]> = rest_normals.iter().map(|n| n.to_array()).collect();
         let mut m = Mesh::new(
             PrimitiveTopology::TriangleList,
             RenderAssetUsages::RENDER_WORLD,
@@ -128,7 +168,14 @@ pub fn spawn_scene(
             .get(mesh.material as usize)
             .cloned()
             .unwrap_or_default();
-        commands.spawn((Mesh3d(meshes.add(m)), MeshMaterial3d(material)));
+        let mut entity = commands.spawn((Mesh3d(meshes.add(m)), MeshMaterial3d(material)));
+        if let Some(mm) = &mesh.motion {
+            let motion = SceneMotion {
+                node: mm.node,
+                animation: animation.clone(),
+            };
+            entity.insert((motion.transform_at(0.0), motion));
+        }
     }
 }
 

@@ -127,6 +127,8 @@ fn main() {
     } else {
         app.add_systems(Update, (keys, step, animate).chain());
     }
+    // A SCENE with glTF node animation plays it in a loop (nothing moves in Sponza).
+    app.add_systems(Update, scene::play_scene_motion);
     app.add_plugins(NearFieldPlugin)
         // The plugin's indirect light reads ρ from Bevy's deferred G-buffer, which only
         // deferred materials write; --bench times Bevy's forward path.
