@@ -562,6 +562,18 @@ fn compare_along_a_walk_measures_every_kth_frame_against_its_own_reference() {
     // neither `none` nor the truth changes between them (ao = 1): an instability of 1.
     assert_eq!(report.methods[0].path_still, Some(0.0));
     assert_eq!(report.methods[0].instability, Some(1.0));
+    // ColorVideoVDP over the longest consecutive run (120, 121): identical frames, 10 JOD.
+    let m = &report.methods[0];
+    assert_eq!(m.video_frames, Some(2));
+    assert!(
+        (m.video_jod.unwrap() - 10.0).abs() < 1e-3,
+        "{:?}",
+        m.video_jod
+    );
+    assert!(
+        stdout.contains("ColorVideoVDP 10.00 JOD over 2 frames"),
+        "{stdout}"
+    );
     let html = std::fs::read_to_string(out.join("report.html")).unwrap();
     assert!(html.contains("Error along the camera path"));
     let cached = std::fs::read_dir(cache.join("reference")).unwrap().count();
@@ -596,6 +608,7 @@ fn compare_along_a_walk_measures_every_kth_frame_against_its_own_reference() {
         vec![1, 2, 3]
     );
     assert_eq!(m.instability, Some(1.0));
+    assert_eq!(m.video_frames, Some(3));
     let _ = std::fs::remove_dir_all(&dir);
 }
 

@@ -7,6 +7,7 @@ pub mod metrics;
 pub mod plot;
 pub mod report;
 pub mod strip;
+pub mod video;
 
 pub use metrics::{Mask, MaskSettings, Metrics};
 

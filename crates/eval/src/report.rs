@@ -37,6 +37,13 @@ pub struct MethodReport {
     /// over the reference's own, its noise subtracted (`metrics::instability`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub instability: Option<f64>,
+    /// Along a path: ColorVideoVDP's JOD of the technique's frames against the reference's
+    /// over the longest run of consecutive measured frames, as the report shows them
+    /// ([`crate::video`]), and how many frames that run holds.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub video_jod: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub video_frames: Option<u32>,
     /// Along a path with cuts: the frames to settle after each (the first within 5 % of the
     /// error of frames 17–32 after it, the cut's own frame counted as 1).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
@@ -374,18 +381,22 @@ fn path(h: &mut String, report: &Report) {
     }
     let _ = write!(
         h,
-        "<h2>Error along the camera path</h2><p>Relative error of each measured frame against the reference from that frame's camera, each technique's history carried from frame to frame. Still: the mean error a still camera reaches after 16 frames at up to eight of those views. Instability: the motion-compensated change from frame to frame over the reference's own (its noise subtracted; measured with <code>--every 1</code>).</p>{curve}<table><tr><th>method</th><th>frames measured</th><th>mean</th><th>95th percentile</th><th>largest</th><th>largest after frame 16</th><th>still</th><th>instability</th><th>frames to settle after a cut</th><th>frames to settle after the objects stop</th></tr>"
+        "<h2>Error along the camera path</h2><p>Relative error of each measured frame against the reference from that frame's camera, each technique's history carried from frame to frame. Still: the mean error a still camera reaches after 16 frames at up to eight of those views. Instability: the motion-compensated change from frame to frame over the reference's own (its noise subtracted; measured with <code>--every 1</code>). ColorVideoVDP: the perceptual quality of the frames as shown here against the reference's, played at the path's rate, in JOD (10: no visible difference; the reference's noise counts as a difference), over the longest run of consecutive measured frames.</p>{curve}<table><tr><th>method</th><th>frames measured</th><th>mean</th><th>95th percentile</th><th>largest</th><th>largest after frame 16</th><th>still</th><th>instability</th><th>ColorVideoVDP (JOD)</th><th>frames to settle after a cut</th><th>frames to settle after the objects stop</th></tr>"
     );
     for m in report.methods.iter().filter(|m| !m.path.is_empty()) {
         let (mean, p95, max) = path_summary(&m.path);
         let _ = write!(
             h,
-            "<tr><th>{}</th><td>{}</td><td>{mean:.4}</td><td>{p95:.4}</td><td>{max:.4}</td><td>{:.4}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
+            "<tr><th>{}</th><td>{}</td><td>{mean:.4}</td><td>{p95:.4}</td><td>{max:.4}</td><td>{:.4}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
             escape(&m.name),
             m.path.len(),
             path_largest_settled(&m.path),
             m.path_still.map_or("–".into(), |e| format!("{e:.4}")),
             m.instability.map_or("–".into(), |e| format!("{e:.2}×")),
+            match (m.video_jod, m.video_frames) {
+                (Some(j), Some(n)) => format!("{j:.2} ({n} frames)"),
+                _ => "–".into(),
+            },
             frame_list(&m.settle),
             frame_list(&m.settle_stops),
         );

@@ -26,6 +26,13 @@ pub(super) struct Run {
 /// The references of the measured frames of a path: (frame index, reference).
 pub(super) type Along = Vec<(u32, ReferenceImage)>;
 
+/// A path's measured frames as the report shows them: (frame index, image).
+pub(super) type Shown = Vec<(u32, image::RgbImage)>;
+
+/// The motion-compensated change of the technique and of the reference over consecutive
+/// measured frames.
+pub(super) type Change = Option<(FrameChange, FrameChange)>;
+
 /// What a technique's frames give: its last frame's AOV and mask, the convergence (a still
 /// camera), and along a path the error of each measured frame and the motion-compensated change
 /// of the technique and of the reference over consecutive measured frames.
@@ -34,7 +41,9 @@ pub(super) struct Frames {
     pub mask: Mask,
     pub convergence: Vec<ConvergencePoint>,
     pub path: Vec<ConvergencePoint>,
-    pub change: Option<(FrameChange, FrameChange)>,
+    pub change: Change,
+    /// Along a path: each measured frame as the report shows it, with its index.
+    pub shown: Shown,
 }
 
 /// The frames of a still camera's run at a view of the path, measured against its reference.
@@ -183,6 +192,7 @@ impl Run {
         // The last measured frame: its index in `along`, the technique's image and its mask.
         let mut prev: Option<(usize, AovImage, Mask)> = None;
         let mut change: Option<(FrameChange, FrameChange)> = None;
+        let mut shown = Vec::new();
         for i in 0..self.frames {
             self.motion.frame(r, i);
             if i % 8 == 7 {
@@ -204,7 +214,10 @@ impl Run {
                 let value = r.read_aov(gpu_aov);
                 let m_now = judge.mask_against(r, &value, truth);
                 let m = metrics::metrics(&value.pixels, &truth.value, &m_now);
-                judge.frame_pngs(method, n, &value.pixels, truth, &m_now)?;
+                shown.push((
+                    i,
+                    judge.frame_pngs(method, n, &value.pixels, truth, &m_now)?,
+                ));
                 path.push(ConvergencePoint {
                     frames: n,
                     rmse: m.rmse,
@@ -250,6 +263,7 @@ impl Run {
             convergence,
             path,
             change,
+            shown,
         })
     }
 
@@ -259,16 +273,64 @@ impl Run {
     pub fn figures(
         &self,
         report: &mut MethodReport,
-        (path, change): (Vec<ConvergencePoint>, Option<(FrameChange, FrameChange)>),
+        (path, change, shown): (Vec<ConvergencePoint>, Change, Shown),
         make: &dyn Fn() -> Result<Renderer>,
         (gpu_aov, judge, along): (Aov, &Judge, &Along),
     ) -> Result<()> {
         report.path_still = self.still_error(make, (gpu_aov, judge), along)?;
         report.instability = change.map(|(t, r)| metrics::instability(t, r));
+        (report.video_jod, report.video_frames) = self.video(&report.name, shown, judge, along);
         report.settle = self.settle(&path);
         report.settle_stops = self.settle_stops(&path);
         report.path = path;
         Ok(())
+    }
+
+    /// ColorVideoVDP's JOD of the technique's frames against the reference's over the longest
+    /// run of consecutive measured frames (`--every 1` measures them all), played at the path's
+    /// frame rate, and the run's length; none where no two measured frames are consecutive or
+    /// the metric refuses the run (one line says why).
+    fn video(
+        &self,
+        method: &str,
+        shown: Shown,
+        judge: &Judge,
+        along: &Along,
+    ) -> (Option<f64>, Option<u32>) {
+        let Motion::Path(p) = &self.motion else {
+            return (None, None);
+        };
+        // The longest run of consecutive frame indices: [start, start + len) in `shown`.
+        let (mut best, mut start) = ((0, 0), 0);
+        for k in 0..shown.len() {
+            if k > 0 && shown[k].0 != shown[k - 1].0 + 1 {
+                start = k;
+            }
+            if k + 1 - start > best.1 {
+                best = (start, k + 1 - start);
+            }
+        }
+        if best.1 < 2 {
+            return (None, None);
+        }
+        let run = &shown[best.0..best.0 + best.1];
+        let test: Vec<image::RgbImage> = run.iter().map(|(_, im)| im.clone()).collect();
+        let reference: Vec<image::RgbImage> = run
+            .iter()
+            .map(|(i, _)| {
+                let truth = along.iter().find(|(j, _)| j == i).map(|(_, t)| t);
+                judge.srgb(&truth.expect("a measured frame's reference").value)
+            })
+            .collect();
+        match nearfield_eval::video::jod(&test, &reference, p.fps) {
+            Ok(j) => (Some(j), Some(best.1 as u32)),
+            Err(e) => {
+                judge
+                    .progress
+                    .suspend(|| eprintln!("nearfield: {method}: no ColorVideoVDP score: {e}"));
+                (None, None)
+            }
+        }
     }
 
     /// The mean error of a still camera after [`STILL_FRAMES`] frames at up to eight evenly
@@ -346,6 +408,9 @@ pub(super) fn path_line(m: &nearfield_eval::report::MethodReport) -> String {
     );
     if let Some(i) = m.instability {
         line += &format!(", instability {i:.2}× the reference's");
+    }
+    if let (Some(j), Some(n)) = (m.video_jod, m.video_frames) {
+        line += &format!(", ColorVideoVDP {j:.2} JOD over {n} frames");
     }
     if !m.settle.is_empty() {
         line += &format!(", settles in {:?} frames after the cuts", m.settle);

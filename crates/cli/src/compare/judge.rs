@@ -88,7 +88,7 @@ impl<'a> Judge<'a> {
 
     /// Along a path: frame `n`'s image of `method` and its signed error against `truth` (the
     /// reference of that frame) as `frames/METHOD-NNNN.png` and `frames/METHOD-NNNN-error.png`,
-    /// for the report's sequence.
+    /// for the report's sequence; returns the first (the frame as the report shows it).
     pub fn frame_pngs(
         &self,
         method: &str,
@@ -96,25 +96,33 @@ impl<'a> Judge<'a> {
         pixels: &[[f32; 4]],
         truth: &ReferenceImage,
         mask: &Mask,
-    ) -> Result<()> {
+    ) -> Result<image::RgbImage> {
         let (w, h) = self.size;
         let dir = self.out.join("frames");
         std::fs::create_dir_all(&dir)?;
-        let srgb = image_ops::tonemap_exposed(pixels, w, h, self.gain);
-        png(srgb, &dir.join(format!("{method}-{n:04}.png")))?;
+        let srgb = self.srgb(pixels);
+        png(srgb.clone(), &dir.join(format!("{method}-{n:04}.png")))?;
         let errors = metrics::signed_errors(pixels, &truth.value, mask);
         let range = image_ops::error_range(&errors, &mask.valid);
         let heat = image_ops::heatmap(&errors, &mask.valid, w, h, range);
-        png(heat, &dir.join(format!("{method}-{n:04}-error.png")))
+        png(heat, &dir.join(format!("{method}-{n:04}-error.png")))?;
+        Ok(srgb)
+    }
+
+    /// An image as the report shows it: exposed, tone-mapped, 8-bit sRGB.
+    pub fn srgb(&self, pixels: &[[f32; 4]]) -> image::RgbImage {
+        let (w, h) = self.size;
+        image_ops::tonemap_exposed(pixels, w, h, self.gain)
     }
 
     /// Along a path: the reference of frame `n` as `frames/reference-NNNN.png`.
     pub fn reference_png(&self, n: u32, truth: &ReferenceImage) -> Result<()> {
-        let (w, h) = self.size;
         let dir = self.out.join("frames");
         std::fs::create_dir_all(&dir)?;
-        let srgb = image_ops::tonemap_exposed(&truth.value, w, h, self.gain);
-        png(srgb, &dir.join(format!("reference-{n:04}.png")))
+        png(
+            self.srgb(&truth.value),
+            &dir.join(format!("reference-{n:04}.png")),
+        )
     }
 
     /// The comparison mask of a technique's image `value` against the reference.
@@ -198,6 +206,8 @@ impl<'a> Judge<'a> {
             path: Vec::new(),
             path_still: None,
             instability: None,
+            video_jod: None,
+            video_frames: None,
             settle: Vec::new(),
             settle_stops: Vec::new(),
         })

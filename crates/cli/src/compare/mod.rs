@@ -319,7 +319,7 @@ pub fn run(args: CompareArgs) -> Result<()> {
         let mut report = judge.measure(method, &value.pixels, mask, f.convergence, &mut panels)?;
         if !f.path.is_empty() {
             let make = || renderer(&t.loaded.scene, method);
-            let path = (f.path, f.change);
+            let path = (f.path, f.change, f.shown);
             run.figures(&mut report, path, &make, (gpu_aov, &judge, along))?;
             progress.suspend(|| println!("{}", frames::path_line(&report)));
         }
