@@ -8,13 +8,14 @@
 #
 #   scripts/near-far.sh [spacings]        default spacings: 0.5 1 2 4
 #   NEAR_FAR_ONLY=spacings|footprint      one of the two tables
+#   METHODS=none,vbgi                     only these techniques' columns (default: all ten)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 N=target/release/nearfield
 ASSETS=${NEARFIELD_ASSETS:-../shared/assets}
 export XDG_RUNTIME_DIR=${XDG_RUNTIME_DIR:-$(d=${TMPDIR:-/tmp}/nearfield-xdg-$(id -u); mkdir -p -m 700 "$d"; echo "$d")}
 SPACINGS=${*:-0.5 1 2 4}
-METHODS=none,ssao,ssdo,s3ho,ssbn,gtao,hbil,vbgi,instant-radiosity,ssdo-vpl
+METHODS=${METHODS:-none,ssao,ssdo,s3ho,ssbn,gtao,hbil,vbgi,instant-radiosity,ssdo-vpl}
 OUT=target/near-far
 mkdir -p "$OUT"
 

@@ -59,6 +59,11 @@ impl FrameGroup {
         }
     }
 
+    /// Whether the far field this group binds is a probe volume (else the sky).
+    pub fn far_volume(&self) -> bool {
+        self.far_volume
+    }
+
     /// far.wgsl's `FAR_FIELD` for a pipeline over this group: the far field it binds, a probe
     /// volume or the sky, so that `far_volume()` is a constant and the branch the frame does not
     /// take is left out of the kernel. Every pass that includes far.wgsl sets it.

@@ -22,6 +22,10 @@ crate::bind_group! {
         full_back: view = kind::TEXTURE_ARRAY_UNFILTERABLE,
         /// 16 layers of the second layer's view depth (r32float array).
         split_back: view = kind::write_array(wgpu::TextureFormat::R32Float),
+        /// The peeled layers' direct radiance (rgba16float array; layer 0 is the second layer).
+        full_back_radiance: view = kind::TEXTURE_ARRAY,
+        /// 16 layers of the second layer's direct radiance (rgba16float array).
+        split_back_radiance: view = kind::write_array(wgpu::TextureFormat::Rgba16Float),
     }
 }
 

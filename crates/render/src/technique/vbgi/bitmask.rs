@@ -32,6 +32,9 @@ crate::bind_group! {
         in_radiance: view = kind::TEXTURE_ARRAY,
         /// View depth of the second depth layer (r32float array; 0 where there is none).
         in_back: view = kind::TEXTURE_ARRAY_UNFILTERABLE,
+        /// Direct radiance of the second depth layer (rgba16float array): the surface behind a
+        /// sample's front, which a receiver behind the sample sees.
+        in_back_radiance: view = kind::TEXTURE_ARRAY,
         /// Raw bent cone (xyz bent normal, w ao).
         out_cone: view = kind::write(HDR_FORMAT),
         /// Raw near-field irradiance.

@@ -30,9 +30,10 @@ const CONTINUITY: f32 = 0.25;
 @group(1) @binding(3) var in_normal: texture_2d_array<f32>;
 @group(1) @binding(4) var in_radiance: texture_2d_array<f32>;
 @group(1) @binding(5) var in_back: texture_2d_array<f32>;
-@group(1) @binding(6) var out_cone: texture_storage_2d<rgba16float, write>;
-@group(1) @binding(7) var out_near: texture_storage_2d<rgba16float, write>;
-@group(1) @binding(8) var out_far: texture_storage_2d<rgba16float, write>;
+@group(1) @binding(6) var in_back_radiance: texture_2d_array<f32>;
+@group(1) @binding(7) var out_cone: texture_storage_2d<rgba16float, write>;
+@group(1) @binding(8) var out_near: texture_storage_2d<rgba16float, write>;
+@group(1) @binding(9) var out_far: texture_storage_2d<rgba16float, write>;
 
 // Cosine weighting (`ao` is (1/π) ∫ V cos θ dω, docs/src/aovs.md). In the slice the measure of
 // the hemisphere integral is |sin θ| dθ dφ/… and the integrand n·ω = n′·ω(θ) with the projected
@@ -129,6 +130,26 @@ fn range_bits(range: vec2<f32>, base: f32, jitter: f32) -> u32 {
     return bit_range(u32(clamp(lo, 0.0, sectors)), u32(clamp(hi, 0.0, sectors)));
 }
 
+// The radiance a sender at split texel `q` sends towards the receiver: its front (the radiance
+// source) where the front faces the receiver (`accept`, HBIL Sec. 3.4's smoothstep on −n_x′·v̂),
+// and where it faces away, with a second layer behind it (`back`), the second layer's direct
+// radiance: a receiver behind a thin occluder (a post before a wall, a box seen from behind)
+// sees the occluder's rear, which the screen does not show but the depth peel does. Without a
+// second layer the rear is unknown and sends nothing; so does it under the open sky, where the
+// layer's shading takes the sky unoccluded, too bright for a rear that faces what lies behind
+// the occluder (the book, vbgi, "The occluder's rear"). With a probe volume the rear is lit by
+// the volume's irradiance at its normal, as every surface of the frame is.
+fn sender_radiance(q: vec2<i32>, layer: u32, accept: f32, back: bool) -> vec3<f32> {
+    var l = vec3<f32>(0.0);
+    if accept > 0.0 {
+        l += accept * textureLoad(in_radiance, q, layer, 0).rgb;
+    }
+    if back && accept < 1.0 {
+        l += (1.0 - accept) * textureLoad(in_back_radiance, q, layer, 0).rgb;
+    }
+    return l;
+}
+
 @compute @workgroup_size(8, 8, 1)
 fn bitmask(@builtin(global_invocation_id) id: vec3<u32>) {
     let at = march_at(view, params, id.xy);
@@ -155,6 +176,7 @@ fn bitmask(@builtin(global_invocation_id) id: vec3<u32>) {
     // The light of the free sectors: the environment at a blurred mip, or the probe volume's
     // radiance at this point (its SH read after the slices, applied to the sectors' moments).
     let volume = FAR && far_volume(far_probes);
+    let rear_known = far_volume(far_probes);
     var moments: FarMoments;
     let eye = view.camera_position.xyz;
     let forward = -normalize(view.world_from_view[2].xyz);
@@ -219,6 +241,7 @@ fn bitmask(@builtin(global_invocation_id) id: vec3<u32>) {
             var prev_depth = 0.0;
             var prev_texel = vec2<i32>(0);
             var prev_accept = 0.0;
+            var prev_back = false;
             for (var j = 0u; j < STEPS; j++) {
                 let t = r_layer * pow((f32(j) + step_jitter) / f32(STEPS), params.step_power);
                 let pos = vec2<f32>(texel) + 0.5 + side_sign * dir * max(t, 1.0);
@@ -254,11 +277,13 @@ fn bitmask(@builtin(global_invocation_id) id: vec3<u32>) {
                 //   adaptive  τ = `thickness_ratio` × z₁ (for engines without a second layer: a
                 //             thickness that grows with distance, as the depth's resolution does)
                 var tau = -1.0;
+                var has_back = false;
                 switch vbgi.thickness {
                     case 0u: {
                         let back = textureLoad(in_back, q, layer, 0).r;
                         if back > qd {
                             tau = (back - qd) / max(dot(normalize(on_line.xyz - eye), forward), 0.05);
+                            has_back = true;
                         }
                     }
                     case 1u: {
@@ -281,7 +306,8 @@ fn bitmask(@builtin(global_invocation_id) id: vec3<u32>) {
                 // emission, so emissive surfaces light their surroundings as area lights; over
                 // frames the bounces add up (HBIL Eq. 17). The sender's cosine is in the sectors
                 // (a sender seen edge-on covers few); a(x′) = smoothstep(a, b, −n_x′·v̂) rejects
-                // back-facing senders (HBIL Sec. 3.4), which still occupy their sectors.
+                // back-facing senders (HBIL Sec. 3.4), which still occupy their sectors and send
+                // their rear's light where the second layer shows it (`sender_radiance`).
                 let accept = smoothstep(params.reject_a, params.reject_b, -dot(qn, v / dist));
                 if prev_valid {
                     let step_v = on_line.xyz - prev_point;
@@ -320,9 +346,9 @@ fn bitmask(@builtin(global_invocation_id) id: vec3<u32>) {
                             } else {
                                 let extra = range_bits(ext, base, round_jitter);
                                 let fresh = extra & ~occupied;
-                                if params.indirect == 1u && fresh != 0u && prev_accept > 0.0 {
-                                    let l = textureLoad(in_radiance, prev_texel, layer, 0).rgb;
-                                    near += prev_accept * l * mask_weight(fresh, &cum);
+                                if params.indirect == 1u && fresh != 0u {
+                                    let l = sender_radiance(prev_texel, layer, prev_accept, prev_back && rear_known);
+                                    near += l * mask_weight(fresh, &cum);
                                 }
                                 occupied |= extra;
                             }
@@ -337,11 +363,11 @@ fn bitmask(@builtin(global_invocation_id) id: vec3<u32>) {
                 prev_depth = qd;
                 prev_texel = q;
                 prev_accept = accept;
+                prev_back = has_back;
                 let bits = range_bits(range, base, round_jitter);
                 let fresh = bits & ~occupied;
-                if params.indirect == 1u && fresh != 0u && accept > 0.0 {
-                    let l = textureLoad(in_radiance, q, layer, 0).rgb;
-                    near += accept * l * mask_weight(fresh, &cum);
+                if params.indirect == 1u && fresh != 0u {
+                    near += sender_radiance(q, layer, accept, has_back && rear_known) * mask_weight(fresh, &cum);
                 }
                 occupied |= bits;
             }

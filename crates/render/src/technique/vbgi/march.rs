@@ -26,6 +26,8 @@ pub struct BitmaskMarch {
     /// What the kernel reads of the second layer: the deinterleaved layer with interleaving,
     /// the peeled layer without, else a stand-in.
     back_view: wgpu::TextureView,
+    /// The second layer's direct radiance, as `back_view`.
+    back_radiance_view: wgpu::TextureView,
     /// With `thickness=layer` and interleaving: the deinterleave.
     back: Option<(ComputeStep, wgpu::BindGroup, (u32, u32))>,
     /// params.wgsl's `NEAR` and `FAR` of the kernel (the far field through the sectors).
@@ -66,7 +68,10 @@ pub fn create(m: &MarchContext) -> Result<Box<dyn March>, RenderError> {
                     ),
                 }
             })?;
-        stack.shade = false;
+        // With a probe volume the second layer is shaded: its direct radiance is what a
+        // receiver behind a sample sees of it (bitmask.wgsl's `sender_radiance`). Under the
+        // open sky the rear sends nothing and only the layer's depth is read.
+        stack.shade = ctx.frame_group.far_volume();
         stack.back_faces_exit = m.settings.march.resolution == Resolution::Half;
         Some(stack)
     } else {
@@ -81,24 +86,46 @@ pub fn create(m: &MarchContext) -> Result<Box<dyn March>, RenderError> {
             wgpu::TextureFormat::R32Float,
         )
     });
+    let split_back_radiance = (layers.is_some() && m.settings.march.interleaved).then(|| {
+        layered_texture(
+            device,
+            (p.layer_width, p.layer_height),
+            16,
+            "split back radiance",
+            wgpu::TextureFormat::Rgba16Float,
+        )
+    });
     let stand_in = screen_texture(
         device,
         (1, 1),
         "no back depth",
         wgpu::TextureFormat::R32Float,
     );
+    let stand_in_radiance = screen_texture(
+        device,
+        (1, 1),
+        "no back radiance",
+        wgpu::TextureFormat::Rgba16Float,
+    );
     let back_view = match (&split_back, &layers) {
         (Some(t), _) => array_view(t),
         (None, Some(l)) => l.resources().peel_depth.clone(),
         (None, None) => array_view(&stand_in),
     };
-    let back = match (&split_back, &layers) {
-        (Some(t), Some(l)) => {
+    let back_radiance_view = match (&split_back_radiance, &layers) {
+        (Some(t), _) => array_view(t),
+        (None, Some(l)) => l.resources().peel_radiance.clone(),
+        (None, None) => array_view(&stand_in_radiance),
+    };
+    let back = match (&split_back, &split_back_radiance, &layers) {
+        (Some(t), Some(tr), Some(l)) => {
             let back_layout = back::BackBindings::layout(device);
             let bg = back::BackBindings {
                 params: m.params_buffer,
                 full_back: l.resources().peel_depth,
                 split_back: &array_view(t),
+                full_back_radiance: l.resources().peel_radiance,
+                split_back_radiance: &array_view(tr),
             }
             .bind_group(device, &back_layout);
             let module = crate::pipeline_cache::shader_module(device, "vbgi back", &back::source());
@@ -115,14 +142,16 @@ pub fn create(m: &MarchContext) -> Result<Box<dyn March>, RenderError> {
         }
         _ => None,
     };
-    let mut textures = vec![stand_in];
+    let mut textures = vec![stand_in, stand_in_radiance];
     textures.extend(split_back);
+    textures.extend(split_back_radiance);
     Ok(Box::new(BitmaskMarch {
         layout: bitmask::BitmaskBindings::layout(device),
         settings,
         params,
         layers,
         back_view,
+        back_radiance_view,
         back,
         work: crate::technique::horizon::march::work(true, m.params),
         _textures: textures,
@@ -142,6 +171,7 @@ impl March for BitmaskMarch {
             in_normal: io.normal,
             in_radiance: io.radiance,
             in_back: &self.back_view,
+            in_back_radiance: &self.back_radiance_view,
             out_cone: io.out[0],
             out_near: io.out[1],
             out_far: io.out[2],
