@@ -77,24 +77,14 @@ pub fn create(m: &MarchContext) -> Result<Box<dyn March>, RenderError> {
     } else {
         None
     };
-    let split_back = (layers.is_some() && m.settings.march.interleaved).then(|| {
-        layered_texture(
-            device,
-            (p.layer_width, p.layer_height),
-            16,
-            "split back depth",
-            wgpu::TextureFormat::R32Float,
-        )
-    });
-    let split_back_radiance = (layers.is_some() && m.settings.march.interleaved).then(|| {
-        layered_texture(
-            device,
-            (p.layer_width, p.layer_height),
-            16,
-            "split back radiance",
-            wgpu::TextureFormat::Rgba16Float,
-        )
-    });
+    // The second layer's depth and radiance: deinterleaved with interleaving, else read as the
+    // peel leaves them; 1×1 stand-ins without a second layer.
+    let split = |label, format| {
+        (layers.is_some() && m.settings.march.interleaved)
+            .then(|| layered_texture(device, (p.layer_width, p.layer_height), 16, label, format))
+    };
+    let split_back = split("split back depth", wgpu::TextureFormat::R32Float);
+    let split_back_radiance = split("split back radiance", wgpu::TextureFormat::Rgba16Float);
     let stand_in = screen_texture(
         device,
         (1, 1),
