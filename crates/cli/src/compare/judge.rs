@@ -53,7 +53,7 @@ pub(super) fn traced_info(
 }
 
 /// Writes `img` as a PNG, whole or not at all.
-pub(super) fn png(img: image::RgbImage, path: &Path) -> Result<()> {
+pub(super) fn png(img: &image::RgbImage, path: &Path) -> Result<()> {
     crate::output::save_atomically(path, |tmp| {
         img.save_with_format(tmp, image::ImageFormat::Png)
             .map_err(anyhow::Error::from)
@@ -71,7 +71,7 @@ impl<'a> Judge<'a> {
     ) -> Result<Self> {
         let gain = 2f32.powf(args.technique.exposure);
         let ref_srgb = image_ops::tonemap_exposed(&reference.value, size.0, size.1, gain);
-        png(ref_srgb.clone(), &args.out.join("reference.png"))?;
+        png(&ref_srgb, &args.out.join("reference.png"))?;
         Ok(Judge {
             reference,
             ref_alpha: reference.value.iter().map(|p| p[3]).collect(),
@@ -101,11 +101,11 @@ impl<'a> Judge<'a> {
         let dir = self.out.join("frames");
         std::fs::create_dir_all(&dir)?;
         let srgb = self.srgb(pixels);
-        png(srgb.clone(), &dir.join(format!("{method}-{n:04}.png")))?;
+        png(&srgb, &dir.join(format!("{method}-{n:04}.png")))?;
         let errors = metrics::signed_errors(pixels, &truth.value, mask);
         let range = image_ops::error_range(&errors, &mask.valid);
         let heat = image_ops::heatmap(&errors, &mask.valid, w, h, range);
-        png(heat, &dir.join(format!("{method}-{n:04}-error.png")))?;
+        png(&heat, &dir.join(format!("{method}-{n:04}-error.png")))?;
         Ok(srgb)
     }
 
@@ -120,7 +120,7 @@ impl<'a> Judge<'a> {
         let dir = self.out.join("frames");
         std::fs::create_dir_all(&dir)?;
         png(
-            self.srgb(&truth.value),
+            &self.srgb(&truth.value),
             &dir.join(format!("reference-{n:04}.png")),
         )
     }
@@ -175,7 +175,7 @@ impl<'a> Judge<'a> {
         let range = image_ops::error_range(&errors, &mask.valid);
         let image = format!("{method}.png");
         let heat = format!("{method}-error.png");
-        png(srgb, &self.out.join(&image))?;
+        png(&srgb, &self.out.join(&image))?;
         let heatmap = image_ops::heatmap(&errors, &mask.valid, w, h, range);
         if self.strip_errors {
             panels.push(Panel {
@@ -184,7 +184,7 @@ impl<'a> Judge<'a> {
                 subtitle: format!("blue −{range:.3} … red +{range:.3}"),
             });
         }
-        png(heatmap, &self.out.join(&heat))?;
+        png(&heatmap, &self.out.join(&heat))?;
         self.progress.suspend(|| println!(
             "{method:<10} pixels {:>8}  bias {:+.5}  mean {:.3}x  MAE {:.5}  RMSE {:.5}  rel {:.4}  FLIP {:.4}",
             m.pixels,
@@ -230,8 +230,8 @@ impl<'a> Judge<'a> {
         let without_ambient = crate::footprint::ambient_of(without);
         let e = truth.error(&with, &without_ambient);
         let (truth_map, map) = truth.heatmaps(&with, &without_ambient);
-        png(map, &self.out.join(format!("{method}-footprint.png")))?;
-        png(truth_map, &self.out.join("reference-footprint.png"))?;
+        png(&map, &self.out.join(format!("{method}-footprint.png")))?;
+        png(&truth_map, &self.out.join("reference-footprint.png"))?;
         self.progress.suspend(|| {
             println!(
                 "{method:<10} footprint {e:.4} over {} pixels",
@@ -268,7 +268,7 @@ impl<'a> Judge<'a> {
                 None => format!("ray traced; {far}, R {radius} m"),
             },
         });
-        png(strip(&panels), path)?;
+        png(&strip(&panels), path)?;
         eprintln!("nearfield: wrote {}", path.display());
         Ok(())
     }

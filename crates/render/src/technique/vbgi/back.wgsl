@@ -8,6 +8,9 @@
 @group(1) @binding(3) var full_back_radiance: texture_2d_array<f32>;
 @group(1) @binding(4) var split_back_radiance: texture_storage_2d_array<rgba16float, write>;
 
+// Whether the rear's radiance is deinterleaved too (with a probe volume; vbgi's march).
+override REAR: bool = true;
+
 @compute @workgroup_size(8, 8, 1)
 fn back(@builtin(global_invocation_id) id: vec3<u32>) {
     let texel = id.xy;
@@ -20,9 +23,13 @@ fn back(@builtin(global_invocation_id) id: vec3<u32>) {
         var radiance = vec4<f32>(0.0);
         if in_bounds(view, pixel) {
             depth = textureLoad(full_back, pixel, 0, 0).r;
-            radiance = textureLoad(full_back_radiance, pixel, 0, 0);
+            if REAR {
+                radiance = textureLoad(full_back_radiance, pixel, 0, 0);
+            }
         }
         textureStore(split_back, texel, layer, vec4<f32>(depth, 0.0, 0.0, 0.0));
-        textureStore(split_back_radiance, texel, layer, radiance);
+        if REAR {
+            textureStore(split_back_radiance, texel, layer, radiance);
+        }
     }
 }

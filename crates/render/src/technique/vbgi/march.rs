@@ -54,6 +54,10 @@ pub fn create(m: &MarchContext) -> Result<Box<dyn March>, RenderError> {
         contents: bytemuck::bytes_of(&b.params),
         usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
     });
+    // The occluder's rear (the second layer's direct radiance) is shaded, deinterleaved and
+    // read only with a probe volume (bitmask.wgsl's `sender_radiance`); under the open sky the
+    // rear sends nothing and only the layer's depth is read.
+    let rear = b.layer && ctx.frame_group.far_volume();
     let layers = if b.layer {
         let two = LayerSettings {
             layers: 2,
@@ -68,10 +72,7 @@ pub fn create(m: &MarchContext) -> Result<Box<dyn March>, RenderError> {
                     ),
                 }
             })?;
-        // With a probe volume the second layer is shaded: its direct radiance is what a
-        // receiver behind a sample sees of it (bitmask.wgsl's `sender_radiance`). Under the
-        // open sky the rear sends nothing and only the layer's depth is read.
-        stack.shade = ctx.frame_group.far_volume();
+        stack.shade = rear;
         stack.back_faces_exit = m.settings.march.resolution == Resolution::Half;
         Some(stack)
     } else {
@@ -84,7 +85,8 @@ pub fn create(m: &MarchContext) -> Result<Box<dyn March>, RenderError> {
             .then(|| layered_texture(device, (p.layer_width, p.layer_height), 16, label, format))
     };
     let split_back = split("split back depth", wgpu::TextureFormat::R32Float);
-    let split_back_radiance = split("split back radiance", wgpu::TextureFormat::Rgba16Float);
+    let split_back_radiance =
+        split("split back radiance", wgpu::TextureFormat::Rgba16Float).filter(|_| rear);
     let stand_in = screen_texture(
         device,
         (1, 1),
@@ -104,18 +106,18 @@ pub fn create(m: &MarchContext) -> Result<Box<dyn March>, RenderError> {
     };
     let back_radiance_view = match (&split_back_radiance, &layers) {
         (Some(t), _) => array_view(t),
-        (None, Some(l)) => l.resources().peel_radiance.clone(),
-        (None, None) => array_view(&stand_in_radiance),
+        (None, Some(l)) if rear => l.resources().peel_radiance.clone(),
+        _ => array_view(&stand_in_radiance),
     };
-    let back = match (&split_back, &split_back_radiance, &layers) {
-        (Some(t), Some(tr), Some(l)) => {
+    let back = match (&split_back, &layers) {
+        (Some(t), Some(l)) => {
             let back_layout = back::BackBindings::layout(device);
             let bg = back::BackBindings {
                 params: m.params_buffer,
                 full_back: l.resources().peel_depth,
                 split_back: &array_view(t),
                 full_back_radiance: l.resources().peel_radiance,
-                split_back_radiance: &array_view(tr),
+                split_back_radiance: &back_radiance_view,
             }
             .bind_group(device, &back_layout);
             let module = crate::pipeline_cache::shader_module(device, "vbgi back", &back::source());
@@ -126,7 +128,7 @@ pub fn create(m: &MarchContext) -> Result<Box<dyn March>, RenderError> {
                 "back",
                 ctx.frame_group,
                 &back_layout,
-                &[],
+                &[("REAR", if rear { 1.0 } else { 0.0 })],
             );
             Some((step, bg, util::groups_8x8((p.layer_width, p.layer_height))))
         }
