@@ -232,10 +232,10 @@ impl Renderer {
         self.check_device()?;
         let technique = technique::Spec::resolve(spec, params)?;
         let in_place = technique.desc.name == self.passes.technique.name()
-            && self
-                .passes
-                .technique
-                .update(&self.queue, &technique.params)?;
+            && self.passes.technique.update(
+                &self.queue,
+                &technique.params_for(self.frame_group.far_volume()),
+            )?;
         if in_place {
             self.cut = true;
         } else {

@@ -146,6 +146,10 @@ pub struct TechniqueDesc {
     pub writes: &'static [Output],
     /// How its light is counted against a probe volume, once (the book, "Near and far").
     pub far_rule: FarRule,
+    /// Settings it takes over its defaults where the frame has a probe volume, unless the first
+    /// one's key is given ([`crate::technique::Spec::params_for`]): what keeps it from taking
+    /// away light the volume already holds (the book, "Near and far").
+    pub with_volume: &'static [(&'static str, &'static str)],
 }
 
 /// How nearfield's frame counts a technique's near field against the probe volume's irradiance,
@@ -153,9 +157,10 @@ pub struct TechniqueDesc {
 /// (passes/irradiance_terms.wgsl). Nothing changes under the open sky.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum FarRule {
-    /// Scalar occlusion (ssao, gtao, ssdo, ssbn): of the volume's irradiance, the share its visibility
-    /// v keeps beyond the volume's own visibility within R, each with its occluders'
-    /// multi-bounce light: E_far · min(1, F(v) / F(ao_far)).
+    /// Scalar occlusion (ssao, gtao, ssdo, ssbn): of the volume's irradiance, what its visibility
+    /// v keeps beyond the volume's own visibility within R, the occluders lit as the receiver is
+    /// (its albedo, its direct light and GTAO's multi-bounce fit): min(E_far, E(v)) with
+    /// E(ao_far) = E_far (irradiance_terms.wgsl's `occluded_light`).
     Occlusion,
     /// Directional occlusion with its own near light (s3ho): the share h of the occlusion the technique finds that
     /// the volume holds takes the volume's light — env' = mix(env, E_far, h), indirect' =

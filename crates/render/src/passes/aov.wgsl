@@ -63,7 +63,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
             v = vec3<f32>(textureLoad(ao, pixel, 0).r);
         }
         case 6u, 14u: {
-            v = technique_env(env_irradiance, ao, far_field, AO_SCALES_FAR, far_volume(far_probes), pixel, textureLoad(gb_albedo, pixel, 0).rgb);
+            v = technique_env(env_irradiance, ao, far_field, AO_SCALES_FAR, far_volume(far_probes), pixel, textureLoad(gb_albedo, pixel, 0).rgb, textureLoad(light_irradiance, pixel, 0).rgb);
         }
         case 7u: {
             v = textureLoad(light_irradiance, pixel, 0).rgb;
@@ -72,7 +72,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
             v = technique_indirect(indirect_irradiance, ao, far_field, AO_SCALES_FAR, far_volume(far_probes), pixel);
         }
         case 9u: {
-            v = textureLoad(gb_albedo, pixel, 0).rgb * (technique_env(env_irradiance, ao, far_field, AO_SCALES_FAR, far_volume(far_probes), pixel, textureLoad(gb_albedo, pixel, 0).rgb)
+            v = textureLoad(gb_albedo, pixel, 0).rgb * (technique_env(env_irradiance, ao, far_field, AO_SCALES_FAR, far_volume(far_probes), pixel, textureLoad(gb_albedo, pixel, 0).rgb, textureLoad(light_irradiance, pixel, 0).rgb)
                 + textureLoad(light_irradiance, pixel, 0).rgb
                 + technique_indirect(indirect_irradiance, ao, far_field, AO_SCALES_FAR, far_volume(far_probes), pixel));
         }
@@ -87,7 +87,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         }
         case 13u: {
             v = textureLoad(gb_emissive, pixel, 0).rgb
-                + textureLoad(gb_albedo, pixel, 0).rgb * (technique_env(env_irradiance, ao, far_field, AO_SCALES_FAR, far_volume(far_probes), pixel, textureLoad(gb_albedo, pixel, 0).rgb)
+                + textureLoad(gb_albedo, pixel, 0).rgb * (technique_env(env_irradiance, ao, far_field, AO_SCALES_FAR, far_volume(far_probes), pixel, textureLoad(gb_albedo, pixel, 0).rgb, textureLoad(light_irradiance, pixel, 0).rgb)
                 + textureLoad(light_irradiance, pixel, 0).rgb
                 + technique_indirect(indirect_irradiance, ao, far_field, AO_SCALES_FAR, far_volume(far_probes), pixel));
         }

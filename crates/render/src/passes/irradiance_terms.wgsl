@@ -11,21 +11,41 @@
 // visibility ao_far, far_field's alpha) and the light of those occluders. A technique changes
 // the image only by what the volume does not hold (the book, "Near and far"):
 //   1 occlusion    (ssao, gtao, ssdo, ssbn): v = env / E_far, the technique's visibility;
-//                  env' = E_far · min(1, F(v) / F(ao_far)), F GTAO's multi-bounce fit with the
-//                  receiver's albedo (Jimenez et al. 2016, Eq. 10)
+//                  env' = min(E_far, E(v)), E(ao_far) = E_far, the occluders the volume holds lit
+//                  as the receiver (its albedo, its light, GTAO's multi-bounce fit: `occluded_light`)
 //   2 directional  (s3ho): h = min(1, (1 − ao_far) / (1 − ao)) of the occlusion found is
 //                  the volume's too: env' = mix(env, E_far, h), indirect' = (1 − h) indirect
 //   0              (hbil, vbgi, instant-radiosity: near light that replaces the volume's; `none`,
 //                  ssdo-vpl: their own): as written.
 override FAR_RULE: u32 = 0u;
 
-// GTAO's multi-bounce fit (Jimenez et al. 2016, Eq. 10): visibility a with the light its
-// occluders reflect (their albedo taken as the receiver's).
-fn multibounce(a: f32, albedo: vec3<f32>) -> vec3<f32> {
+// GTAO's multi-bounce fit (Jimenez et al. 2016, Eq. 10) over the visibility: the light of a
+// receiver of visibility a under a uniform environment, with the bounces between it and its
+// occluders (their albedo taken as the receiver's), is E_open · a · bounces(a, ρ). Its value is
+// F(a) = a · bounces(a, ρ), the fit's polynomial divided by a (kept ≥ 1: F(a) ≥ a).
+fn bounces(a: f32, albedo: vec3<f32>) -> vec3<f32> {
     let ca = 2.0404 * albedo - 0.3324;
     let cb = -4.7951 * albedo + 0.6417;
     let cc = 2.7552 * albedo + 0.6903;
-    return max(vec3<f32>(a), ((a * ca + cb) * a + cc) * a);
+    return max(vec3<f32>(1.0), (a * ca + cb) * a + cc);
+}
+
+// The occlusion rule (1): the light at a receiver whose cosine-weighted visibility within R is v,
+// where the volume's irradiance `far` holds visibility `far_ao`. GTAO's multi-bounce fit takes the
+// occluders lit as the receiver by the same environment; the rule adds the lights for the share
+// of the occlusion the volume holds (held_share: geometry the bake saw, lit where the receiver
+// is), which sends ρ · light (the receiver's direct irradiance) back with the same bounces; the
+// rest (an object the bake never saw, detail below the probes' spacing) is taken unlit:
+//   E(a) = E_open · F(a) + h ρ · light · (1 − a) · bounces(a)
+// with E_open, the light of the open directions, solved from E(far_ao) = far. Without lights
+// E(v) / E(far_ao) = F(v) / F(far_ao). The rule only takes light away (v below far_ao, min with
+// far).
+fn occluded_light(v: f32, far_ao: f32, far: vec3<f32>, light: vec3<f32>, albedo: vec3<f32>) -> vec3<f32> {
+    let a = min(v, far_ao);
+    let lit = held_share(v, far_ao) * albedo * light;
+    let held = bounces(far_ao, albedo);
+    let open = max(vec3<f32>(0.0), far - lit * (1.0 - far_ao) * held) / max(far_ao * held, vec3<f32>(1e-3));
+    return min(far, open * a * bounces(a, albedo) + lit * (1.0 - a) * bounces(a, albedo));
 }
 
 // The share of the occlusion a technique finds (ao) that the far field already holds (its own
@@ -44,7 +64,7 @@ fn counts(rule: u32, volume: bool) -> bool {
 }
 
 // The technique's env-irradiance at `pixel`.
-fn technique_env(env_irradiance: texture_2d<f32>, ao: texture_2d<f32>, far_field: texture_2d<f32>, ao_only: bool, volume: bool, pixel: vec2<u32>, albedo: vec3<f32>) -> vec3<f32> {
+fn technique_env(env_irradiance: texture_2d<f32>, ao: texture_2d<f32>, far_field: texture_2d<f32>, ao_only: bool, volume: bool, pixel: vec2<u32>, albedo: vec3<f32>, light: vec3<f32>) -> vec3<f32> {
     let far = textureLoad(far_field, pixel, 0);
     let a = textureLoad(ao, pixel, 0).r;
     var e: vec3<f32>;
@@ -55,7 +75,7 @@ fn technique_env(env_irradiance: texture_2d<f32>, ao: texture_2d<f32>, far_field
     }
     if counts(1u, volume) {
         let v = clamp(luminance(e) / max(luminance(far.rgb), 1e-12), 0.0, 1.0);
-        return far.rgb * min(vec3<f32>(1.0), multibounce(v, albedo) / max(multibounce(far.a, albedo), vec3<f32>(1e-3)));
+        return occluded_light(v, far.a, far.rgb, light, albedo);
     }
     if counts(2u, volume) {
         return mix(e, far.rgb, held_share(a, far.a));

@@ -31,7 +31,7 @@ impl Passes {
         pack_half: bool,
         spec: &technique::Spec,
     ) -> Result<Self, RenderError> {
-        let (desc, params) = (spec.desc, &spec.params);
+        let (desc, params) = (spec.desc, spec.params_for(frame_group.far_volume()));
         let direct = passes::direct_lighting::new(device, frame_group, targets, scene, shadows);
         let technique = technique::create(
             desc,
@@ -48,7 +48,7 @@ impl Passes {
                 }),
                 pack_half,
             },
-            params,
+            &params,
         )?;
         // A technique that writes only ao (gtao): composite and aov form its env- and
         // indirect-irradiance.

@@ -159,6 +159,25 @@ impl Spec {
     pub fn radius(&self) -> Option<f32> {
         radius_in(self.desc, &self.params)
     }
+
+    /// The parameters it is made with in a frame with a probe volume (`volume`) or under the sky:
+    /// with a volume its declaration's `with_volume` settings go first (so that the given ones
+    /// refine them), unless the first one's key is given.
+    pub fn params_for(&self, volume: bool) -> std::borrow::Cow<'_, TechniqueParams> {
+        let with = self.desc.with_volume;
+        let given = |key: &str| self.params.set.iter().any(|(k, _)| k == key);
+        match with.first() {
+            Some((switch, _)) if volume && !given(switch) => {
+                let mut params = self.params.clone();
+                params.set.splice(
+                    0..0,
+                    with.iter().map(|(k, v)| (k.to_string(), v.to_string())),
+                );
+                std::borrow::Cow::Owned(params)
+            }
+            _ => std::borrow::Cow::Borrowed(&self.params),
+        }
+    }
 }
 
 /// The radius of `desc` under resolved `params` ([`Spec::radius`]).
@@ -259,6 +278,22 @@ pub fn book_pages() -> Vec<(String, String)> {
         .map(|(family, descs)| {
             let names: Vec<String> = descs.iter().map(|d| format!("`{}`", d.name)).collect();
             let first = descs[0];
+            let volume: String = descs
+                .iter()
+                .filter(|d| !d.with_volume.is_empty())
+                .map(|d| {
+                    let set: Vec<String> =
+                        d.with_volume.iter().map(|(k, v)| format!("{k}={v}")).collect();
+                    format!(
+                        "\n\nWith a probe volume (`--far volume`, and `auto` for the image) `{}` \
+                         takes {} over the defaults below unless `{}` is given ([Near and \
+                         far](../near-far.md#counting-each-technique-once)).",
+                        d.name,
+                        set.join(", "),
+                        d.with_volume[0].0
+                    )
+                })
+                .collect();
             let presets: Vec<Preset> = first
                 .presets
                 .iter()
@@ -277,7 +312,7 @@ pub fn book_pages() -> Vec<(String, String)> {
                      `structural` setting shapes the passes, a `denoiser` setting chooses or \
                      shapes the denoising (a change of any of these three rebuilds the \
                      technique); a `uniform` is written in place (`fit` fits these), and so is \
-                     a `filter`, a denoising filter's tuning.\n\n{}",
+                     a `filter`, a denoising filter's tuning.{volume}\n\n{}",
                     names.join(", "),
                     crate::settings::markdown_table(first.settings, &presets)
                 ),
@@ -301,5 +336,43 @@ mod tests {
                 s.check(s.default).unwrap();
             }
         }
+    }
+
+    #[test]
+    fn the_settings_taken_with_a_volume_parse_and_yield_to_given_ones() {
+        for desc in REGISTRY.iter().filter(|d| !d.with_volume.is_empty()) {
+            let spec = Spec::resolve(desc.name, &TechniqueParams::default()).unwrap();
+            let with = spec.params_for(true);
+            (desc.check)(&with).unwrap();
+            assert_eq!(with.set.len(), desc.with_volume.len(), "{}", desc.name);
+            assert!(spec.params_for(false).set.is_empty(), "{}", desc.name);
+            // The first key given by hand: none of them is taken.
+            let (key, _) = desc.with_volume[0];
+            let given = TechniqueParams {
+                set: vec![(
+                    key.to_string(),
+                    desc.settings
+                        .iter()
+                        .find(|s| s.key == key)
+                        .unwrap()
+                        .default
+                        .to_string(),
+                )],
+                ..Default::default()
+            };
+            let spec = Spec::resolve(desc.name, &given).unwrap();
+            assert_eq!(spec.params_for(true).set, given.set, "{}", desc.name);
+        }
+        // ssdo peels a second layer with a volume.
+        let spec = Spec::resolve("ssdo:steps=8", &TechniqueParams::default()).unwrap();
+        let set = spec.params_for(true).into_owned().set;
+        assert_eq!(
+            set.first().map(|(k, v)| (k.as_str(), v.as_str())),
+            Some(("layers", "2"))
+        );
+        assert_eq!(
+            set.last().map(|(k, v)| (k.as_str(), v.as_str())),
+            Some(("steps", "8"))
+        );
     }
 }

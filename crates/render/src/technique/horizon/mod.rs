@@ -86,6 +86,7 @@ pub const GTAO: TechniqueDesc = TechniqueDesc {
     pass_layouts,
     writes: &[Output::Ao, Output::BentNormal],
     far_rule: FarRule::Occlusion,
+    with_volume: &[],
 };
 
 pub const HBIL: TechniqueDesc = TechniqueDesc {
@@ -105,6 +106,7 @@ pub const HBIL: TechniqueDesc = TechniqueDesc {
         Output::IndirectIrradiance,
     ],
     far_rule: FarRule::Replace,
+    with_volume: &[],
 };
 
 /// The settings parsed without a device (`TechniqueDesc::check`).

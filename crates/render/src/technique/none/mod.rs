@@ -65,6 +65,7 @@ pub const DESC: TechniqueDesc = TechniqueDesc {
         Output::IndirectIrradiance,
     ],
     far_rule: FarRule::Own,
+    with_volume: &[],
 };
 
 struct NoneTechnique {

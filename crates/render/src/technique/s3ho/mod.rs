@@ -68,6 +68,7 @@ pub const S3HO: TechniqueDesc = TechniqueDesc {
         Output::LightIrradiance,
     ],
     far_rule: FarRule::Directional,
+    with_volume: &[],
 };
 
 pub const SSBN: TechniqueDesc = TechniqueDesc {
@@ -87,6 +88,7 @@ pub const SSBN: TechniqueDesc = TechniqueDesc {
         Output::LightIrradiance,
     ],
     far_rule: FarRule::Occlusion,
+    with_volume: &[],
 };
 
 struct S3ho {

@@ -78,6 +78,7 @@ pub const DESC: TechniqueDesc = TechniqueDesc {
     },
     writes: &[Output::Ao, Output::IndirectIrradiance],
     far_rule: FarRule::Own,
+    with_volume: &[],
 };
 
 impl Settings {

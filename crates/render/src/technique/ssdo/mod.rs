@@ -91,6 +91,7 @@ pub const SSAO: TechniqueDesc = TechniqueDesc {
         Output::LightIrradiance,
     ],
     far_rule: FarRule::Occlusion,
+    with_volume: &[],
 };
 
 pub const SSDO: TechniqueDesc = TechniqueDesc {
@@ -110,6 +111,11 @@ pub const SSDO: TechniqueDesc = TechniqueDesc {
         Output::LightIrradiance,
     ],
     far_rule: FarRule::Occlusion,
+    // The thin occluders that one depth layer takes for solids (SSDO Fig. 5) would darken
+    // light the volume already holds behind them; 4 points per direction cost +39 % at 640×360
+    // where the 16 of `layers::LAYERED_STEPS` cost +131 %, for the same image error with the
+    // volume (the book, "Near and far").
+    with_volume: &[("layers", "2"), ("steps", "4")],
 };
 
 pub const SSDO_VPL: TechniqueDesc = TechniqueDesc {
@@ -129,6 +135,7 @@ pub const SSDO_VPL: TechniqueDesc = TechniqueDesc {
         Output::LightIrradiance,
     ],
     far_rule: FarRule::Own,
+    with_volume: &[],
 };
 
 pub const INSTANT_RADIOSITY: TechniqueDesc = TechniqueDesc {
@@ -148,6 +155,7 @@ pub const INSTANT_RADIOSITY: TechniqueDesc = TechniqueDesc {
         Output::LightIrradiance,
     ],
     far_rule: FarRule::Replace,
+    with_volume: &[],
 };
 
 /// Which technique of this file.

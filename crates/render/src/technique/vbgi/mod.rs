@@ -50,6 +50,7 @@ pub const VBGI: TechniqueDesc = TechniqueDesc {
         Output::IndirectIrradiance,
     ],
     far_rule: FarRule::Replace,
+    with_volume: &[],
 };
 
 crate::gpu_struct! {
