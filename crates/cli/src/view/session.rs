@@ -215,6 +215,8 @@ impl Session {
             ctx,
         };
         if let Some(v) = volume {
+            s.a.follow_far(true);
+            s.b.follow_far(true);
             s.volume = Some((s.far_key(), Arc::new(v)));
         } else if bake {
             s.refresh_far().map_err(crate::BadInput)?;

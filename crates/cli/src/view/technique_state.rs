@@ -9,6 +9,9 @@ pub struct TechniqueState {
     pub desc: &'static TechniqueDesc,
     /// Every setting of the table with its current value, in table order.
     pub values: Vec<(&'static str, String)>,
+    /// The keys the user gave (on the command line, in the panel, through a preset); the others
+    /// hold their defaults, or the technique's own for the far field shown ([`Self::follow_far`]).
+    given: Vec<&'static str>,
 }
 
 impl PartialEq for TechniqueState {
@@ -34,7 +37,39 @@ impl TechniqueState {
                 .iter()
                 .map(|s| (s.key, s.default.to_string()))
                 .collect(),
+            given: Vec::new(),
         })
+    }
+
+    /// The settings the technique takes by itself with a probe volume (its declaration's
+    /// `with_volume`) that the user did not give: the renderer chooses them by its far field
+    /// (`Spec::params_for`), so they stay out of [`Self::params`] and [`Self::spec`].
+    fn chosen_by_far(&self, key: &str) -> bool {
+        match self.desc.with_volume.first() {
+            Some((switch, _)) if !self.given.contains(switch) => self
+                .desc
+                .with_volume
+                .iter()
+                .any(|(k, _)| *k == key && !self.given.contains(k)),
+            _ => false,
+        }
+    }
+
+    /// Shows the values the renderer takes under the far field (`volume`: a probe volume, else
+    /// the sky) for the settings it chooses by itself.
+    pub fn follow_far(&mut self, volume: bool) {
+        for (key, with) in self.desc.with_volume {
+            if !self.chosen_by_far(key) {
+                continue;
+            }
+            let default = self.setting(key).expect("a declared key").default;
+            let slot = self
+                .values
+                .iter_mut()
+                .find(|(k, _)| k == key)
+                .expect("a table key");
+            slot.1 = if volume { with } else { default }.to_string();
+        }
     }
 
     /// From a command-line spec (`name` or `name:key=value+…`) with `--samples`, `--radius` and
@@ -110,6 +145,9 @@ impl TechniqueState {
             .find(|(k, _)| *k == key)
             .expect("every table key has a value");
         slot.1 = value.to_string();
+        if !self.given.contains(&setting.key) {
+            self.given.push(setting.key);
+        }
         Ok(())
     }
 
@@ -143,7 +181,7 @@ impl TechniqueState {
             .map(|p| p.name)
     }
 
-    /// What the renderer gets: every setting, explicitly.
+    /// What the renderer gets: every setting explicitly, but those it chooses by its far field.
     pub fn params(&self) -> TechniqueParams {
         TechniqueParams {
             samples: None,
@@ -151,6 +189,7 @@ impl TechniqueState {
             set: self
                 .values
                 .iter()
+                .filter(|(k, _)| !self.chosen_by_far(k))
                 .map(|(k, v)| (k.to_string(), v.clone()))
                 .collect(),
         }
@@ -164,7 +203,7 @@ impl TechniqueState {
             .settings
             .iter()
             .zip(&self.values)
-            .filter(|(s, (_, v))| !same_value(s.default, v))
+            .filter(|(s, (k, v))| !same_value(s.default, v) && !self.chosen_by_far(k))
             .map(|(_, (k, v))| format!("{k}={v}"))
             .collect();
         if changed.is_empty() {
@@ -183,6 +222,29 @@ fn same_value(a: &str, b: &str) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_settings_a_technique_takes_with_a_volume_are_left_to_the_renderer_unless_given() {
+        let mut s = TechniqueState::from_command_line("ssdo", &Default::default()).unwrap();
+        let keys = |s: &TechniqueState| -> Vec<String> {
+            s.params().set.into_iter().map(|(k, _)| k).collect()
+        };
+        assert!(!keys(&s).contains(&"layers".to_string()));
+        assert!(!keys(&s).contains(&"steps".to_string()));
+        s.follow_far(true);
+        assert_eq!(s.value("layers"), Some("2"));
+        assert_eq!(s.spec(), "ssdo");
+        s.follow_far(false);
+        assert_eq!(s.value("layers"), Some("1"));
+        // A step count set in the panel refines the volume's layers; a layer count is the user's.
+        s.set("steps", "8").unwrap();
+        assert!(keys(&s).contains(&"steps".to_string()));
+        assert!(!keys(&s).contains(&"layers".to_string()));
+        s.set("layers", "1").unwrap();
+        s.follow_far(true);
+        assert_eq!(s.value("layers"), Some("1"));
+        assert!(keys(&s).contains(&"layers".to_string()));
+    }
 
     #[test]
     fn command_line_values_land_in_the_table_and_round_trip_as_a_spec() {

@@ -1,6 +1,7 @@
 //! How each change of [`super::Change`] reaches the renderers.
 
 use super::{Session, Side, TechniqueState, env_name};
+use nearfield_render::far::FarMode;
 use nearfield_render::technique::Spec;
 use nearfield_render::{Aov, Renderer, Tonemap};
 use nearfield_scene::{EnvSource, Environment, SceneSource};
@@ -130,8 +131,9 @@ impl Session {
     pub(super) fn set_technique(
         &mut self,
         side: Side,
-        state: TechniqueState,
+        mut state: TechniqueState,
     ) -> Result<(), String> {
+        state.follow_far(self.renderer_a.far_mode() == FarMode::Volume);
         let renderer = match side {
             Side::A => Some(&mut self.renderer_a),
             Side::B => self.renderer_b.as_mut(),

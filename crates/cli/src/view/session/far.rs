@@ -106,6 +106,8 @@ impl Session {
         if let Some(b) = &mut self.renderer_b {
             b.set_far_field(volume).map_err(|e| e.to_string())?;
         }
+        self.a.follow_far(volume.is_some());
+        self.b.follow_far(volume.is_some());
         Ok(())
     }
 
