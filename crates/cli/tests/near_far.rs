@@ -218,7 +218,7 @@ fn vbgi_sends_the_light_of_an_occluders_rear() {
 
 /// The AO techniques take away only what the volume does not hold: on `gap` (4 cm posts before a
 /// sunlit wall) none of them is worse than `none` plus half the reference's noise (at 96×72:
-/// `none` 0.0313, gtao 0.0352, ssdo 0.0294, bound 0.0374). One depth layer took the posts for
+/// `none` 0.0313, gtao 0.0352, ssdo 0.0328, bound 0.0374). One depth layer took the posts for
 /// solids reaching back to the wall (ssdo, which now peels a second layer with a volume), and
 /// the unlit occlusion rule darkened the sunlit crease between floor and wall that the volume
 /// already had too dark (gtao 0.0480, ssbn 0.0380, ssdo peeled 0.0399).

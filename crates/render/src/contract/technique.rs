@@ -160,7 +160,8 @@ pub enum FarRule {
     /// Scalar occlusion (ssao, gtao, ssdo, ssbn): of the volume's irradiance, what its visibility
     /// v keeps beyond the volume's own visibility within R, the occluders lit as the receiver is
     /// (its albedo, its direct light and GTAO's multi-bounce fit): min(E_far, E(v)) with
-    /// E(ao_far) = E_far (irradiance_terms.wgsl's `occluded_light`).
+    /// E(ao_far) = E_far (irradiance_terms.wgsl's `occluded_light`); its own bounce (ssdo) keeps
+    /// the share of the occlusion the volume does not hold, (1 − h) · indirect.
     Occlusion,
     /// Directional occlusion with its own near light (s3ho): the share h of the occlusion the technique finds that
     /// the volume holds takes the volume's light — env' = mix(env, E_far, h), indirect' =

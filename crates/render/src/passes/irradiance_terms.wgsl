@@ -11,8 +11,10 @@
 // visibility ao_far, far_field's alpha) and the light of those occluders. A technique changes
 // the image only by what the volume does not hold (the book, "Near and far"):
 //   1 occlusion    (ssao, gtao, ssdo, ssbn): v = env / E_far, the technique's visibility;
-//                  env' = min(E_far, E(v)), E(ao_far) = E_far, the occluders the volume holds lit
-//                  as the receiver (its albedo, its light, GTAO's multi-bounce fit: `occluded_light`)
+//                  env' = min(E_far, E(v)), E(ao_far) = E_far, the occluders the volume holds
+//                  lit as the receiver (its albedo, its light, GTAO's multi-bounce fit:
+//                  `occluded_light`); its own bounce (ssdo) keeps the share the volume does not
+//                  hold, h as below: indirect' = (1 − h) indirect
 //   2 directional  (s3ho): h = min(1, (1 − ao_far) / (1 − ao)) of the occlusion found is
 //                  the volume's too: env' = mix(env, E_far, h), indirect' = (1 − h) indirect
 //   0              (hbil, vbgi, instant-radiosity: near light that replaces the volume's; `none`,
@@ -89,7 +91,7 @@ fn technique_indirect(indirect_irradiance: texture_2d<f32>, ao: texture_2d<f32>,
         return vec3<f32>(0.0);
     }
     let indirect = textureLoad(indirect_irradiance, pixel, 0).rgb;
-    if counts(2u, volume) {
+    if counts(1u, volume) || counts(2u, volume) {
         return (1.0 - held_share(textureLoad(ao, pixel, 0).r, textureLoad(far_field, pixel, 0).a)) * indirect;
     }
     return indirect;
