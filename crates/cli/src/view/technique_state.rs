@@ -45,14 +45,13 @@ impl TechniqueState {
     /// `with_volume`) that the user did not give: the renderer chooses them by its far field
     /// (`Spec::params_for`), so they stay out of [`Self::params`] and [`Self::spec`].
     fn chosen_by_far(&self, key: &str) -> bool {
-        match self.desc.with_volume.first() {
-            Some((switch, _)) if !self.given.contains(switch) => self
+        let given = |k: &str| self.given.contains(&k);
+        self.desc.takes_with_volume(given)
+            && self
                 .desc
                 .with_volume
                 .iter()
-                .any(|(k, _)| *k == key && !self.given.contains(k)),
-            _ => false,
-        }
+                .any(|(k, _)| *k == key && !given(k))
     }
 
     /// Shows the values the renderer takes under the far field (`volume`: a probe volume, else

@@ -174,6 +174,16 @@ pub enum FarRule {
     Own,
 }
 
+impl TechniqueDesc {
+    /// Whether its `with_volume` settings apply where the frame has a probe volume: it has some,
+    /// and the first one's key is not among those `given`.
+    pub fn takes_with_volume(&self, given: impl Fn(&str) -> bool) -> bool {
+        self.with_volume
+            .first()
+            .is_some_and(|(switch, _)| !given(switch))
+    }
+}
+
 impl FarRule {
     /// The value of irradiance_terms.wgsl's `FAR_RULE`.
     pub fn constant(self) -> f64 {

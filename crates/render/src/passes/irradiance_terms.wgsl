@@ -47,7 +47,7 @@ fn occluded_light(v: f32, far_ao: f32, far: vec3<f32>, light: vec3<f32>, albedo:
     let lit = held_share(v, far_ao) * albedo * light;
     let held = bounces(far_ao, albedo);
     let open = max(vec3<f32>(0.0), far - lit * (1.0 - far_ao) * held) / max(far_ao * held, vec3<f32>(1e-3));
-    return min(far, open * a * bounces(a, albedo) + lit * (1.0 - a) * bounces(a, albedo));
+    return min(far, (open * a + lit * (1.0 - a)) * bounces(a, albedo));
 }
 
 // The share of the occlusion a technique finds (ao) that the far field already holds (its own

@@ -164,19 +164,19 @@ impl Spec {
     /// with a volume its declaration's `with_volume` settings go first (so that the given ones
     /// refine them), unless the first one's key is given.
     pub fn params_for(&self, volume: bool) -> std::borrow::Cow<'_, TechniqueParams> {
-        let with = self.desc.with_volume;
         let given = |key: &str| self.params.set.iter().any(|(k, _)| k == key);
-        match with.first() {
-            Some((switch, _)) if volume && !given(switch) => {
-                let mut params = self.params.clone();
-                params.set.splice(
-                    0..0,
-                    with.iter().map(|(k, v)| (k.to_string(), v.to_string())),
-                );
-                std::borrow::Cow::Owned(params)
-            }
-            _ => std::borrow::Cow::Borrowed(&self.params),
+        if !(volume && self.desc.takes_with_volume(given)) {
+            return std::borrow::Cow::Borrowed(&self.params);
         }
+        let mut params = self.params.clone();
+        params.set.splice(
+            0..0,
+            self.desc
+                .with_volume
+                .iter()
+                .map(|(k, v)| (k.to_string(), v.to_string())),
+        );
+        std::borrow::Cow::Owned(params)
     }
 }
 
