@@ -6,12 +6,13 @@
 # the reports are kept in target/motion/. About 30 minutes on 2 cores (references are cached).
 #
 #   MOTION_ONLY=moving|sponza    one of the two
+#   METHODS=none,s3ho             only these techniques on the moving variants (default: all ten)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 N=target/release/nearfield
 ASSETS=${NEARFIELD_ASSETS:-../shared/assets}
 export XDG_RUNTIME_DIR=${XDG_RUNTIME_DIR:-$(d=${TMPDIR:-/tmp}/nearfield-xdg-$(id -u); mkdir -p -m 700 "$d"; echo "$d")}
-METHODS=none,ssao,ssdo,s3ho,gtao,ssbn,hbil,vbgi,ssdo-vpl,instant-radiosity
+METHODS=${METHODS:-none,ssao,ssdo,s3ho,gtao,ssbn,hbil,vbgi,ssdo-vpl,instant-radiosity}
 OUT=target/motion
 mkdir -p "$OUT" docs/src/motion
 cargo build --release -p nearfield-cli

@@ -157,18 +157,19 @@ pub struct TechniqueDesc {
 /// (passes/irradiance_terms.wgsl). Nothing changes under the open sky.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum FarRule {
-    /// Scalar occlusion (ssao, gtao, ssdo, ssbn): of the volume's irradiance, what its visibility
-    /// v keeps beyond the volume's own visibility within R, the occluders lit as the receiver is
-    /// (its albedo, its direct light and GTAO's multi-bounce fit): min(E_far, E(v)) with
-    /// E(ao_far) = E_far (irradiance_terms.wgsl's `occluded_light`); its own bounce (ssdo) keeps
-    /// the share of the occlusion the volume does not hold, (1 − h) · indirect.
+    /// Scalar occlusion (ssao, gtao, ssdo, ssbn, instant-radiosity): of the volume's irradiance,
+    /// what its visibility v keeps beyond the volume's own visibility within R, the occluders lit
+    /// as the receiver is (its albedo, its direct light and GTAO's multi-bounce fit):
+    /// min(E_far, E(v)) with E(ao_far) = E_far (irradiance_terms.wgsl's `occluded_light`); its
+    /// own bounce (ssdo's senders, instant-radiosity's VPLs within R) keeps the share of the
+    /// occlusion the volume does not hold, (1 − h) · indirect.
     Occlusion,
     /// Directional occlusion with its own near light (s3ho): the share h of the occlusion the technique finds that
     /// the volume holds takes the volume's light — env' = mix(env, E_far, h), indirect' =
     /// (1 − h) · indirect, h = min(1, (1 − ao_far) / (1 − ao)).
     Directional,
     /// Near-field light that replaces the volume's in the directions the technique finds
-    /// occluded (hbil, vbgi, instant-radiosity): as written.
+    /// occluded (hbil, vbgi): as written.
     Replace,
     /// Its own environment (ssdo-vpl, `none`): as written.
     Own,

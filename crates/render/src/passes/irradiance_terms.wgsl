@@ -10,15 +10,16 @@
 // volume's irradiance E_far already holds the occlusion its probes see within R (its own
 // visibility ao_far, far_field's alpha) and the light of those occluders. A technique changes
 // the image only by what the volume does not hold (the book, "Near and far"):
-//   1 occlusion    (ssao, gtao, ssdo, ssbn): v = env / E_far, the technique's visibility;
-//                  env' = min(E_far, E(v)), E(ao_far) = E_far, the occluders the volume holds
-//                  lit as the receiver (its albedo, its light, GTAO's multi-bounce fit:
-//                  `occluded_light`); its own bounce (ssdo) keeps the share the volume does not
-//                  hold, h as below: indirect' = (1 − h) indirect
+//   1 occlusion    (ssao, gtao, ssdo, ssbn, instant-radiosity): v = env / E_far, the
+//                  technique's visibility; env' = min(E_far, E(v)), E(ao_far) = E_far, the
+//                  occluders the volume holds lit as the receiver (its albedo, its light, GTAO's
+//                  multi-bounce fit: `occluded_light`); its own bounce (ssdo,
+//                  instant-radiosity) keeps the share the volume does not hold, h as below:
+//                  indirect' = (1 − h) indirect
 //   2 directional  (s3ho): h = min(1, (1 − ao_far) / (1 − ao)) of the occlusion found is
 //                  the volume's too: env' = mix(env, E_far, h), indirect' = (1 − h) indirect
-//   0              (hbil, vbgi, instant-radiosity: near light that replaces the volume's; `none`,
-//                  ssdo-vpl: their own): as written.
+//   0              (hbil, vbgi: near light that replaces the volume's; `none`, ssdo-vpl:
+//                  their own): as written.
 override FAR_RULE: u32 = 0u;
 
 // GTAO's multi-bounce fit (Jimenez et al. 2016, Eq. 10) over the visibility: the light of a

@@ -101,7 +101,8 @@ fn screen_bounce(here: Surface, pixel: vec2<u32>) -> vec3<f32> {
 // its bias segment (`light_samples` points, as for the scene's lights). The clamp keeps the
 // singularity of receivers near a VPL out of the image; screen_bounce adds back what it removes.
 // With a probe volume (far.wgsl) the lights' first bounce beyond R is the volume's (its bounces
-// hold it, read in the directions free within R): only the VPLs within R count, so that no light
+// hold it): only the VPLs within R count, and of those the frame keeps the share of the occlusion
+// the volume does not hold (the occlusion rule, passes/irradiance_terms.wgsl), so that no light
 // is counted twice.
 fn radiosity_bounce(here: Surface) -> vec3<f32> {
     let c2 = params.vpl_clamp * params.vpl_clamp;
