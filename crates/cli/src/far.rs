@@ -41,9 +41,11 @@ impl Far {
     }
 
     /// Whether the frame uses the volume for `aov` (an AOV name, or `A1+A2` as `fit` takes
-    /// them; `None`: the image). `auto` gives the sky when any of them is `env-irradiance`,
-    /// `indirect-irradiance` or `diffuse` (ρ × their sum with `light-irradiance`), so that every
-    /// near-field AOV keeps its definition (docs/src/aovs.md).
+    /// them; `None`: the image). `auto` gives the sky when any of them is `ao`,
+    /// `env-irradiance`, `indirect-irradiance` or `diffuse` (ρ × the sum of the two with
+    /// `light-irradiance`), so that every near-field AOV keeps its definition
+    /// (docs/src/aovs.md): a technique's settings for a volume (`with_volume`) are for the
+    /// image, and would change what its `ao` estimates.
     pub fn volume_for(self, aov: Option<&str>) -> bool {
         match self {
             Far::Sky => false,
@@ -52,7 +54,7 @@ impl Far {
                 a.split('+').any(|p| {
                     matches!(
                         p.trim(),
-                        "env-irradiance" | "indirect-irradiance" | "diffuse"
+                        "ao" | "env-irradiance" | "indirect-irradiance" | "diffuse"
                     )
                 })
             }),
@@ -65,7 +67,7 @@ impl Far {
 pub struct FarOpts {
     /// The far field, what the directions a technique finds unoccluded within R see: `sky` (the
     /// environment, unoccluded), `volume` (the scene's probe volume, baked on first use and
-    /// cached; `nearfield bake`), or `auto`: the volume, except for env-irradiance,
+    /// cached; `nearfield bake`), or `auto`: the volume, except for ao, env-irradiance,
     /// indirect-irradiance and diffuse, whose definitions see the open sky.
     #[arg(long, default_value = "auto")]
     pub far: String,
@@ -527,4 +529,35 @@ fn write_bevy(volume: &ProbeVolume, out: &Path) -> Result<()> {
         b.intensity
     );
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Far;
+
+    /// `auto` renders the near-field AOVs with the open sky of their definitions (a technique's
+    /// settings for a volume, such as s3ho's fade, would change what its `ao` estimates) and
+    /// the image AOVs with the volume (docs/src/aovs.md).
+    #[test]
+    fn auto_gives_the_near_field_aovs_the_sky() {
+        for aov in [
+            "ao",
+            "env-irradiance",
+            "indirect-irradiance",
+            "diffuse",
+            "ao+diffuse",
+        ] {
+            assert!(!Far::Auto.volume_for(Some(aov)), "{aov}");
+            assert!(Far::Volume.volume_for(Some(aov)), "{aov}");
+        }
+        for aov in [
+            None,
+            Some("lambertian"),
+            Some("radiance"),
+            Some("far-irradiance"),
+        ] {
+            assert!(Far::Auto.volume_for(aov), "{aov:?}");
+            assert!(!Far::Sky.volume_for(aov), "{aov:?}");
+        }
+    }
 }
