@@ -160,9 +160,10 @@ pub enum FarRule {
     /// Scalar occlusion (ssao, gtao, ssdo, ssbn, instant-radiosity): of the volume's irradiance,
     /// what its visibility v keeps beyond the volume's own visibility within R, the occluders lit
     /// as the receiver is (its albedo, its direct light and GTAO's multi-bounce fit):
-    /// min(E_far, E(v)) with E(ao_far) = E_far (irradiance_terms.wgsl's `occluded_light`); its
-    /// own bounce (ssdo's senders, instant-radiosity's VPLs within R) keeps the share of the
-    /// occlusion the volume does not hold, (1 − h) · indirect.
+    /// min(E_far, E(v)) with E(ao_far) = E_far (irradiance_terms.wgsl's `occluded_light`), its
+    /// far part E_open · v and the rest near light; its own bounce (ssdo's senders,
+    /// instant-radiosity's VPLs within R) keeps the share of the occlusion the volume does not
+    /// hold, (1 − h) · indirect.
     Occlusion,
     /// Directional occlusion with its own near light (s3ho): the share h of the occlusion the technique finds that
     /// the volume holds takes the volume's light — env' = mix(env, E_far, h), indirect' =

@@ -45,6 +45,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         return;
     }
     let surface = textureLoad(gb_normal, pixel, 0).w;
+    let terms = technique_terms(env_irradiance, indirect_irradiance, ao, far_field, AO_SCALES_FAR, far_volume(far_probes), pixel, textureLoad(gb_albedo, pixel, 0).rgb, textureLoad(light_irradiance, pixel, 0).rgb);
     var v = vec3<f32>(0.0);
     switch selection.aov {
         case 1u: {
@@ -63,18 +64,16 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
             v = vec3<f32>(textureLoad(ao, pixel, 0).r);
         }
         case 6u, 14u: {
-            v = technique_env(env_irradiance, ao, far_field, AO_SCALES_FAR, far_volume(far_probes), pixel, textureLoad(gb_albedo, pixel, 0).rgb, textureLoad(light_irradiance, pixel, 0).rgb);
+            v = terms.env;
         }
         case 7u: {
             v = textureLoad(light_irradiance, pixel, 0).rgb;
         }
         case 8u: {
-            v = technique_indirect(indirect_irradiance, ao, far_field, AO_SCALES_FAR, far_volume(far_probes), pixel);
+            v = terms.indirect;
         }
         case 9u: {
-            v = textureLoad(gb_albedo, pixel, 0).rgb * (technique_env(env_irradiance, ao, far_field, AO_SCALES_FAR, far_volume(far_probes), pixel, textureLoad(gb_albedo, pixel, 0).rgb, textureLoad(light_irradiance, pixel, 0).rgb)
-                + textureLoad(light_irradiance, pixel, 0).rgb
-                + technique_indirect(indirect_irradiance, ao, far_field, AO_SCALES_FAR, far_volume(far_probes), pixel));
+            v = textureLoad(gb_albedo, pixel, 0).rgb * (terms.env + textureLoad(light_irradiance, pixel, 0).rgb + terms.indirect);
         }
         case 10u: {
             v = vec3<f32>(textureLoad(gb_motion, pixel, 0).rg, 0.0);
@@ -87,9 +86,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         }
         case 13u: {
             v = textureLoad(gb_emissive, pixel, 0).rgb
-                + textureLoad(gb_albedo, pixel, 0).rgb * (technique_env(env_irradiance, ao, far_field, AO_SCALES_FAR, far_volume(far_probes), pixel, textureLoad(gb_albedo, pixel, 0).rgb, textureLoad(light_irradiance, pixel, 0).rgb)
-                + textureLoad(light_irradiance, pixel, 0).rgb
-                + technique_indirect(indirect_irradiance, ao, far_field, AO_SCALES_FAR, far_volume(far_probes), pixel));
+                + textureLoad(gb_albedo, pixel, 0).rgb * (terms.env + textureLoad(light_irradiance, pixel, 0).rgb + terms.indirect);
         }
         default: {
         }

@@ -38,9 +38,9 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     let albedo = textureLoad(gb_albedo, pixel, 0).rgb;
     let metallic = textureLoad(gb_material, pixel, 0).r;
-    let irradiance = technique_env(env_irradiance, ao, far_field, AO_SCALES_FAR, far_volume(far_probes), pixel, textureLoad(gb_albedo, pixel, 0).rgb, textureLoad(light_irradiance, pixel, 0).rgb)
-        + textureLoad(light_irradiance, pixel, 0).rgb
-        + technique_indirect(indirect_irradiance, ao, far_field, AO_SCALES_FAR, far_volume(far_probes), pixel);
+    let light = textureLoad(light_irradiance, pixel, 0).rgb;
+    let t = technique_terms(env_irradiance, indirect_irradiance, ao, far_field, AO_SCALES_FAR, far_volume(far_probes), pixel, albedo, light);
+    let irradiance = t.env + light + t.indirect;
     let radiance = textureLoad(gb_emissive, pixel, 0).rgb
         + (1.0 - metallic) * albedo * irradiance
         + textureLoad(specular, pixel, 0).rgb;

@@ -11,11 +11,13 @@
 // visibility ao_far, far_field's alpha) and the light of those occluders. A technique changes
 // the image only by what the volume does not hold (the book, "Near and far"):
 //   1 occlusion    (ssao, gtao, ssdo, ssbn, instant-radiosity): v = env / E_far, the
-//                  technique's visibility; env' = min(E_far, E(v)), E(ao_far) = E_far, the
-//                  occluders the volume holds lit as the receiver (its albedo, its light, GTAO's
-//                  multi-bounce fit: `occluded_light`); its own bounce (ssdo,
+//                  technique's visibility; the image takes min(E_far, E(v)), E(ao_far) =
+//                  E_far, the occluders the volume holds lit as the receiver (its albedo, its
+//                  light, GTAO's multi-bounce fit: `occluded_light`), split into env' =
+//                  E_open · v, the open directions' light, and the rest, the occluders' light
+//                  and the bounces, which joins the near light; its own bounce (ssdo,
 //                  instant-radiosity) keeps the share the volume does not hold, h as below:
-//                  indirect' = (1 − h) indirect
+//                  indirect' = (1 − h) indirect + E(v) − E_open · v
 //   2 directional  (s3ho): h = min(1, (1 − ao_far) / (1 − ao)) of the occlusion found is
 //                  the volume's too: env' = mix(env, E_far, h), indirect' = (1 − h) indirect
 //   0              (hbil, vbgi: near light that replaces the volume's; `none`, ssdo-vpl:
@@ -33,6 +35,14 @@ fn bounces(a: f32, albedo: vec3<f32>) -> vec3<f32> {
     return max(vec3<f32>(1.0), (a * ca + cb) * a + cc);
 }
 
+// A technique's two irradiance terms at a pixel as the image counts them: `env`, its far-field
+// term (its env-irradiance), and `indirect`, the near light it adds (its indirect-irradiance);
+// the image is ρ · (env + light + indirect).
+struct Terms {
+    env: vec3<f32>,
+    indirect: vec3<f32>,
+}
+
 // The occlusion rule (1): the light at a receiver whose cosine-weighted visibility within R is v,
 // where the volume's irradiance `far` holds visibility `far_ao`. GTAO's multi-bounce fit takes the
 // occluders lit as the receiver by the same environment; the rule adds the lights for the share
@@ -43,12 +53,17 @@ fn bounces(a: f32, albedo: vec3<f32>) -> vec3<f32> {
 // with E_open, the light of the open directions, solved from E(far_ao) = far. Without lights
 // E(v) / E(far_ao) = F(v) / F(far_ao). The rule only takes light away (v below far_ao, min with
 // far).
-fn occluded_light(v: f32, far_ao: f32, far: vec3<f32>, light: vec3<f32>, albedo: vec3<f32>) -> vec3<f32> {
+fn occluded_light(v: f32, far_ao: f32, far: vec3<f32>, light: vec3<f32>, albedo: vec3<f32>) -> Terms {
     let a = min(v, far_ao);
     let lit = held_share(v, far_ao) * albedo * light;
     let held = bounces(far_ao, albedo);
     let open = max(vec3<f32>(0.0), far - lit * (1.0 - far_ao) * held) / max(far_ao * held, vec3<f32>(1e-3));
-    return min(far, (open * a + lit * (1.0 - a)) * bounces(a, albedo));
+    let e = min(far, (open * a + lit * (1.0 - a)) * bounces(a, albedo));
+    // Split as the image counts it: the open directions' light (far) and the rest (near).
+    var t: Terms;
+    t.env = min(e, open * a);
+    t.indirect = e - t.env;
+    return t;
 }
 
 // The share of the occlusion a technique finds (ao) that the far field already holds (its own
@@ -66,34 +81,30 @@ fn counts(rule: u32, volume: bool) -> bool {
     return FAR_RULE == rule && volume;
 }
 
-// The technique's env-irradiance at `pixel`.
-fn technique_env(env_irradiance: texture_2d<f32>, ao: texture_2d<f32>, far_field: texture_2d<f32>, ao_only: bool, volume: bool, pixel: vec2<u32>, albedo: vec3<f32>, light: vec3<f32>) -> vec3<f32> {
+// The technique's terms at `pixel`. Under the occlusion rule with a volume, E(v) splits into the
+// light of the directions it finds open, E_open · v (the far part), and the rest, the light the
+// occluders send back with the bounces between them and the receiver (near, with the share
+// (1 − h) of the technique's own bounce).
+fn technique_terms(env_irradiance: texture_2d<f32>, indirect_irradiance: texture_2d<f32>, ao: texture_2d<f32>, far_field: texture_2d<f32>, ao_only: bool, volume: bool, pixel: vec2<u32>, albedo: vec3<f32>, light: vec3<f32>) -> Terms {
     let far = textureLoad(far_field, pixel, 0);
     let a = textureLoad(ao, pixel, 0).r;
-    var e: vec3<f32>;
+    var t: Terms;
     if ao_only {
-        e = a * far.rgb;
+        t.env = a * far.rgb;
+        t.indirect = vec3<f32>(0.0);
     } else {
-        e = textureLoad(env_irradiance, pixel, 0).rgb;
+        t.env = textureLoad(env_irradiance, pixel, 0).rgb;
+        t.indirect = textureLoad(indirect_irradiance, pixel, 0).rgb;
     }
     if counts(1u, volume) {
-        let v = clamp(luminance(e) / max(luminance(far.rgb), 1e-12), 0.0, 1.0);
-        return occluded_light(v, far.a, far.rgb, light, albedo);
+        let v = clamp(luminance(t.env) / max(luminance(far.rgb), 1e-12), 0.0, 1.0);
+        let split = occluded_light(v, far.a, far.rgb, light, albedo);
+        t.env = split.env;
+        t.indirect = (1.0 - held_share(a, far.a)) * t.indirect + split.indirect;
+    } else if counts(2u, volume) {
+        let h = held_share(a, far.a);
+        t.env = mix(t.env, far.rgb, h);
+        t.indirect = (1.0 - h) * t.indirect;
     }
-    if counts(2u, volume) {
-        return mix(e, far.rgb, held_share(a, far.a));
-    }
-    return e;
-}
-
-// The technique's indirect-irradiance at `pixel`.
-fn technique_indirect(indirect_irradiance: texture_2d<f32>, ao: texture_2d<f32>, far_field: texture_2d<f32>, ao_only: bool, volume: bool, pixel: vec2<u32>) -> vec3<f32> {
-    if ao_only {
-        return vec3<f32>(0.0);
-    }
-    let indirect = textureLoad(indirect_irradiance, pixel, 0).rgb;
-    if counts(1u, volume) || counts(2u, volume) {
-        return (1.0 - held_share(textureLoad(ao, pixel, 0).r, textureLoad(far_field, pixel, 0).a)) * indirect;
-    }
-    return indirect;
+    return t;
 }
