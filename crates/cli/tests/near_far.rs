@@ -58,6 +58,19 @@ impl Measured {
         }
     }
 
+    /// Each of `names` has at most `share` × `none`'s error.
+    fn assert_at_most_share_of_none(&self, what: &str, names: &[&str], share: f64) {
+        let (none, _, _) = self.get("none");
+        for name in names {
+            let (error, mean, _) = self.get(name);
+            eprintln!("{what}: {name} {error:.4} (mean {mean:.3}), none {none:.4}");
+            assert!(
+                error <= share * none,
+                "{what}: {name} {error:.4} > {share} × none {none:.4}"
+            );
+        }
+    }
+
     fn get(&self, name: &str) -> (f64, f64, Option<f64>) {
         let m = self
             .methods
@@ -147,15 +160,7 @@ fn the_near_field_earns_its_place_where_the_volume_is_coarse() {
     ) else {
         return;
     };
-    let (none, _, _) = m.get("none");
-    for name in ["hbil", "vbgi"] {
-        let (error, _, _) = m.get(name);
-        eprintln!("{name}: {error:.4}, none {none:.4}");
-        assert!(
-            error <= 0.6 * none,
-            "{name}: {error:.4} > 0.6 × none {none:.4}"
-        );
-    }
+    m.assert_at_most_share_of_none("cornell at 2 m", &["hbil", "vbgi"], 0.6);
     let _ = std::fs::remove_dir_all(&dir);
 }
 
@@ -287,15 +292,7 @@ fn the_occlusion_rule_splits_its_light_at_r() {
     ) else {
         return;
     };
-    let (none, _, _) = m.get("none");
-    for name in ["gtao", "ssdo"] {
-        let (error, mean, _) = m.get(name);
-        eprintln!("cornell far part: {name} {error:.4} (mean {mean:.3}), none {none:.4}");
-        assert!(
-            error <= 0.65 * none,
-            "{name}: far part {error:.4} > 0.65 × none {none:.4}"
-        );
-    }
+    m.assert_at_most_share_of_none("cornell's far part", &["gtao", "ssdo"], 0.65);
     let _ = std::fs::remove_dir_all(&dir);
 }
 
