@@ -279,8 +279,8 @@ fn s3ho_leaves_the_blockers_the_volume_holds() {
 /// Under the occlusion rule the image's E(v) splits into the open directions' light E_open · v,
 /// the far part, and the occluders' light, near: against the path tracer's light from beyond R
 /// (`far-irradiance`) on the Cornell box, gtao's and ssdo's far part is at most 0.65 × `none`'s
-/// (which keeps the volume whole; at 96×72: gtao 0.208, ssdo 0.260, `none` 0.479). With E(v) whole as the far part they read
-/// 0.70 × and 0.95 × at 192×144.
+/// (which keeps the volume whole; at 96×72: gtao 0.208, ssdo 0.260, `none` 0.479). With E(v)
+/// whole as the far part they read 0.70 × and 0.95 × at 192×144.
 #[test]
 fn the_occlusion_rule_splits_its_light_at_r() {
     let dir = scratch("split");
