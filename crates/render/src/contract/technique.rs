@@ -165,9 +165,10 @@ pub enum FarRule {
     /// instant-radiosity's VPLs within R) keeps the share of the occlusion the volume does not
     /// hold, (1 − h) · indirect.
     Occlusion,
-    /// Directional occlusion with its own near light (s3ho): the share h of the occlusion the technique finds that
-    /// the volume holds takes the volume's light — env' = mix(env, E_far, h), indirect' =
-    /// (1 − h) · indirect, h = min(1, (1 − ao_far) / (1 − ao)).
+    /// Directional occlusion with its own near light (s3ho): the share h of the occlusion the
+    /// technique finds that the volume holds takes the volume's light — the image's
+    /// mix(env, E_far, h), env its far part and the rest near, with (1 − h) · indirect;
+    /// h = min(1, (1 − ao_far) / (1 − ao)).
     Directional,
     /// Near-field light that replaces the volume's in the directions the technique finds
     /// occluded (hbil, vbgi): as written.

@@ -19,7 +19,9 @@
 //                  instant-radiosity) keeps the share the volume does not hold, h as below:
 //                  indirect' = (1 − h) indirect + E(v) − E_open · v
 //   2 directional  (s3ho): h = min(1, (1 − ao_far) / (1 − ao)) of the occlusion found is
-//                  the volume's too: env' = mix(env, E_far, h), indirect' = (1 − h) indirect
+//                  the volume's too: the image takes mix(env, E_far, h), env its far part (the
+//                  open directions' light), the rest near: indirect' = (1 − h) indirect +
+//                  mix(env, E_far, h) − env
 //   0              (hbil, vbgi: near light that replaces the volume's; `none`, ssdo-vpl:
 //                  their own): as written.
 override FAR_RULE: u32 = 0u;
@@ -102,9 +104,13 @@ fn technique_terms(env_irradiance: texture_2d<f32>, indirect_irradiance: texture
         t.env = split.env;
         t.indirect = (1.0 - held_share(a, far.a)) * t.indirect + split.indirect;
     } else if counts(2u, volume) {
+        // The technique's own light of the open directions is the far part; what the held share
+        // takes back from the volume is its occluders' light, near.
         let h = held_share(a, far.a);
-        t.env = mix(t.env, far.rgb, h);
-        t.indirect = (1.0 - h) * t.indirect;
+        let whole = mix(t.env, far.rgb, h);
+        let open = min(t.env, whole);
+        t.indirect = (1.0 - h) * t.indirect + (whole - open);
+        t.env = open;
     }
     return t;
 }
