@@ -43,6 +43,8 @@ pub struct MarchIo<'a> {
     pub depth: &'a wgpu::TextureView,
     pub normal: &'a wgpu::TextureView,
     pub radiance: &'a wgpu::TextureView,
+    /// The G-buffer's albedo.
+    pub albedo: &'a wgpu::TextureView,
     /// Raw bent cone, near-field irradiance, far field.
     pub out: [&'a wgpu::TextureView; 3],
 }
@@ -105,6 +107,7 @@ impl March for HorizonMarch {
             out_cone: io.out[0],
             out_near: io.out[1],
             out_far: io.out[2],
+            in_albedo: io.albedo,
         }
         .bind_group(device, &self.layout)
     }

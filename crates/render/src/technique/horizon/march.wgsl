@@ -19,6 +19,22 @@ struct March {
     r_layer: f32,
     step_jitter: f32,
     fade_width: f32,
+    // `hidden=volume` with a probe volume: a sender facing away sends its hidden face's light.
+    hidden: bool,
+}
+
+// The light a sender's hidden face sends back to x (`hidden=volume`): the sender's albedo (the
+// G-buffer's `albedo` at its full-resolution pixel) times the probe volume's E/π at the sender
+// (view-space `xq`) about the direction back to x (view-space unit `to_x`), read as a surface
+// there facing x would read it (far.wgsl's far_irradiance_at). The volume holds a static
+// sender's surroundings and the light of what lies around an object it never saw; only its
+// direct light is missing (a shadow-mapped light on the hidden face).
+fn hidden_face_radiance(albedo: texture_2d<f32>, probes: texture_2d<f32>, visibility: texture_2d<f32>, atlas: texture_2d<f32>, smp: sampler, cam: View, p: HorizonParams, q: vec2<i32>, layer: u32, xq: vec3<f32>, to_x: vec3<f32>) -> vec3<f32> {
+    let full = vec2<i32>(floor(layer_to_full(p, vec2<f32>(q) + 0.5, layer)));
+    let rho = textureLoad(albedo, full, 0).rgb;
+    let xw = (cam.world_from_view * vec4<f32>(xq, 1.0)).xyz;
+    let back = to_world(cam, to_x);
+    return rho * far_irradiance_at(probes, visibility, atlas, smp, xw, back, back);
 }
 
 // The side's horizon angle (x) and its near-field irradiance (yzw, NEAR only).
@@ -30,9 +46,11 @@ struct March {
 // Near field (Sec. 2.3, 3.4): L_d(x′) is read from the source radiance (this frame's direct
 // radiance on the first frame, else last frame's diffuse radiance reprojected); a sample whose
 // normal faces away from x is replaced by the last accepted one:
-// L ← mix(L, L(x′), smoothstep(a, b, −n′·ω)), ω = normalize(x′ − x). Eq. 19's (1 − F0) is the
+// L ← mix(L, L(x′), smoothstep(a, b, −n′·ω)), ω = normalize(x′ − x). With `hidden=volume` and a
+// probe volume, a rise's sender that faces away sends its hidden face's light instead:
+// mix(L_hidden(x′), L(x′), t) (hidden_face_radiance). Eq. 19's (1 − F0) is the
 // receiver's, so it is applied once per pixel in `outputs`.
-fn march_side(depth_layers: texture_2d_array<f32>, normal_layers: texture_2d_array<f32>, radiance_layers: texture_2d_array<f32>, cam: View, p: HorizonParams, m: March, side_sign: f32, theta_init: f32, cos_init: f32) -> vec4<f32> {
+fn march_side(depth_layers: texture_2d_array<f32>, normal_layers: texture_2d_array<f32>, radiance_layers: texture_2d_array<f32>, albedo: texture_2d<f32>, probes: texture_2d<f32>, visibility: texture_2d<f32>, atlas: texture_2d<f32>, smp: sampler, cam: View, p: HorizonParams, m: March, side_sign: f32, theta_init: f32, cos_init: f32) -> vec4<f32> {
     let layer_size = vec2<i32>(i32(p.layer_width), i32(p.layer_height));
     var cos_max = cos_init;
     var theta = theta_init;
@@ -70,14 +88,22 @@ fn march_side(depth_layers: texture_2d_array<f32>, normal_layers: texture_2d_arr
         let cos_s = dot(vs, m.omega_o) * inverseSqrt(max(dot(vs, vs), 1e-18));
         let fade = clamp((p.radius - dist) / m.fade_width, 0.0, 1.0);
         let cos_h = mix(cos_init, cos_s, fade);
+        var accept = 1.0;
+        var lq = vec3<f32>(0.0);
         if NEAR {
-            let accept = smoothstep(p.reject_a, p.reject_b, -dot(normalize(qn), v / dist));
-            radiance = mix(radiance, textureLoad(radiance_layers, q, m.layer, 0).rgb, accept);
+            accept = smoothstep(p.reject_a, p.reject_b, -dot(normalize(qn), v / dist));
+            lq = textureLoad(radiance_layers, q, m.layer, 0).rgb;
+            radiance = mix(radiance, lq, accept);
         }
         if cos_h > cos_max {
             if NEAR {
                 let theta_new = side_sign * acos(clamp(cos_h, -1.0, 1.0));
-                near += radiance * max(slice_g(theta, m.np) - slice_g(theta_new, m.np), 0.0);
+                var sent = radiance;
+                if m.hidden && accept < 1.0 {
+                    let hidden = hidden_face_radiance(albedo, probes, visibility, atlas, smp, cam, p, q, m.layer, on_line.xyz, -v / dist);
+                    sent = mix(hidden, lq, accept);
+                }
+                near += sent * max(slice_g(theta, m.np) - slice_g(theta_new, m.np), 0.0);
                 theta = theta_new;
             }
             cos_max = cos_h;
@@ -107,8 +133,9 @@ struct Horizon {
 // geometry `centre` (xyz normal, w view depth > 0) was read by the caller. `pattern` picks the
 // slice angles' cell and the step jitter: the pixel, or with HALF its 2×2 block. `env_map`: the
 // environment's radiance with box-filtered mips (env_radiance_at); `probes`, `visibility`: the
-// far field's (far_sh_here); `smp`: the sampler of both.
-fn search_pixel(depth_layers: texture_2d_array<f32>, normal_layers: texture_2d_array<f32>, radiance_layers: texture_2d_array<f32>, env_map: texture_2d<f32>, probes: texture_2d<f32>, visibility: texture_2d<f32>, smp: sampler, cam: View, e: EnvUniforms, p: HorizonParams, texel: vec2<u32>, layer: u32, pixel: vec2<u32>, pattern: vec2<u32>, centre: vec4<f32>) -> Horizon {
+// far field's (far_sh_here), `atlas` its irradiance; `albedo`: the G-buffer's (`hidden=volume`);
+// `smp`: the sampler of the environment and the far field.
+fn search_pixel(depth_layers: texture_2d_array<f32>, normal_layers: texture_2d_array<f32>, radiance_layers: texture_2d_array<f32>, albedo: texture_2d<f32>, env_map: texture_2d<f32>, probes: texture_2d<f32>, visibility: texture_2d<f32>, atlas: texture_2d<f32>, smp: sampler, cam: View, e: EnvUniforms, p: HorizonParams, texel: vec2<u32>, layer: u32, pixel: vec2<u32>, pattern: vec2<u32>, centre: vec4<f32>) -> Horizon {
     let depth = centre.w;
     // Environment mip of about 32×16 texels (11°) for the arc integration.
     let far_lod = max(e.radiance_mips - 5.0, 0.0);
@@ -128,6 +155,7 @@ fn search_pixel(depth_layers: texture_2d_array<f32>, normal_layers: texture_2d_a
     m.r_layer = march_reach(cam, p, depth);
     m.step_jitter = fract(noise(pattern) + golden(cam.frame_index + 7u));
     m.fade_width = max(p.falloff * p.radius, 1e-6);
+    m.hidden = volume && p.hidden == 1u;
     let cell = cell_index(pattern);
     let frame_jitter = golden(cam.frame_index);
 
@@ -149,8 +177,8 @@ fn search_pixel(depth_layers: texture_2d_array<f32>, normal_layers: texture_2d_a
         let init1 = min(gamma + 0.5 * PI, PI);
         let init0 = max(gamma - 0.5 * PI, -PI);
         unoccluded += dot(np, slice_gxy(init1) + slice_gxy(init0));
-        let front = march_side(depth_layers, normal_layers, radiance_layers, cam, p, m, 1.0, init1, cos(init1));
-        let back = march_side(depth_layers, normal_layers, radiance_layers, cam, p, m, -1.0, init0, cos(init0));
+        let front = march_side(depth_layers, normal_layers, radiance_layers, albedo, probes, visibility, atlas, smp, cam, p, m, 1.0, init1, cos(init1));
+        let back = march_side(depth_layers, normal_layers, radiance_layers, albedo, probes, visibility, atlas, smp, cam, p, m, -1.0, init0, cos(init0));
         near += front.yzw + back.yzw;
         let t1 = front.x;
         let t0 = back.x;

@@ -48,7 +48,7 @@ use crate::settings::Declared;
 pub use machine::build;
 pub use march::{Flavor, HorizonMarch, March, MarchContext, MarchIo};
 pub use params::HorizonParams;
-pub use settings::{Aperture, Far, PRESETS, ReprojectMode, Resolution, Settings, Source};
+pub use settings::{Aperture, Far, Hidden, PRESETS, ReprojectMode, Resolution, Settings, Source};
 
 /// The history geometry and split geometry: world normal xyz, view depth w.
 pub const GEOMETRY_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;

@@ -33,6 +33,9 @@ struct HorizonParams {
     aperture: u32,
     // Sub-arcs per side of the environment integration (far = FAR_SLICES).
     far_steps: u32,
+    // With a probe volume, a sender that faces away sends: 0 the last accepted one's light
+    // (Sec. 3.4), 1 its hidden face's (march.wgsl's march_side).
+    hidden: u32,
 }
 
 // `far` (technique/horizon/params.rs has the same names): ao only, the far field from the direct

@@ -35,6 +35,8 @@ crate::bind_group! {
         out_near: view = kind::write(HDR_FORMAT),
         /// Raw far field through the slices' visible arcs.
         out_far: view = kind::write(HDR_FORMAT),
+        /// The G-buffer's albedo (full resolution).
+        in_albedo: view = kind::TEXTURE,
     }
 }
 

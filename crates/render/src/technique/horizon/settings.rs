@@ -29,12 +29,25 @@ choice! {
     }
 }
 
+choice! {
+    /// The light of a sender whose seen face turns away from the receiver (hbil with a probe
+    /// volume; under the sky always `last`).
+    pub enum Hidden {
+        /// The last accepted sender's light (HBIL Sec. 3.4).
+        Last = "last",
+        /// The sender's albedo times the volume's irradiance at it about the direction back to
+        /// the receiver: the light of its hidden face (see technique/horizon/march.wgsl).
+        Volume = "volume",
+    }
+}
+
 declare_settings! {
     /// Settings of `gtao` and `hbil` (`--samples` = steps, `--radius`, `--set key=value`).
     pub struct Settings {
         @first { march: MarchSettings }
         far: Far = "slices", choice, structural("hbil"), "", "hbil's far field: `sh` SH irradiance through the bent cone (Sec. 2.2.4); `envmap` pre-convolved diffuse map at the bent normal × F0(ao) (Sec. 2.2.3); `slices` the environment integrated over each slice's visible arcs";
         aperture: Aperture = "matched", choice, uniform("hbil"), "", "hbil, `far=sh`: cone aperture `eq12` cos α = 1 − ao, or `matched` cos α = √(1 − ao)";
+        hidden: Hidden = "last", choice, uniform("hbil"), "", "hbil with a probe volume: a sender whose seen face turns away sends `last` the last accepted sender's light (Sec. 3.4), or `volume` its hidden face's, its albedo times the volume's irradiance there";
         falloff: f32 = "0.1", number(0, 1), uniform, "", "an occluder's rise fades out over the last `falloff`·R";
         #[cfg(feature = "scratch")]
         scratch: f32 = "0", number(0, 1), uniform("gtao"), "", "the test build's scratch setting (tests/scratch.rs)";

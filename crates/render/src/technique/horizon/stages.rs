@@ -105,6 +105,7 @@ pub(super) fn search_groups(
             depth,
             normal,
             radiance,
+            albedo: i.albedo,
             out,
         };
         march.bind_group(device, io)
