@@ -5,7 +5,7 @@
 //! kernel reads beyond the machinery's (vbgi: its uniforms and the second depth layer).
 
 use super::params::FAR_SLICES;
-use super::{HorizonParams, Settings, search};
+use super::{Hidden, HorizonParams, Settings, search};
 use crate::RenderError;
 use crate::contract::technique::{TechniqueContext, TechniqueParams};
 use crate::profiler::GpuProfiler;
@@ -74,6 +74,8 @@ pub struct HorizonMarch {
     layout: wgpu::BindGroupLayout,
     /// params.wgsl's `NEAR` and `FAR`: near-field light, the far field over the slices' arcs.
     work: [(&'static str, f64); 2],
+    /// params.wgsl's `HIDDEN` (`hidden=volume`).
+    hidden: bool,
 }
 
 impl HorizonMarch {
@@ -81,6 +83,7 @@ impl HorizonMarch {
         Box::new(HorizonMarch {
             layout: search::SearchBindings::layout(m.ctx.device),
             work: work(near, m.params),
+            hidden: near && m.settings.hidden == Hidden::Volume,
         })
     }
 }
@@ -113,7 +116,8 @@ impl March for HorizonMarch {
     }
 
     fn kernel(&self) -> (String, &'static str, Vec<(String, f64)>) {
-        let work = self.work.iter().map(|&(k, v)| (k.to_string(), v));
-        (search::source(), "horizon", work.collect())
+        let mut constants: Vec<_> = self.work.iter().map(|&(k, v)| (k.to_string(), v)).collect();
+        constants.push(("HIDDEN".to_string(), f64::from(u8::from(self.hidden))));
+        (search::source(), "horizon", constants)
     }
 }

@@ -19,22 +19,23 @@ struct March {
     r_layer: f32,
     step_jitter: f32,
     fade_width: f32,
-    // `hidden=volume` with a probe volume: a sender facing away sends its hidden face's light.
+    // `hidden=volume` with a probe volume: a sender facing away sends its hidden face's light,
+    // lit by `sh`, the volume's radiance at x.
     hidden: bool,
+    sh: FarSh,
 }
 
 // The light a sender's hidden face sends back to x (`hidden=volume`): the sender's albedo (the
-// G-buffer's `albedo` at its full-resolution pixel) times the probe volume's E/π at the sender
-// (view-space `xq`) about the direction back to x (view-space unit `to_x`), read as a surface
-// there facing x would read it (far.wgsl's far_irradiance_at). The volume holds a static
-// sender's surroundings and the light of what lies around an object it never saw; only its
-// direct light is missing (a shadow-mapped light on the hidden face).
-fn hidden_face_radiance(albedo: texture_2d<f32>, probes: texture_2d<f32>, visibility: texture_2d<f32>, atlas: texture_2d<f32>, smp: sampler, cam: View, p: HorizonParams, q: vec2<i32>, layer: u32, xq: vec3<f32>, to_x: vec3<f32>) -> vec3<f32> {
-    let full = vec2<i32>(floor(layer_to_full(p, vec2<f32>(q) + 0.5, layer)));
+// G-buffer's `albedo` at its full-resolution pixel) times the volume's E/π about the direction
+// from the sender back to x (view-space unit `to_x`). The irradiance is read from the volume's
+// SH at x rather than at the sender, which lies within R of x: one lookup per pixel instead of
+// one per hidden sender, and the same figures (the book, "Near and far"). The volume lights the
+// hidden face as it lights what lies around it, whether it saw the sender or not; only a
+// shadow-mapped light on that face is missing.
+fn hidden_face_radiance(albedo: texture_2d<f32>, cam: View, p: HorizonParams, m: March, q: vec2<i32>, to_x: vec3<f32>) -> vec3<f32> {
+    let full = vec2<i32>(floor(layer_to_full(p, vec2<f32>(q) + 0.5, m.layer)));
     let rho = textureLoad(albedo, full, 0).rgb;
-    let xw = (cam.world_from_view * vec4<f32>(xq, 1.0)).xyz;
-    let back = to_world(cam, to_x);
-    return rho * far_irradiance_at(probes, visibility, atlas, smp, xw, back, back);
+    return rho * max(far_irradiance(m.sh, to_world(cam, to_x)), vec3<f32>(0.0));
 }
 
 // The side's horizon angle (x) and its near-field irradiance (yzw, NEAR only).
@@ -50,7 +51,7 @@ fn hidden_face_radiance(albedo: texture_2d<f32>, probes: texture_2d<f32>, visibi
 // probe volume, a rise's sender that faces away sends its hidden face's light instead:
 // mix(L_hidden(x′), L(x′), t) (hidden_face_radiance). Eq. 19's (1 − F0) is the
 // receiver's, so it is applied once per pixel in `outputs`.
-fn march_side(depth_layers: texture_2d_array<f32>, normal_layers: texture_2d_array<f32>, radiance_layers: texture_2d_array<f32>, albedo: texture_2d<f32>, probes: texture_2d<f32>, visibility: texture_2d<f32>, atlas: texture_2d<f32>, smp: sampler, cam: View, p: HorizonParams, m: March, side_sign: f32, theta_init: f32, cos_init: f32) -> vec4<f32> {
+fn march_side(depth_layers: texture_2d_array<f32>, normal_layers: texture_2d_array<f32>, radiance_layers: texture_2d_array<f32>, albedo: texture_2d<f32>, cam: View, p: HorizonParams, m: March, side_sign: f32, theta_init: f32, cos_init: f32) -> vec4<f32> {
     let layer_size = vec2<i32>(i32(p.layer_width), i32(p.layer_height));
     var cos_max = cos_init;
     var theta = theta_init;
@@ -100,7 +101,7 @@ fn march_side(depth_layers: texture_2d_array<f32>, normal_layers: texture_2d_arr
                 let theta_new = side_sign * acos(clamp(cos_h, -1.0, 1.0));
                 var sent = radiance;
                 if m.hidden && accept < 1.0 {
-                    let hidden = hidden_face_radiance(albedo, probes, visibility, atlas, smp, cam, p, q, m.layer, on_line.xyz, -v / dist);
+                    let hidden = hidden_face_radiance(albedo, cam, p, m, q, -v / dist);
                     sent = mix(hidden, lq, accept);
                 }
                 near += sent * max(slice_g(theta, m.np) - slice_g(theta_new, m.np), 0.0);
@@ -133,9 +134,9 @@ struct Horizon {
 // geometry `centre` (xyz normal, w view depth > 0) was read by the caller. `pattern` picks the
 // slice angles' cell and the step jitter: the pixel, or with HALF its 2×2 block. `env_map`: the
 // environment's radiance with box-filtered mips (env_radiance_at); `probes`, `visibility`: the
-// far field's (far_sh_here), `atlas` its irradiance; `albedo`: the G-buffer's (`hidden=volume`);
-// `smp`: the sampler of the environment and the far field.
-fn search_pixel(depth_layers: texture_2d_array<f32>, normal_layers: texture_2d_array<f32>, radiance_layers: texture_2d_array<f32>, albedo: texture_2d<f32>, env_map: texture_2d<f32>, probes: texture_2d<f32>, visibility: texture_2d<f32>, atlas: texture_2d<f32>, smp: sampler, cam: View, e: EnvUniforms, p: HorizonParams, texel: vec2<u32>, layer: u32, pixel: vec2<u32>, pattern: vec2<u32>, centre: vec4<f32>) -> Horizon {
+// far field's (far_sh_here); `smp`: the sampler of both; `albedo`: the G-buffer's
+// (`hidden=volume`).
+fn search_pixel(depth_layers: texture_2d_array<f32>, normal_layers: texture_2d_array<f32>, radiance_layers: texture_2d_array<f32>, albedo: texture_2d<f32>, env_map: texture_2d<f32>, probes: texture_2d<f32>, visibility: texture_2d<f32>, smp: sampler, cam: View, e: EnvUniforms, p: HorizonParams, texel: vec2<u32>, layer: u32, pixel: vec2<u32>, pattern: vec2<u32>, centre: vec4<f32>) -> Horizon {
     let depth = centre.w;
     // Environment mip of about 32×16 texels (11°) for the arc integration.
     let far_lod = max(e.radiance_mips - 5.0, 0.0);
@@ -155,7 +156,12 @@ fn search_pixel(depth_layers: texture_2d_array<f32>, normal_layers: texture_2d_a
     m.r_layer = march_reach(cam, p, depth);
     m.step_jitter = fract(noise(pattern) + golden(cam.frame_index + 7u));
     m.fade_width = max(p.falloff * p.radius, 1e-6);
-    m.hidden = volume && p.hidden == 1u;
+    let xw = (cam.world_from_view * vec4<f32>(x, 1.0)).xyz;
+    // The volume's SH at x: read after the slices, or before them when hidden faces read it.
+    m.hidden = HIDDEN && volume;
+    if m.hidden {
+        m.sh = far_sh_here(probes, visibility, smp, cam, xw, normalize(centre.xyz));
+    }
     let cell = cell_index(pattern);
     let frame_jitter = golden(cam.frame_index);
 
@@ -177,8 +183,8 @@ fn search_pixel(depth_layers: texture_2d_array<f32>, normal_layers: texture_2d_a
         let init1 = min(gamma + 0.5 * PI, PI);
         let init0 = max(gamma - 0.5 * PI, -PI);
         unoccluded += dot(np, slice_gxy(init1) + slice_gxy(init0));
-        let front = march_side(depth_layers, normal_layers, radiance_layers, albedo, probes, visibility, atlas, smp, cam, p, m, 1.0, init1, cos(init1));
-        let back = march_side(depth_layers, normal_layers, radiance_layers, albedo, probes, visibility, atlas, smp, cam, p, m, -1.0, init0, cos(init0));
+        let front = march_side(depth_layers, normal_layers, radiance_layers, albedo, cam, p, m, 1.0, init1, cos(init1));
+        let back = march_side(depth_layers, normal_layers, radiance_layers, albedo, cam, p, m, -1.0, init0, cos(init0));
         near += front.yzw + back.yzw;
         let t1 = front.x;
         let t0 = back.x;
@@ -219,8 +225,10 @@ fn search_pixel(depth_layers: texture_2d_array<f32>, normal_layers: texture_2d_a
         bent += d * g.x + lf.o * g.y;
     }
     if volume {
-        let xw = (cam.world_from_view * vec4<f32>(x, 1.0)).xyz;
-        far = far_apply(far_sh_here(probes, visibility, smp, cam, xw, normalize(centre.xyz)), moments);
+        if !m.hidden {
+            m.sh = far_sh_here(probes, visibility, smp, cam, xw, normalize(centre.xyz));
+        }
+        far = far_apply(m.sh, moments);
     }
     // Ratio estimator: divide by the same slices' value for an open hemisphere (their mean is 1
     // over all φ), so that a plane gives exactly 1 with any slice count.

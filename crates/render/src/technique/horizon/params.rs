@@ -1,6 +1,6 @@
 //! `HorizonParams`: the GPU constants of every horizon pass, a pure function of the settings.
 
-use super::{Aperture, Far, Hidden, Settings};
+use super::{Aperture, Far, Settings};
 use crate::passes::denoise::Denoise;
 
 /// `HorizonParams::far`: what the far field is (params.wgsl's constants of the same names).
@@ -44,7 +44,6 @@ impl Settings {
             reject_normal: self.march.reject_normal,
             aperture: (self.aperture == Aperture::Matched) as u32,
             far_steps: 8,
-            hidden: (near && self.hidden == Hidden::Volume) as u32,
         }
     }
 }
@@ -73,7 +72,6 @@ crate::gpu_struct! {
         pub reject_normal: f32,
         pub aperture: u32,
         pub far_steps: u32,
-        pub hidden: u32,
     }
 }
 

@@ -33,9 +33,6 @@ struct HorizonParams {
     aperture: u32,
     // Sub-arcs per side of the environment integration (far = FAR_SLICES).
     far_steps: u32,
-    // With a probe volume, a sender that faces away sends: 0 the last accepted one's light
-    // (Sec. 3.4), 1 its hidden face's (march.wgsl's march_side).
-    hidden: u32,
 }
 
 // `far` (technique/horizon/params.rs has the same names): ao only, the far field from the direct
@@ -61,6 +58,9 @@ override FAR: bool = true;
 // `resolution=half` (half.wgsl): the search runs at one pixel of each 2×2 block and accumulate
 // brings its results to every pixel.
 override HALF: bool = false;
+// `hidden=volume` (hbil; march.wgsl's march_side): with a probe volume, a sender that faces away
+// sends its hidden face's light rather than the last accepted sender's (Sec. 3.4).
+override HIDDEN: bool = false;
 
 
 const BAYER4: array<u32, 16> = array<u32, 16>(0u, 8u, 2u, 10u, 12u, 4u, 14u, 6u, 3u, 11u, 1u, 9u, 15u, 7u, 13u, 5u);
