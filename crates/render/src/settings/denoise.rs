@@ -23,6 +23,7 @@ declare_settings! {
         svgf_luminance: f32 = "4", number(0, 64), filter, "", "svgf: σ_l, a tap's value may differ from the centre's by this many standard deviations before its weight falls by e (0: no value term)";
         svgf_depth: f32 = "0.02", log(1e-4, 10), filter, "", "svgf: tangent-plane distance, relative to view depth, at which a tap's weight falls by e";
         svgf_normal: f32 = "64", number(0, 256), filter, "", "svgf: exponent σ_n on the normals' cosine";
+        svgf_motion: f32 = "0.1", log(1e-3, 100), filter, "m", "svgf: a surface that moves in the world (its motion vector beyond the camera's) keeps the history of its last this many metres of travel, so that the light of a moving object follows it (large: no limit)";
         svgf_clamp: f32 = "0", number(0, 8), filter, "", "svgf: the history's ao and light are clamped to this frame's 5×5 neighbourhood mean ± this many of its standard deviations before the new frame joins them, so that light follows a moving object within frames (0: no clamp; not yet with resolution=half)";
     }
 }

@@ -84,7 +84,7 @@ crate::gpu_struct! {
         pub sigma_n: f32,
         pub step: i32,
         pub clamp: f32,
-        pub _pad0: f32,
+        pub motion: f32,
         pub _pad1: f32,
         pub _pad2: f32,
     }
@@ -103,7 +103,7 @@ fn svgf_params(c: &SvgfConfig, step: i32) -> SvgfParams {
         sigma_n: c.svgf.svgf_normal,
         step,
         clamp: c.svgf.svgf_clamp,
-        _pad0: 0.0,
+        motion: c.svgf.svgf_motion,
         _pad1: 0.0,
         _pad2: 0.0,
     }

@@ -21,7 +21,8 @@ struct SvgfParams {
     // The history's clamp: this frame's 5×5 neighbourhood mean ± clamp standard deviations
     // (0: off).
     clamp: f32,
-    _pad0: f32,
+    // A surface that moves in the world keeps the history of its last `motion` metres of travel.
+    motion: f32,
     _pad1: f32,
     _pad2: f32,
 }

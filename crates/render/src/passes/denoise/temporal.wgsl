@@ -6,7 +6,9 @@
 // tangent plane, normal, footprint). The first and second moments of ao and of the indirect
 // light's luminance are accumulated the same way (the per-pixel variance of the spatial filter).
 // No passing tap, no history (first frame, camera cut) or temporal off: the mean restarts at
-// this frame's value, count 1. Weight of the new frame 1 / min(count, max_history).
+// this frame's value, count 1. Weight of the new frame 1 / min(count, max_history, the frames in
+// which a moving surface travelled `motion` metres): a rolling ball turns its surface points
+// through the light, and a long history would drag the light of its last half-turn along.
 // With `clamp` > 0 the history's ao, env and indirect means are first clamped to this frame's
 // raw values' mean ± clamp standard deviations over the 5×5 surface pixels around (variance
 // clipping): where a moving object changed the light, the history follows within frames, while
@@ -127,7 +129,14 @@ fn temporal(@builtin(global_invocation_id) id: vec3<u32>) {
                 }
             }
             let inv = 1.0 / taps.total;
-            count = min(e.w * inv + 1.0, params.max_history);
+            // A surface that moved in the world since the last frame (its motion vector beyond the
+            // camera's own reprojection of x, in pixels times the pixel's footprint in metres)
+            // keeps the history of its last `motion` metres of travel.
+            let still_at = to_screen(view, view.prev_clip_from_world, x);
+            let footprint = depth * 2.0 * view.tan_half_fov * view.inv_size.y;
+            let moved = length(prev - still_at) * footprint;
+            let cap = max(1.0, params.motion / max(moved, 1e-6));
+            count = min(min(e.w * inv + 1.0, params.max_history), cap);
             var hm = m * inv;
             var he = e.rgb * inv;
             var hi = ind * inv;
