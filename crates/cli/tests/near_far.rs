@@ -166,7 +166,7 @@ fn the_near_field_earns_its_place_where_the_volume_is_coarse() {
 
 /// A box the bake never saw: `none` draws nothing of its footprint (error 1), vbgi and hbil
 /// draw its contact shadow and bounce (0.45 and 0.64 at 96×72; 0.47 and 0.71 at 192×144), hbil
-/// with `hidden=volume` more than half of it (0.37; its senders' hidden faces lit from the
+/// with `hidden=volume` more than half of it (0.36; its senders' hidden faces lit from the
 /// volume rather than by the last accepted sender, whose top face lit the wall behind the box),
 /// and the image error is no worse than `none`'s.
 #[test]
@@ -203,10 +203,13 @@ fn the_near_field_draws_an_object_the_bake_never_saw() {
 /// behind `gap`'s 4 cm posts its image is within half the reference's noise of `none`'s (0.0326
 /// against 0.0313 at 96×72; 0.0434 when the rear sent nothing), and it draws more than half of the
 /// footprint of the box `two-rooms-dynamic`'s bake never saw (0.45; 0.78 without the rear).
+/// hbil with `hidden=volume` takes the posts for thin (the march's next sample lies behind them)
+/// and keeps the paper's light there: 0.0312 on `gap` (at 192×144 0.0273, and 0.0377 when the
+/// posts' hidden faces hid the wall).
 #[test]
-fn vbgi_sends_the_light_of_an_occluders_rear() {
+fn the_light_of_an_occluders_rear_or_hidden_face() {
     let dir = scratch("rear");
-    let Some(m) = compare("builtin:gap", &[], "none,vbgi", &dir) else {
+    let Some(m) = compare("builtin:gap", &[], "none,vbgi,hbil:hidden=volume", &dir) else {
         return;
     };
     m.assert_no_worse_than_none("gap", 0.5);

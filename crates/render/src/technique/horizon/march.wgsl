@@ -49,14 +49,25 @@ fn hidden_face_radiance(albedo: texture_2d<f32>, cam: View, p: HorizonParams, m:
 // normal faces away from x is replaced by the last accepted one:
 // L ← mix(L, L(x′), smoothstep(a, b, −n′·ω)), ω = normalize(x′ − x). With `hidden=volume` and a
 // probe volume, a rise's sender that faces away sends its hidden face's light instead:
-// mix(L_hidden(x′), L(x′), t) (hidden_face_radiance). Eq. 19's (1 − F0) is the
-// receiver's, so it is applied once per pixel in `outputs`.
+// mix(L_hidden(x′), L(x′), t) (hidden_face_radiance), unless the march's next sample shows it
+// thin: one depth layer takes every occluder for a solid reaching back to x, and behind a thin
+// one (a post before a wall) the directions it hides see past it, for which the last accepted
+// sender's light stands in better than a hidden face that is not there. The next sample shows
+// the sender thin when it lies behind it, its view depth beyond the sender's by more than half
+// the distance between the two points (the step goes mostly away from the eye); the rise's light
+// is then the paper's. Eq. 19's (1 − F0) is the receiver's, so it is applied once per pixel in
+// `outputs`.
 fn march_side(depth_layers: texture_2d_array<f32>, normal_layers: texture_2d_array<f32>, radiance_layers: texture_2d_array<f32>, albedo: texture_2d<f32>, cam: View, p: HorizonParams, m: March, side_sign: f32, theta_init: f32, cos_init: f32) -> vec4<f32> {
     let layer_size = vec2<i32>(i32(p.layer_width), i32(p.layer_height));
     var cos_max = cos_init;
     var theta = theta_init;
     var near = vec3<f32>(0.0);
     var radiance = vec3<f32>(0.0);
+    // The last hidden-face rise, until the next sample says whether its sender is thin: the
+    // paper's light less the hidden face's, times the rise's weight, and the sender (view-space
+    // point, view depth; w = 0: none pending).
+    var pending = vec3<f32>(0.0);
+    var pending_at = vec4<f32>(0.0);
     let r2 = p.radius * p.radius;
     for (var j = 0u; j < STEPS; j++) {
         let t = m.r_layer * pow((f32(j) + m.step_jitter) / f32(STEPS), p.step_power);
@@ -79,6 +90,13 @@ fn march_side(depth_layers: texture_2d_array<f32>, normal_layers: texture_2d_arr
         if on_line.w == 0.0 {
             continue;
         }
+        if pending_at.w > 0.0 {
+            // Thin: this sample lies behind the pending sender.
+            if qd - pending_at.w > 0.5 * length(on_line.xyz - pending_at.xyz) {
+                near += pending;
+            }
+            pending_at.w = 0.0;
+        }
         let v = on_line.xyz - m.x;
         let d2 = dot(v, v);
         if d2 >= r2 || d2 < 1e-12 {
@@ -100,11 +118,14 @@ fn march_side(depth_layers: texture_2d_array<f32>, normal_layers: texture_2d_arr
             if NEAR {
                 let theta_new = side_sign * acos(clamp(cos_h, -1.0, 1.0));
                 var sent = radiance;
+                let w = max(slice_g(theta, m.np) - slice_g(theta_new, m.np), 0.0);
                 if m.hidden && accept < 1.0 {
                     let hidden = hidden_face_radiance(albedo, cam, p, m, q, -v / dist);
                     sent = mix(hidden, lq, accept);
+                    pending = (radiance - sent) * w;
+                    pending_at = vec4<f32>(on_line.xyz, qd);
                 }
-                near += sent * max(slice_g(theta, m.np) - slice_g(theta_new, m.np), 0.0);
+                near += sent * w;
                 theta = theta_new;
             }
             cos_max = cos_h;
