@@ -20,6 +20,16 @@ fn bits(r: &mut Renderer, aov: Aov) -> Vec<u32> {
         .collect()
 }
 
+/// A built-in scene under its sky (with the sun), seen from its own camera.
+fn under_the_sky(name: &str) -> (Scene, nearfield_scene::Environment, Camera) {
+    let scene = nearfield_scene::builtin::scene(name).unwrap();
+    let (env, _) = nearfield_scene::EnvSource::Sky
+        .load_split(nearfield_scene::SunMode::Auto)
+        .unwrap();
+    let camera = scene.default_camera();
+    (scene, env, camera)
+}
+
 /// Where world point `p` lands on the screen (pixels, y down).
 fn screen(camera: &Camera, p: Vec3) -> Vec2 {
     let aspect = SIZE.0 as f32 / SIZE.1 as f32;
@@ -48,11 +58,7 @@ fn ball_pixels(albedo: &AovImage) -> Vec<(u32, u32)> {
 #[test]
 fn a_moved_clock_poses_objects_as_a_fresh_renderer_and_their_motion_reaches_the_motion_vectors() {
     let Some(ctx) = common::context() else { return };
-    let scene = nearfield_scene::builtin::scene("columns-moving").unwrap();
-    let (env, _) = nearfield_scene::EnvSource::Sky
-        .load_split(nearfield_scene::SunMode::Auto)
-        .unwrap();
-    let camera = scene.default_camera();
+    let (scene, env, camera) = under_the_sky("columns-moving");
     let mut r = common::renderer(&ctx, &scene, &env, camera, SIZE);
     let first = bits(&mut r, Aov::LightIrradiance);
     let (t0, t1) = (1.0, 1.0 + 1.0 / 30.0);
@@ -175,11 +181,7 @@ type Off = (u32, u32, f64, f64);
 /// largest relative difference among them `within` frames after the stop, and those beyond the
 /// bound.
 fn ghost(ctx: &nearfield_render::GpuContext, spec: &str, within: u32) -> (usize, f64, Vec<Off>) {
-    let scene = nearfield_scene::builtin::scene("cornell-moving").unwrap();
-    let (env, _) = nearfield_scene::EnvSource::Sky
-        .load_split(nearfield_scene::SunMode::Auto)
-        .unwrap();
-    let camera = scene.default_camera();
+    let (scene, env, camera) = under_the_sky("cornell-moving");
     let fps = 30.0;
     // The box moves for 2 s of the animation's 3.
     let stop = ((scene.animation.duration() - 1.0) * fps).round() as u32;
@@ -258,11 +260,7 @@ fn ghost(ctx: &nearfield_render::GpuContext, spec: &str, within: u32) -> (usize,
 #[test]
 fn a_rolling_balls_light_follows_it() {
     let Some(ctx) = common::context() else { return };
-    let scene = nearfield_scene::builtin::scene("columns-moving").unwrap();
-    let (env, _) = nearfield_scene::EnvSource::Sky
-        .load_split(nearfield_scene::SunMode::Auto)
-        .unwrap();
-    let camera = scene.default_camera();
+    let (scene, env, camera) = under_the_sky("columns-moving");
     let fps = 30.0;
     let frame = 20;
     let settings = || nearfield_render::RenderSettings {
