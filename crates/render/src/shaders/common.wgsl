@@ -129,6 +129,11 @@ fn in_bounds(cam: View, pixel: vec2<u32>) -> bool {
     return f32(pixel.x) < cam.size.x && f32(pixel.y) < cam.size.y;
 }
 
+// The side of one pixel, in metres, at view depth `depth`.
+fn pixel_footprint(cam: View, depth: f32) -> f32 {
+    return depth * 2.0 * cam.tan_half_fov * cam.inv_size.y;
+}
+
 // Whether `p` (a point last frame saw, with normal `pn`) is the surface point `x` (normal `n`,
 // view depth `depth`) this frame sees, or close enough to it to stand in for it: within
 // `max_plane` × depth of x's tangent plane, normals within acos(`min_cos`), and no farther from
@@ -139,7 +144,7 @@ fn same_surface(cam: View, x: vec3<f32>, n: vec3<f32>, depth: f32, p: vec3<f32>,
     if abs(dot(p - x, n)) > max_plane * depth || dot(pn, n) < min_cos {
         return false;
     }
-    let footprint = depth * 2.0 * cam.tan_half_fov * cam.inv_size.y;
+    let footprint = pixel_footprint(cam, depth);
     let facing = max(abs(dot(n, normalize(cam.camera_position.xyz - x))), 0.1);
     let d = p - x;
     let reach = 2.5 * footprint / facing;

@@ -133,8 +133,7 @@ fn temporal(@builtin(global_invocation_id) id: vec3<u32>) {
             // camera's own reprojection of x, in pixels times the pixel's footprint in metres)
             // keeps the history of its last `motion` metres of travel.
             let still_at = to_screen(view, view.prev_clip_from_world, x);
-            let footprint = depth * 2.0 * view.tan_half_fov * view.inv_size.y;
-            let moved = length(prev - still_at) * footprint;
+            let moved = length(prev - still_at) * pixel_footprint(view, depth);
             let cap = max(1.0, params.motion / max(moved, 1e-6));
             count = min(min(e.w * inv + 1.0, params.max_history), cap);
             var hm = m * inv;
