@@ -8,6 +8,11 @@
 //     · exp(−|v_q − v_p| / (σ_l √Var_p + ε))        value, Var_p the centre's variance filtered
 //                                                   over the same taps with the kernel h
 // ao and env-irradiance share ao's value term; indirect-irradiance has its own (luminance).
+// ao and env-irradiance also fall with the tap's distance from the centre in the world, by e at
+// the filter's reach (`svgf_reach_weight`): the visibility within R is made by the geometry
+// within R and changes at that scale, and averaging it over several metres (four iterations
+// span ±15 pixels, metres where the view is deep) mixes the occlusion of separate
+// neighbourhoods. The near light keeps the kernel's whole span (the book, "vbgi").
 // The variance is filtered with the squared weights (it is the variance of the weighted mean).
 // in_signal / out_signal: x ao, y Var(ao), z Var(luminance of the indirect light), w count.
 
@@ -46,6 +51,7 @@ fn atrous(@builtin(global_invocation_id) id: vec3<u32>) {
     var env: array<vec3<f32>, 9>;
     var ind: array<vec3<f32>, 9>;
     var geo: array<f32, 9>;
+    var reach: array<f32, 9>;
     // The centre's variance, filtered over the taps with the kernel alone.
     var var_sum = vec2<f32>(0.0);
     var var_w = 0.0;
@@ -69,6 +75,7 @@ fn atrous(@builtin(global_invocation_id) id: vec3<u32>) {
         var_w += h;
         let xq = view_position(view, vec2<u32>(q), qd);
         geo[k] = h * svgf_geometry_weight(params, x, n_view, n, depth, xq, normalize(qn.xyz));
+        reach[k] = svgf_reach_weight(params, x, xq, f32(params.step) * length(vec2<f32>(o)));
     }
     let var_p = var_sum / max(var_w, 1e-6);
     let l_p = svgf_luma(ind[4]);
@@ -85,7 +92,7 @@ fn atrous(@builtin(global_invocation_id) id: vec3<u32>) {
         if g <= 0.0 {
             continue;
         }
-        var wa = g;
+        var wa = g * reach[k];
         var wl = g;
         if params.sigma_l > 0.0 {
             wa *= exp(-abs(sig[k].x - centre.x) * scale_ao);

@@ -29,6 +29,11 @@
 //! - The variance's 3×3 prefilter uses the iteration's own taps (spacing = step).
 //! - Depth is compared by distance from the tangent plane relative to view depth (as the
 //!   bilateral blur), not by the screen-space depth gradient.
+//! - ao's and env-irradiance's taps also fall with their distance from the centre in the world,
+//!   by e at `svgf_reach` × R (taps within 3 pixels exempt): where the view is deep the four
+//!   iterations' ±15 pixels span metres, and averaging the visibility within R over several R
+//!   mixed separate neighbourhoods' occlusion (Sponza at 160×90: vbgi 0.321 → 0.288; the book,
+//!   "vbgi"). The near light keeps the whole span.
 
 pub mod atrous;
 pub mod resolve;
@@ -85,7 +90,7 @@ crate::gpu_struct! {
         pub step: i32,
         pub clamp: f32,
         pub motion: f32,
-        pub _pad1: f32,
+        pub reach: f32,
         pub _pad2: f32,
     }
 }
@@ -104,7 +109,7 @@ fn svgf_params(c: &SvgfConfig, step: i32) -> SvgfParams {
         step,
         clamp: c.svgf.svgf_clamp,
         motion: c.svgf.svgf_motion,
-        _pad1: 0.0,
+        reach: c.svgf.svgf_reach * c.radius,
         _pad2: 0.0,
     }
 }

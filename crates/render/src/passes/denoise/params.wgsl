@@ -23,7 +23,8 @@ struct SvgfParams {
     clamp: f32,
     // A surface that moves in the world keeps the history of its last `motion` metres of travel.
     motion: f32,
-    _pad1: f32,
+    // The filter's reach (m): a tap this far from the centre has its weight fall by e.
+    reach: f32,
     _pad2: f32,
 }
 
@@ -38,6 +39,18 @@ fn svgf_luma(c: vec3<f32>) -> f32 {
 fn svgf_geometry_weight(p: SvgfParams, x_view: vec3<f32>, n_view: vec3<f32>, n: vec3<f32>, depth: f32, xq_view: vec3<f32>, nq: vec3<f32>) -> f32 {
     let plane = abs(dot(n_view, xq_view - x_view)) / (p.sigma_z * depth);
     return exp(-plane) * pow(max(dot(n, nq), 0.0), p.sigma_n);
+}
+
+// The weight of a tap for the filter's reach: a tap `reach` metres from the centre in the world
+// (x_view, xq_view) has its weight fall by e; a tap within REACH_FLOOR pixels (`taps`) keeps its
+// weight, so that a pixel's noise is always averaged with its nearest neighbours'.
+const REACH_FLOOR: f32 = 3.0;
+fn svgf_reach_weight(p: SvgfParams, x_view: vec3<f32>, xq_view: vec3<f32>, taps: f32) -> f32 {
+    if taps <= REACH_FLOOR {
+        return 1.0;
+    }
+    let apart = xq_view - x_view;
+    return exp(-dot(apart, apart) / (p.reach * p.reach));
 }
 
 // A world-space direction in the view space of `cam`.

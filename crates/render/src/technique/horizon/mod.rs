@@ -129,6 +129,7 @@ pub fn svgf_config(s: &Settings) -> (Denoise, SvgfConfig) {
             history: s.march.history,
             reject_depth: s.march.reject_depth,
             reject_normal: s.march.reject_normal,
+            radius: s.march.radius,
             svgf: s.svgf,
         },
     )

@@ -123,7 +123,7 @@ fn check(tp: &TechniqueParams) -> Result<(), String> {
 /// The denoiser choice and svgf's configuration (the running mean at its defaults).
 fn denoise_config(tp: &TechniqueParams) -> Result<(Denoise, SvgfConfig), String> {
     let s = Settings::from_params(tp)?;
-    Ok((s.denoise, SvgfConfig::with_defaults(s.svgf)))
+    Ok((s.denoise, SvgfConfig::with_defaults(s.svgf, s.radius)))
 }
 
 /// The technique's own images: the SH coefficients (two images) raw and filtered, the bent

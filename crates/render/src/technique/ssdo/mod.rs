@@ -175,7 +175,7 @@ enum Variant {
 /// The denoiser choice and svgf's configuration (the running mean at its defaults).
 fn denoise_config(tp: &TechniqueParams) -> Result<(Denoise, SvgfConfig), String> {
     let s = Settings::from_params(tp)?;
-    Ok((s.denoise, SvgfConfig::with_defaults(s.svgf)))
+    Ok((s.denoise, SvgfConfig::with_defaults(s.svgf, s.radius)))
 }
 
 /// A created ssao/ssdo/ssdo-vpl/instant-radiosity: its passes with their bind groups, built once.
