@@ -178,6 +178,7 @@ fn bitmask(@builtin(global_invocation_id) id: vec3<u32>) {
     let volume = FAR && far_volume(far_probes);
     let rear_known = far_volume(far_probes);
     var moments: FarMoments;
+    var open_moments: FarMoments;
     let eye = view.camera_position.xyz;
     let forward = -normalize(view.world_from_view[2].xyz);
     let lf = local_frame(view, x);
@@ -204,6 +205,7 @@ fn bitmask(@builtin(global_invocation_id) id: vec3<u32>) {
     var bent = vec3<f32>(0.0);
     var near = vec3<f32>(0.0);
     var far = vec3<f32>(0.0);
+    var far_open = vec3<f32>(0.0);
     var cum: array<f32, 33>;
     for (var k = 0u; k < SLICES; k++) {
         let phi = slice_phi(k, SLICES, cell, frame_jitter);
@@ -383,33 +385,61 @@ fn bitmask(@builtin(global_invocation_id) id: vec3<u32>) {
         for (var g = 0u; g < groups; g++) {
             let mid = cg;
             cg = rotate_angle(cg, group_step);
+            let omega = mid.y * d + mid.x * omega_o;
+            let w_all = cum[(g + 1u) * per_group] - cum[g * per_group];
+            var l_env = vec3<f32>(0.0);
+            if FAR {
+                if volume {
+                    far_moments_add(&open_moments, omega, w_all);
+                } else {
+                    l_env = env_radiance_at(env_radiance, env_sampler, env, omega, far_lod);
+                    far_open += l_env * w_all;
+                }
+            }
             let m = visible & bit_range(g * per_group, (g + 1u) * per_group);
             if m == 0u {
                 continue;
             }
             let w = mask_weight(m, &cum);
-            let omega = mid.y * d + mid.x * omega_o;
             bent += omega * w;
             if FAR {
                 if volume {
                     far_moments_add(&moments, omega, w);
                 } else {
-                    far += env_radiance_at(env_radiance, env_sampler, env, omega, far_lod) * w;
+                    far += l_env * w;
                 }
             }
         }
     }
-    if volume {
-        far = far_apply(far_sh_here(far_probes, far_visibility, env_sampler, view, x, n), moments);
-    }
     // Ratio estimators over the slices, as hbil's (U = cum[N], the open hemisphere's weight):
-    // ao = Σ W(unoccupied) / Σ U, E_near = Σ a L W(newly occupied) / Σ U, far = Σ L_env(ω_g)
-    // W(unoccupied in group g) / Σ U (`far=sectors`, 16 groups, ω_g at the group's middle),
-    // bent = normalize(Σ ω_g W(unoccupied in g)).
+    // ao = Σ W(unoccupied) / Σ U, E_near = Σ a L W(newly occupied) / Σ U, bent =
+    // normalize(Σ ω_g W(unoccupied in g)). The far field (`far=sectors`, 16 groups, ω_g at the
+    // group's middle) is the open hemisphere's irradiance E(n)/π (the environment's
+    // pre-convolved map, or the volume's SH) less the light the occupied sectors take, each
+    // slice's integral an unbiased estimate of the hemisphere's (φ uniform, E[U] = 1):
+    //   far = E(n)/π − (1/S) Σ_slices Σ_g L(ω_g) W(occupied in g).
+    // It is exact wherever nothing is occupied, whatever the slices. The ratio
+    // Σ L W(unoccupied) / Σ U it replaces is biased where L varies with the slice (with two
+    // slices a pixel an open floor read 1 % dark, 0.5 % with eight), and so is the share
+    // E(n)/π · Σ L W(unoccupied) / Σ L W(all), exact in the open but brighter than either
+    // where much is occupied (the book, vbgi, "The far field's estimator").
     let norm = max(unoccluded, 1e-6);
+    var far_light = far / norm;
+    if FAR {
+        var open = vec3<f32>(0.0);
+        if volume {
+            let sh = far_sh_here(far_probes, far_visibility, env_sampler, view, x, n);
+            far = far_apply(sh, moments);
+            far_open = far_apply(sh, open_moments);
+            open = far_irradiance(sh, n);
+        } else {
+            open = env_irradiance_exact(env_irradiance_map, env_sampler, env, n);
+        }
+        far_light = max(open - (far_open - far) / f32(SLICES), vec3<f32>(0.0));
+    }
     ao = clamp(ao / norm, 0.0, 1.0);
     let b = select(n, normalize(bent), dot(bent, bent) > 1e-12);
     textureStore(out_cone, store_at, vec4<f32>(b, ao));
     textureStore(out_near, store_at, vec4<f32>(near / norm, 1.0));
-    textureStore(out_far, store_at, vec4<f32>(far / norm, 1.0));
+    textureStore(out_far, store_at, vec4<f32>(far_light, 1.0));
 }
