@@ -397,8 +397,12 @@ fn interleaved_and_half_resolution_agree_with_full_resolution() {
 
 /// Push/pull after an orbit step that disoccludes: every hole of the raw reprojection is filled,
 /// each filled value lies within the range of the valid values around the hole (window of
-/// radius 4d + 4, d the distance to the nearest valid pixel), and valid pixels are kept as they
-/// are. Scatter and gather both.
+/// radius 8d + 8, d the distance to the nearest valid pixel: a level's texel with no valid pixel
+/// under it is filled from the next coarser level, whose bilinear footprint reaches twice as
+/// far, so even a hole beside a valid pixel takes a small share of values about 12 pixels
+/// away), and valid pixels are kept as they are. Scatter and gather both. (With 4d + 4 a hole
+/// on an open floor of exactly uniform light failed by 0.0002 for a 0.2 % share of the darker
+/// floor 9–12 pixels away.)
 #[test]
 fn push_pull_fills_every_hole_from_its_neighbours() {
     let Some(ctx) = common::context() else { return };
@@ -450,7 +454,7 @@ fn push_pull_fills_every_hole_from_its_neighbours() {
                 while d < w.max(h) && !(-d..=d).any(|j| (-d..=d).any(|k| valid(x + k, y + j))) {
                     d += 1;
                 }
-                let r_win = 4 * d + 4;
+                let r_win = 8 * d + 8;
                 let mut lo = [f32::INFINITY; 3];
                 let mut hi = [f32::NEG_INFINITY; 3];
                 for j in -r_win..=r_win {

@@ -154,10 +154,11 @@ struct Horizon {
 // The search at layer texel `texel` of `layer` (full-resolution `pixel`, in the image), whose
 // geometry `centre` (xyz normal, w view depth > 0) was read by the caller. `pattern` picks the
 // slice angles' cell and the step jitter: the pixel, or with HALF its 2×2 block. `env_map`: the
-// environment's radiance with box-filtered mips (env_radiance_at); `probes`, `visibility`: the
+// environment's radiance with box-filtered mips (env_radiance_at), `irradiance_map` its
+// pre-convolved diffuse map (env_irradiance_exact); `probes`, `visibility`: the
 // far field's (far_sh_here); `smp`: the sampler of both; `albedo`: the G-buffer's
 // (`hidden=volume`).
-fn search_pixel(depth_layers: texture_2d_array<f32>, normal_layers: texture_2d_array<f32>, radiance_layers: texture_2d_array<f32>, albedo: texture_2d<f32>, env_map: texture_2d<f32>, probes: texture_2d<f32>, visibility: texture_2d<f32>, smp: sampler, cam: View, e: EnvUniforms, p: HorizonParams, texel: vec2<u32>, layer: u32, pixel: vec2<u32>, pattern: vec2<u32>, centre: vec4<f32>) -> Horizon {
+fn search_pixel(depth_layers: texture_2d_array<f32>, normal_layers: texture_2d_array<f32>, radiance_layers: texture_2d_array<f32>, albedo: texture_2d<f32>, env_map: texture_2d<f32>, irradiance_map: texture_2d<f32>, probes: texture_2d<f32>, visibility: texture_2d<f32>, smp: sampler, cam: View, e: EnvUniforms, p: HorizonParams, texel: vec2<u32>, layer: u32, pixel: vec2<u32>, pattern: vec2<u32>, centre: vec4<f32>) -> Horizon {
     let depth = centre.w;
     // Environment mip of about 32×16 texels (11°) for the arc integration.
     let far_lod = max(e.radiance_mips - 5.0, 0.0);
@@ -210,22 +211,22 @@ fn search_pixel(depth_layers: texture_2d_array<f32>, normal_layers: texture_2d_a
         let t1 = front.x;
         let t0 = back.x;
         if FAR {
-            // The visible arcs [θ0, 0] and [0, θ1], each in far_steps pieces of equal angle:
-            // L_env at the piece's middle × ∫ (n′·ω) |sin θ| dθ over the piece.
-            // The pieces' ends and middles step by equal angles: their (cos, sin) by rotation,
-            // each end's slice_g once (four sin/cos a side instead of six a piece).
+            // The occluded arcs [θ1, init1] and [init0, θ0] (below the horizons), each in
+            // far_steps pieces of equal angle: L at the piece's middle × ∫ (n′·ω) |sin θ| dθ over
+            // the piece. The pieces' ends and middles step by equal angles: their (cos, sin) by
+            // rotation, each end's slice_g once (four sin/cos a side instead of six a piece).
             let d_world = to_world(cam, d);
             let o_world = to_world(cam, lf.o);
             for (var side = 0u; side < 2u; side++) {
-                let end = select(t1, t0, side == 1u);
-                let h = end / f32(p.far_steps);
+                let start = select(t1, t0, side == 1u);
+                let h = (select(init1, init0, side == 1u) - start) / f32(p.far_steps);
                 let step = vec2<f32>(cos(h), sin(h));
                 let half = vec2<f32>(cos(0.5 * h), sin(0.5 * h));
-                // (cos, sin) of the piece's start a, and slice_g(a) (0 at a = 0).
-                var ca = vec2<f32>(1.0, 0.0);
-                var ga = 0.0;
+                // (cos, sin) of the piece's start a, and slice_g(a).
+                var ca = vec2<f32>(cos(start), sin(start));
+                var ga = slice_g_at(start, ca, np);
                 for (var s = 0u; s < p.far_steps; s++) {
-                    let b = h * f32(s + 1u);
+                    let b = start + h * f32(s + 1u);
                     let cb = rotate_angle(ca, step);
                     let gb = slice_g_at(b, cb, np);
                     let w = abs(gb - ga);
@@ -245,11 +246,26 @@ fn search_pixel(depth_layers: texture_2d_array<f32>, normal_layers: texture_2d_a
         ao += dot(np, g);
         bent += d * g.x + lf.o * g.y;
     }
-    if volume {
-        if !m.hidden {
-            m.sh = far_sh_here(probes, visibility, smp, cam, xw, normalize(centre.xyz));
+    // The far field: the open hemisphere's irradiance E(n)/π (the volume's SH, or the
+    // environment's pre-convolved map) less the light of the occluded arcs, each slice's integral
+    // an unbiased estimate of the hemisphere's (φ uniform, the open slices' mean weight 1):
+    //   far = E(n)/π − (1/S) Σ_slices ∫_occluded L (n′·ω) |sin θ| dθ,
+    // exact wherever nothing is occluded, whatever the slices. The ratio over the visible arcs,
+    // Σ ∫_visible L … / Σ U, was biased where L varies with the slice's weight U (the book, vbgi,
+    // "The far field's estimator").
+    if FAR {
+        let nw = normalize(centre.xyz);
+        var open = vec3<f32>(0.0);
+        if volume {
+            if !m.hidden {
+                m.sh = far_sh_here(probes, visibility, smp, cam, xw, nw);
+            }
+            far = far_apply(m.sh, moments);
+            open = far_irradiance(m.sh, nw);
+        } else {
+            open = env_irradiance_exact(irradiance_map, smp, e, nw);
         }
-        far = far_apply(m.sh, moments);
+        far = max(open - far / f32(SLICES), vec3<f32>(0.0));
     }
     // Ratio estimator: divide by the same slices' value for an open hemisphere (their mean is 1
     // over all φ), so that a plane gives exactly 1 with any slice count.
@@ -259,6 +275,6 @@ fn search_pixel(depth_layers: texture_2d_array<f32>, normal_layers: texture_2d_a
     var r: Horizon;
     r.cone = vec4<f32>(to_world(cam, b), ao);
     r.near = near / norm;
-    r.far = vec4<f32>(far / norm, 1.0);
+    r.far = vec4<f32>(far, 1.0);
     return r;
 }

@@ -34,7 +34,7 @@ fn horizon(@builtin(global_invocation_id) id: vec3<u32>) {
     var r: Horizon;
     r.cone = vec4<f32>(0.0, 0.0, 0.0, 1.0);
     if centre.w > 0.0 {
-        r = search_pixel(in_depth, in_normal, in_radiance, in_albedo, env_radiance, far_probes, far_visibility, env_sampler, view, env, params, at.texel, at.layer, at.pixel, at.pattern, centre);
+        r = search_pixel(in_depth, in_normal, in_radiance, in_albedo, env_radiance, env_irradiance_map, far_probes, far_visibility, env_sampler, view, env, params, at.texel, at.layer, at.pixel, at.pattern, centre);
     }
     textureStore(out_cone, store_at, r.cone);
     if NEAR {
