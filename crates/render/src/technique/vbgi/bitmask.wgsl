@@ -178,7 +178,6 @@ fn bitmask(@builtin(global_invocation_id) id: vec3<u32>) {
     let volume = FAR && far_volume(far_probes);
     let rear_known = far_volume(far_probes);
     var moments: FarMoments;
-    var open_moments: FarMoments;
     let eye = view.camera_position.xyz;
     let forward = -normalize(view.world_from_view[2].xyz);
     let lf = local_frame(view, x);
@@ -205,7 +204,6 @@ fn bitmask(@builtin(global_invocation_id) id: vec3<u32>) {
     var bent = vec3<f32>(0.0);
     var near = vec3<f32>(0.0);
     var far = vec3<f32>(0.0);
-    var far_open = vec3<f32>(0.0);
     var cum: array<f32, 33>;
     for (var k = 0u; k < SLICES; k++) {
         let phi = slice_phi(k, SLICES, cell, frame_jitter);
@@ -386,29 +384,22 @@ fn bitmask(@builtin(global_invocation_id) id: vec3<u32>) {
             let mid = cg;
             cg = rotate_angle(cg, group_step);
             let omega = mid.y * d + mid.x * omega_o;
-            let w_all = cum[(g + 1u) * per_group] - cum[g * per_group];
-            var l_env = vec3<f32>(0.0);
-            if FAR {
+            let group_bits = bit_range(g * per_group, (g + 1u) * per_group);
+            // The far field takes the light of the group's occupied sectors (below).
+            let taken = occupied & group_bits;
+            if FAR && taken != 0u {
+                let w_taken = mask_weight(taken, &cum);
                 if volume {
-                    far_moments_add(&open_moments, omega, w_all);
+                    far_moments_add(&moments, omega, w_taken);
                 } else {
-                    l_env = env_radiance_at(env_radiance, env_sampler, env, omega, far_lod);
-                    far_open += l_env * w_all;
+                    far += env_radiance_at(env_radiance, env_sampler, env, omega, far_lod) * w_taken;
                 }
             }
-            let m = visible & bit_range(g * per_group, (g + 1u) * per_group);
+            let m = visible & group_bits;
             if m == 0u {
                 continue;
             }
-            let w = mask_weight(m, &cum);
-            bent += omega * w;
-            if FAR {
-                if volume {
-                    far_moments_add(&moments, omega, w);
-                } else {
-                    far += l_env * w;
-                }
-            }
+            bent += omega * mask_weight(m, &cum);
         }
     }
     // Ratio estimators over the slices, as hbil's (U = cum[N], the open hemisphere's weight):
@@ -424,22 +415,20 @@ fn bitmask(@builtin(global_invocation_id) id: vec3<u32>) {
     // E(n)/π · Σ L W(unoccupied) / Σ L W(all), exact in the open but brighter than either
     // where much is occupied (the book, vbgi, "The far field's estimator").
     let norm = max(unoccluded, 1e-6);
-    var far_light = far / norm;
     if FAR {
         var open = vec3<f32>(0.0);
         if volume {
             let sh = far_sh_here(far_probes, far_visibility, env_sampler, view, x, n);
             far = far_apply(sh, moments);
-            far_open = far_apply(sh, open_moments);
             open = far_irradiance(sh, n);
         } else {
             open = env_irradiance_exact(env_irradiance_map, env_sampler, env, n);
         }
-        far_light = max(open - (far_open - far) / f32(SLICES), vec3<f32>(0.0));
+        far = max(open - far / f32(SLICES), vec3<f32>(0.0));
     }
     ao = clamp(ao / norm, 0.0, 1.0);
     let b = select(n, normalize(bent), dot(bent, bent) > 1e-12);
     textureStore(out_cone, store_at, vec4<f32>(b, ao));
     textureStore(out_near, store_at, vec4<f32>(near / norm, 1.0));
-    textureStore(out_far, store_at, vec4<f32>(far_light, 1.0));
+    textureStore(out_far, store_at, vec4<f32>(far, 1.0));
 }
