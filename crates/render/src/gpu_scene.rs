@@ -18,7 +18,9 @@ crate::gpu_struct! {
         pub alpha_cutoff: f32,
         pub metallic: f32,
         pub roughness: f32,
-        pub _pad0: f32,
+        /// 1 on the meshes the far field's bake never saw (dynamic: the book, "Near and far"),
+        /// 0 on the rest; the G-buffer's material target carries it.
+        pub dynamic: f32,
         pub _pad1: f32,
         /// Layers of the base colour (sRGB array), metallic-roughness (linear array) and emissive
         /// (sRGB array) textures; [`NO_TEXTURE`] = none.
@@ -82,6 +84,9 @@ pub struct GpuScene {
     pub light_capacity: usize,
     pub bounds: Aabb,
     pub triangle_count: u32,
+    /// Whether some mesh is dynamic (the far field's bake never saw it): its surfaces carry
+    /// `GpuMaterial::dynamic`.
+    pub has_dynamic: bool,
 }
 
 impl GpuScene {
@@ -99,6 +104,12 @@ impl GpuScene {
         let mut single: Vec<u32> = Vec::new();
         let mut double: Vec<u32> = Vec::new();
         let mut first = Vec::with_capacity(scene.meshes.len());
+        // A dynamic mesh reads the second copy of the material table, whose `dynamic` is 1.
+        let dynamic_base = if scene.has_dynamic() {
+            scene.materials.len() as u32
+        } else {
+            0
+        };
         for mesh in &scene.meshes {
             let base = vertices.len() as u32;
             first.push(base);
@@ -107,7 +118,7 @@ impl GpuScene {
                     position: mesh.positions[i].into(),
                     normal: mesh.normals[i].into(),
                     uv: mesh.uvs[i].into(),
-                    material: mesh.material,
+                    material: mesh.material + if mesh.dynamic { dynamic_base } else { 0 },
                 });
             }
             let target = if scene.materials[mesh.material as usize].double_sided {
@@ -159,10 +170,10 @@ impl GpuScene {
         let linear_textures = arrays.pop().unwrap();
         let srgb_textures = arrays.pop().unwrap();
         let layer = |t: Option<usize>| t.map(|i| layer_of[i]).unwrap_or(NO_TEXTURE);
-        let materials: Vec<GpuMaterial> = scene
-            .materials
-            .iter()
-            .map(|m| GpuMaterial {
+        let copies = if scene.has_dynamic() { 2 } else { 1 };
+        let materials: Vec<GpuMaterial> = (0..copies)
+            .flat_map(|copy| scene.materials.iter().map(move |m| (copy, m)))
+            .map(|(copy, m)| GpuMaterial {
                 base_color: m.base_color.into(),
                 emissive: m.emissive.into(),
                 alpha_cutoff: match m.alpha_mode {
@@ -171,7 +182,7 @@ impl GpuScene {
                 },
                 metallic: m.metallic,
                 roughness: m.roughness,
-                _pad0: 0.0,
+                dynamic: copy as f32,
                 _pad1: 0.0,
                 base_color_texture: layer(m.base_color_texture),
                 metallic_roughness_texture: layer(m.metallic_roughness_texture),
@@ -219,6 +230,7 @@ impl GpuScene {
             light_capacity: capacity,
             bounds: scene.bounds_in_motion(),
             triangle_count: index_count / 3,
+            has_dynamic: scene.has_dynamic(),
         })
     }
 

@@ -27,7 +27,8 @@ pub struct NearFieldInputs<'a> {
     pub normal: &'a wgpu::TextureView,
     /// Base colour ρ, linear: rgba8unorm (or rgba8unorm-srgb), a = 1.
     pub albedo: &'a wgpu::TextureView,
-    /// r = metallic, g = perceptual roughness: rgba8unorm.
+    /// r = metallic, g = perceptual roughness, b = 1 on a surface the far field's bake never
+    /// saw (a dynamic mesh; hbil's `hidden=unbaked` reads it), else 0: rgba8unorm.
     pub material: &'a wgpu::TextureView,
     /// Emitted radiance, linear: rgba16float.
     pub emission: &'a wgpu::TextureView,

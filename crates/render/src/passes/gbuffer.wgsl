@@ -5,7 +5,8 @@
 //                              the surface (flipped on back faces of double-sided materials),
 //                              w = 1 on surfaces, 0 on background
 //   1 albedo      rgba8unorm-srgb  base colour ρ (factor × texture), a = 1
-//   2 material    rgba8unorm   r = metallic, g = perceptual roughness, b = 0, a = 1
+//   2 material    rgba8unorm   r = metallic, g = perceptual roughness, b = 1 on a surface the far
+//                              field's bake never saw (a dynamic mesh, GpuMaterial.dynamic), a = 1
 //   3 emissive    rgba16float  emitted radiance (linear), a = 1
 //   4 motion      rg16float    previous − current pixel position (pixels) of this surface point,
 //                              moved by the camera and by its object's own motion
@@ -48,7 +49,7 @@ fn fs_main(in: VertexOut, @builtin(front_facing) front: bool) -> GBufferOut {
     var o: GBufferOut;
     o.normal = vec4<f32>(n, 1.0);
     o.albedo = vec4<f32>(m.base, 1.0);
-    o.material = vec4<f32>(m.metallic, m.roughness, 0.0, 1.0);
+    o.material = vec4<f32>(m.metallic, m.roughness, materials[in.material].dynamic, 1.0);
     o.emissive = vec4<f32>(m.emissive, 1.0);
     o.motion = vec4<f32>(to_screen(view, view.prev_clip_from_world, in.previous) - in.clip.xy, 0.0, 0.0);
     o.view_depth = vec4<f32>(-(view.view_from_world * vec4<f32>(in.world, 1.0)).z, 0.0, 0.0, 0.0);

@@ -8,7 +8,8 @@ struct GpuMaterial {
     alpha_cutoff: f32,
     metallic: f32,
     roughness: f32,
-    _pad0: f32,
+    // 1 on the meshes the far field's bake never saw (dynamic), 0 on the rest.
+    dynamic: f32,
     _pad1: f32,
     // Layers: base colour (sRGB array), metallic-roughness (linear array), emissive (sRGB array);
     // NO_TEXTURE: none.

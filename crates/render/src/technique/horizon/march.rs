@@ -43,8 +43,9 @@ pub struct MarchIo<'a> {
     pub depth: &'a wgpu::TextureView,
     pub normal: &'a wgpu::TextureView,
     pub radiance: &'a wgpu::TextureView,
-    /// The G-buffer's albedo.
+    /// The G-buffer's albedo and material.
     pub albedo: &'a wgpu::TextureView,
+    pub material: &'a wgpu::TextureView,
     /// Raw bent cone, near-field irradiance, far field.
     pub out: [&'a wgpu::TextureView; 3],
 }
@@ -74,8 +75,9 @@ pub struct HorizonMarch {
     layout: wgpu::BindGroupLayout,
     /// params.wgsl's `NEAR` and `FAR`: near-field light, the far field over the slices' arcs.
     work: [(&'static str, f64); 2],
-    /// params.wgsl's `HIDDEN` (`hidden=volume`).
-    hidden: bool,
+    /// params.wgsl's `HIDDEN`: 0 `last`, 1 `volume`, 2 `unbaked` (0 where the scene has no
+    /// mesh the bake never saw, or is another engine's).
+    hidden: u8,
 }
 
 impl HorizonMarch {
@@ -83,7 +85,15 @@ impl HorizonMarch {
         Box::new(HorizonMarch {
             layout: search::SearchBindings::layout(m.ctx.device),
             work: work(near, m.params),
-            hidden: near && m.settings.hidden == Hidden::Volume,
+            hidden: match m.settings.hidden {
+                _ if !near => 0,
+                Hidden::Last => 0,
+                Hidden::Volume => 1,
+                Hidden::Unbaked => {
+                    let unbaked = m.ctx.scene.is_some_and(|s| s.scene.has_dynamic);
+                    if unbaked { 2 } else { 0 }
+                }
+            },
         })
     }
 }
@@ -111,13 +121,14 @@ impl March for HorizonMarch {
             out_near: io.out[1],
             out_far: io.out[2],
             in_albedo: io.albedo,
+            in_material: io.material,
         }
         .bind_group(device, &self.layout)
     }
 
     fn kernel(&self) -> (String, &'static str, Vec<(String, f64)>) {
         let mut constants: Vec<_> = self.work.iter().map(|&(k, v)| (k.to_string(), v)).collect();
-        constants.push(("HIDDEN".to_string(), f64::from(u8::from(self.hidden))));
+        constants.push(("HIDDEN".to_string(), f64::from(self.hidden)));
         (search::source(), "horizon", constants)
     }
 }

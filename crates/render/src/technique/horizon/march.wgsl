@@ -19,13 +19,14 @@ struct March {
     r_layer: f32,
     step_jitter: f32,
     fade_width: f32,
-    // `hidden=volume` with a probe volume: a sender facing away sends its hidden face's light,
-    // lit by `sh`, the volume's radiance at x.
+    // `hidden` (volume or unbaked) with a probe volume: a sender facing away may send its
+    // hidden face's light, lit by `sh`, the volume's radiance at x.
     hidden: bool,
     sh: FarSh,
 }
 
-// The light a sender's hidden face sends back to x (`hidden=volume`): the sender's albedo (the
+// The light a sender's hidden face sends back to x (`hidden=volume`, and `unbaked` for a sender
+// the bake never saw): the sender's albedo (the
 // G-buffer's `albedo` at its full-resolution pixel) times the volume's E/π about the direction
 // from the sender back to x (view-space unit `to_x`). The irradiance is read from the volume's
 // SH at x rather than at the sender, which lies within R of x: one lookup per pixel instead of
@@ -33,9 +34,21 @@ struct March {
 // hidden face as it lights what lies around it, whether it saw the sender or not; only a
 // shadow-mapped light on that face is missing.
 fn hidden_face_radiance(albedo: texture_2d<f32>, cam: View, p: HorizonParams, m: March, q: vec2<i32>, to_x: vec3<f32>) -> vec3<f32> {
-    let full = vec2<i32>(floor(layer_to_full(p, vec2<f32>(q) + 0.5, m.layer)));
-    let rho = textureLoad(albedo, full, 0).rgb;
+    let rho = textureLoad(albedo, full_pixel(p, m, q), 0).rgb;
     return rho * max(far_irradiance(m.sh, to_world(cam, to_x)), vec3<f32>(0.0));
+}
+
+// The full-resolution pixel of layer texel q.
+fn full_pixel(p: HorizonParams, m: March, q: vec2<i32>) -> vec2<i32> {
+    return vec2<i32>(floor(layer_to_full(p, vec2<f32>(q) + 0.5, m.layer)));
+}
+
+// Whether the sender at layer texel q sends its hidden face's light: every sender with
+// `hidden=volume`; with `hidden=unbaked` only one the bake never saw (the G-buffer's `material`
+// b = 1), which the volume holds nothing of, while the faces of what the bake saw keep the
+// paper's light (the book, "Near and far").
+fn sends_hidden_face(material: texture_2d<f32>, p: HorizonParams, m: March, q: vec2<i32>) -> bool {
+    return HIDDEN == 1u || textureLoad(material, full_pixel(p, m, q), 0).b > 0.5;
 }
 
 // The side's horizon angle (x) and its near-field irradiance (yzw, NEAR only).
@@ -57,7 +70,7 @@ fn hidden_face_radiance(albedo: texture_2d<f32>, cam: View, p: HorizonParams, m:
 // the distance between the two points (the step goes mostly away from the eye); the rise's light
 // is then the paper's. Eq. 19's (1 − F0) is the receiver's, so it is applied once per pixel in
 // `outputs`.
-fn march_side(depth_layers: texture_2d_array<f32>, normal_layers: texture_2d_array<f32>, radiance_layers: texture_2d_array<f32>, albedo: texture_2d<f32>, cam: View, p: HorizonParams, m: March, side_sign: f32, theta_init: f32, cos_init: f32) -> vec4<f32> {
+fn march_side(depth_layers: texture_2d_array<f32>, normal_layers: texture_2d_array<f32>, radiance_layers: texture_2d_array<f32>, albedo: texture_2d<f32>, material: texture_2d<f32>, cam: View, p: HorizonParams, m: March, side_sign: f32, theta_init: f32, cos_init: f32) -> vec4<f32> {
     let layer_size = vec2<i32>(i32(p.layer_width), i32(p.layer_height));
     var cos_max = cos_init;
     var theta = theta_init;
@@ -119,7 +132,7 @@ fn march_side(depth_layers: texture_2d_array<f32>, normal_layers: texture_2d_arr
                 let theta_new = side_sign * acos(clamp(cos_h, -1.0, 1.0));
                 var sent = radiance;
                 let w = max(slice_g(theta, m.np) - slice_g(theta_new, m.np), 0.0);
-                if m.hidden && accept < 1.0 {
+                if m.hidden && accept < 1.0 && sends_hidden_face(material, p, m, q) {
                     let hidden = hidden_face_radiance(albedo, cam, p, m, q, -v / dist);
                     sent = mix(hidden, lq, accept);
                     pending = (radiance - sent) * w;
@@ -158,7 +171,7 @@ struct Horizon {
 // pre-convolved diffuse map (env_irradiance_exact); `probes`, `visibility`: the
 // far field's (far_sh_here); `smp`: the sampler of both; `albedo`: the G-buffer's
 // (`hidden=volume`).
-fn search_pixel(depth_layers: texture_2d_array<f32>, normal_layers: texture_2d_array<f32>, radiance_layers: texture_2d_array<f32>, albedo: texture_2d<f32>, env_map: texture_2d<f32>, irradiance_map: texture_2d<f32>, probes: texture_2d<f32>, visibility: texture_2d<f32>, smp: sampler, cam: View, e: EnvUniforms, p: HorizonParams, texel: vec2<u32>, layer: u32, pixel: vec2<u32>, pattern: vec2<u32>, centre: vec4<f32>) -> Horizon {
+fn search_pixel(depth_layers: texture_2d_array<f32>, normal_layers: texture_2d_array<f32>, radiance_layers: texture_2d_array<f32>, albedo: texture_2d<f32>, material: texture_2d<f32>, env_map: texture_2d<f32>, irradiance_map: texture_2d<f32>, probes: texture_2d<f32>, visibility: texture_2d<f32>, smp: sampler, cam: View, e: EnvUniforms, p: HorizonParams, texel: vec2<u32>, layer: u32, pixel: vec2<u32>, pattern: vec2<u32>, centre: vec4<f32>) -> Horizon {
     let depth = centre.w;
     // Environment mip of about 32×16 texels (11°) for the arc integration.
     let far_lod = max(e.radiance_mips - 5.0, 0.0);
@@ -180,7 +193,7 @@ fn search_pixel(depth_layers: texture_2d_array<f32>, normal_layers: texture_2d_a
     m.fade_width = max(p.falloff * p.radius, 1e-6);
     let xw = (cam.world_from_view * vec4<f32>(x, 1.0)).xyz;
     // The volume's SH at x: read after the slices, or before them when hidden faces read it.
-    m.hidden = HIDDEN && volume;
+    m.hidden = HIDDEN != 0u && volume;
     if m.hidden {
         m.sh = far_sh_here(probes, visibility, smp, cam, xw, normalize(centre.xyz));
     }
@@ -205,8 +218,8 @@ fn search_pixel(depth_layers: texture_2d_array<f32>, normal_layers: texture_2d_a
         let init1 = min(gamma + 0.5 * PI, PI);
         let init0 = max(gamma - 0.5 * PI, -PI);
         unoccluded += dot(np, slice_gxy(init1) + slice_gxy(init0));
-        let front = march_side(depth_layers, normal_layers, radiance_layers, albedo, cam, p, m, 1.0, init1, cos(init1));
-        let back = march_side(depth_layers, normal_layers, radiance_layers, albedo, cam, p, m, -1.0, init0, cos(init0));
+        let front = march_side(depth_layers, normal_layers, radiance_layers, albedo, material, cam, p, m, 1.0, init1, cos(init1));
+        let back = march_side(depth_layers, normal_layers, radiance_layers, albedo, material, cam, p, m, -1.0, init0, cos(init0));
         near += front.yzw + back.yzw;
         let t1 = front.x;
         let t0 = back.x;

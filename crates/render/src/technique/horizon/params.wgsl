@@ -58,9 +58,11 @@ override FAR: bool = true;
 // `resolution=half` (half.wgsl): the search runs at one pixel of each 2×2 block and accumulate
 // brings its results to every pixel.
 override HALF: bool = false;
-// `hidden=volume` (hbil; march.wgsl's march_side): with a probe volume, a sender that faces away
-// sends its hidden face's light rather than the last accepted sender's (Sec. 3.4).
-override HIDDEN: bool = false;
+// `hidden` (hbil; march.wgsl's march_side), with a probe volume: which senders that face away
+// send their hidden face's light rather than the last accepted sender's (Sec. 3.4): 0 none
+// (`last`), 1 every one (`volume`), 2 those the bake never saw (`unbaked`: the G-buffer's
+// material b = 1).
+override HIDDEN: u32 = 0u;
 
 
 const BAYER4: array<u32, 16> = array<u32, 16>(0u, 8u, 2u, 10u, 12u, 4u, 14u, 6u, 3u, 11u, 1u, 9u, 15u, 7u, 13u, 5u);

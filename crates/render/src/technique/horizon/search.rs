@@ -37,6 +37,8 @@ crate::bind_group! {
         out_far: view = kind::write(HDR_FORMAT),
         /// The G-buffer's albedo (full resolution).
         in_albedo: view = kind::TEXTURE,
+        /// The G-buffer's material (full resolution): b = 1 on surfaces the bake never saw.
+        in_material: view = kind::TEXTURE,
     }
 }
 

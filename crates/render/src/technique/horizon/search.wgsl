@@ -22,6 +22,8 @@
 @group(1) @binding(6) var out_far: texture_storage_2d<rgba16float, write>;
 // The G-buffer's albedo (hbil's `hidden=volume`: a sender's hidden face).
 @group(1) @binding(7) var in_albedo: texture_2d<f32>;
+// The G-buffer's material (hbil's `hidden=unbaked`: b = 1 on a sender the bake never saw).
+@group(1) @binding(8) var in_material: texture_2d<f32>;
 
 @compute @workgroup_size(8, 8, 1)
 fn horizon(@builtin(global_invocation_id) id: vec3<u32>) {
@@ -34,7 +36,7 @@ fn horizon(@builtin(global_invocation_id) id: vec3<u32>) {
     var r: Horizon;
     r.cone = vec4<f32>(0.0, 0.0, 0.0, 1.0);
     if centre.w > 0.0 {
-        r = search_pixel(in_depth, in_normal, in_radiance, in_albedo, env_radiance, env_irradiance_map, far_probes, far_visibility, env_sampler, view, env, params, at.texel, at.layer, at.pixel, at.pattern, centre);
+        r = search_pixel(in_depth, in_normal, in_radiance, in_albedo, in_material, env_radiance, env_irradiance_map, far_probes, far_visibility, env_sampler, view, env, params, at.texel, at.layer, at.pixel, at.pattern, centre);
     }
     textureStore(out_cone, store_at, r.cone);
     if NEAR {

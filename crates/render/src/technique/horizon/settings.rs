@@ -38,6 +38,8 @@ choice! {
         /// The sender's albedo times the volume's irradiance at it about the direction back to
         /// the receiver: the light of its hidden face (see technique/horizon/march.wgsl).
         Volume = "volume",
+        /// `volume` for the senders the bake never saw (dynamic meshes), `last` for the rest.
+        Unbaked = "unbaked",
     }
 }
 
@@ -47,7 +49,7 @@ declare_settings! {
         @first { march: MarchSettings }
         far: Far = "slices", choice, structural("hbil"), "", "hbil's far field: `sh` SH irradiance through the bent cone (Sec. 2.2.4); `envmap` pre-convolved diffuse map at the bent normal × F0(ao) (Sec. 2.2.3); `slices` the environment integrated over each slice's visible arcs";
         aperture: Aperture = "matched", choice, uniform("hbil"), "", "hbil, `far=sh`: cone aperture `eq12` cos α = 1 − ao, or `matched` cos α = √(1 − ao)";
-        hidden: Hidden = "last", choice, structural("hbil"), "", "hbil with a probe volume: a sender whose seen face turns away sends `last` the last accepted sender's light (Sec. 3.4), or `volume` its hidden face's, its albedo times the volume's irradiance there";
+        hidden: Hidden = "unbaked", choice, structural("hbil"), "", "hbil with a probe volume: a sender whose seen face turns away sends `last` the last accepted sender's light (Sec. 3.4), `volume` its hidden face's, its albedo times the volume's irradiance there, or `unbaked` its hidden face's where the bake never saw it (a dynamic mesh) and the last accepted sender's elsewhere";
         falloff: f32 = "0.1", number(0, 1), uniform, "", "an occluder's rise fades out over the last `falloff`·R";
         #[cfg(feature = "scratch")]
         scratch: f32 = "0", number(0, 1), uniform("gtao"), "", "the test build's scratch setting (tests/scratch.rs)";

@@ -106,6 +106,7 @@ pub(super) fn search_groups(
             normal,
             radiance,
             albedo: i.albedo,
+            material: i.material,
             out,
         };
         march.bind_group(device, io)
