@@ -226,7 +226,7 @@ fn every_bad_input_exits_2_with_one_line() {
         (vec!["render".into(), "--size".into(), "16x16".into(), "--method".into(), "ssdo".into(), "--set".into(), "svgf_depth=0".into()], "svgf_depth=0"),
         (vec!["render".into(), "--size".into(), "16x16".into(), "--method".into(), "vbgi".into(), "--set".into(), "svgf_motion=0".into()], "svgf_motion=0: must be in 0.001..=100"),
         (vec!["render".into(), "--size".into(), "16x16".into(), "--method".into(), "vbgi".into(), "--set".into(), "svgf_reach=0".into()], "svgf_reach=0: must be in 0.01..=1000000"),
-        (vec!["render".into(), "--size".into(), "16x16".into(), "--method".into(), "hbil:hidden=bogus".into()], "expected last or volume"),
+        (vec!["render".into(), "--size".into(), "16x16".into(), "--method".into(), "hbil:hidden=bogus".into()], "expected last, volume or unbaked"),
         (vec!["render".into(), "--size".into(), "16x16".into(), "--method".into(), "vbgi".into(), "--set".into(), "slices=0".into()], "slices=0"),
         (vec!["render".into(), "--size".into(), "16x16".into(), "--method".into(), "vbgi".into(), "--set".into(), "steps=999".into()], "steps=999"),
         (vec!["render".into(), "--size".into(), "16x16".into(), "--method".into(), "vbgi".into(), "--set".into(), "reject_a=0.5".into()], "reject_a"),
