@@ -169,8 +169,8 @@ struct Horizon {
 // slice angles' cell and the step jitter: the pixel, or with HALF its 2×2 block. `env_map`: the
 // environment's radiance with box-filtered mips (env_radiance_at), `irradiance_map` its
 // pre-convolved diffuse map (env_irradiance_exact); `probes`, `visibility`: the
-// far field's (far_sh_here); `smp`: the sampler of both; `albedo`: the G-buffer's
-// (`hidden=volume`).
+// far field's (far_sh_here); `smp`: the sampler of both; `albedo`, `material`: the G-buffer's
+// (a sender's hidden face, `hidden=volume` or `unbaked`).
 fn search_pixel(depth_layers: texture_2d_array<f32>, normal_layers: texture_2d_array<f32>, radiance_layers: texture_2d_array<f32>, albedo: texture_2d<f32>, material: texture_2d<f32>, env_map: texture_2d<f32>, irradiance_map: texture_2d<f32>, probes: texture_2d<f32>, visibility: texture_2d<f32>, smp: sampler, cam: View, e: EnvUniforms, p: HorizonParams, texel: vec2<u32>, layer: u32, pixel: vec2<u32>, pattern: vec2<u32>, centre: vec4<f32>) -> Horizon {
     let depth = centre.w;
     // Environment mip of about 32×16 texels (11°) for the arc integration.
