@@ -105,7 +105,8 @@ impl GpuScene {
         let mut double: Vec<u32> = Vec::new();
         let mut first = Vec::with_capacity(scene.meshes.len());
         // A dynamic mesh reads the second copy of the material table, whose `dynamic` is 1.
-        let dynamic_base = if scene.has_dynamic() {
+        let has_dynamic = scene.has_dynamic();
+        let dynamic_base = if has_dynamic {
             scene.materials.len() as u32
         } else {
             0
@@ -170,7 +171,7 @@ impl GpuScene {
         let linear_textures = arrays.pop().unwrap();
         let srgb_textures = arrays.pop().unwrap();
         let layer = |t: Option<usize>| t.map(|i| layer_of[i]).unwrap_or(NO_TEXTURE);
-        let copies = if scene.has_dynamic() { 2 } else { 1 };
+        let copies = if has_dynamic { 2 } else { 1 };
         let materials: Vec<GpuMaterial> = (0..copies)
             .flat_map(|copy| scene.materials.iter().map(move |m| (copy, m)))
             .map(|(copy, m)| GpuMaterial {
@@ -230,7 +231,7 @@ impl GpuScene {
             light_capacity: capacity,
             bounds: scene.bounds_in_motion(),
             triangle_count: index_count / 3,
-            has_dynamic: scene.has_dynamic(),
+            has_dynamic,
         })
     }
 

@@ -89,10 +89,8 @@ impl HorizonMarch {
                 _ if !near => 0,
                 Hidden::Last => 0,
                 Hidden::Volume => 1,
-                Hidden::Unbaked => {
-                    let unbaked = m.ctx.scene.is_some_and(|s| s.scene.has_dynamic);
-                    if unbaked { 2 } else { 0 }
-                }
+                Hidden::Unbaked if m.ctx.scene.is_some_and(|s| s.scene.has_dynamic) => 2,
+                Hidden::Unbaked => 0,
             },
         })
     }
