@@ -183,36 +183,35 @@ pub fn metrics(test: &[[f32; 4]], reference: &[[f32; 4]], mask: &Mask) -> Metric
 pub struct FrameChange {
     /// Σ (X_t(p) − X_{t−1}(p + m))² over the compared pixels.
     pub sum_sq: f64,
-    /// With the frames' standard errors given (the reference's): Σ (σ_t(p)² + σ_{t−1}(p + m)²),
-    /// the part of `sum_sq` that independent noise alone adds, to be subtracted.
-    pub noise_sq: f64,
+    /// With a second, independent estimate of both frames given (the reference traced again with
+    /// another seed, Y): Σ (X_t(p) − X_{t−1}(p + m)) · (Y_t(p) − Y_{t−1}(p + m)). The two
+    /// changes' noises are independent, so its expectation is the noiseless change's Σ of
+    /// squares, whatever the noise of each sequence and however it is correlated from frame to
+    /// frame within a sequence (one seed for every frame: the same paths wherever nothing moved).
+    pub cross: f64,
     pub pixels: usize,
 }
 
 impl std::ops::AddAssign for FrameChange {
     fn add_assign(&mut self, o: Self) {
         self.sum_sq += o.sum_sq;
-        self.noise_sq += o.noise_sq;
+        self.cross += o.cross;
         self.pixels += o.pixels;
     }
 }
 
-/// Per-pixel standard errors of two frames (current, previous).
-pub type FrameStderr<'a> = (&'a [[f32; 3]], &'a [[f32; 3]]);
+/// A second estimate of two frames (current, previous): the reference traced with another seed.
+pub type FrameTwin<'a> = (&'a [[f32; 4]], &'a [[f32; 4]]);
 
-/// The motion-compensated change from `prev` to `cur` ([`FrameChange`]); `stderr`: both frames'
-/// per-pixel standard errors (current, previous), for the reference.
+/// The motion-compensated change from `prev` to `cur` ([`FrameChange`]); `twin`: the same two
+/// frames estimated independently (current, previous), for the reference.
 pub fn frame_change(
     (cur, cur_mask): (&[[f32; 4]], &Mask),
     (prev, prev_mask): (&[[f32; 4]], &Mask),
     motion: &[[f32; 4]],
-    stderr: Option<FrameStderr>,
+    twin: Option<FrameTwin>,
 ) -> FrameChange {
     let (w, h) = (cur_mask.width as i64, cur_mask.height as i64);
-    let var = |s: &[f32; 3]| {
-        let m = (s[0] as f64 + s[1] as f64 + s[2] as f64) / 3.0;
-        m * m
-    };
     let mut out = FrameChange::default();
     for y in 0..h {
         for x in 0..w {
@@ -231,8 +230,8 @@ pub fn frame_change(
             }
             let d = mean_rgb(&cur[i]) - mean_rgb(&prev[j]);
             out.sum_sq += d * d;
-            if let Some((sc, sp)) = stderr {
-                out.noise_sq += var(&sc[i]) + var(&sp[j]);
+            if let Some((tc, tp)) = twin {
+                out.cross += d * (mean_rgb(&tc[i]) - mean_rgb(&tp[j]));
             }
             out.pixels += 1;
         }
@@ -241,10 +240,11 @@ pub fn frame_change(
 }
 
 /// The instability figure: the technique's motion-compensated change over the reference's, each
-/// the root of its summed squared change, the reference's less what its noise alone adds (at
-/// least a tenth of it is kept, so that a noise-dominated reference gives a finite ratio).
+/// the root of its summed squared change, the reference's estimated free of its noise by the
+/// cross product of two independent traces ([`FrameChange::cross`]; at least a tenth of its
+/// squared change is kept, so that a noise-dominated reference gives a finite ratio).
 pub fn instability(technique: FrameChange, reference: FrameChange) -> f64 {
-    let truth = (reference.sum_sq - reference.noise_sq).max(0.1 * reference.sum_sq);
+    let truth = reference.cross.max(0.1 * reference.sum_sq);
     if truth <= 0.0 {
         return if technique.sum_sq > 0.0 {
             f64::INFINITY
@@ -457,7 +457,7 @@ mod tests {
     }
 
     #[test]
-    fn motion_compensated_change_follows_the_motion_and_subtracts_noise() {
+    fn motion_compensated_change_follows_the_motion_and_cancels_independent_noise() {
         // A ramp moved one pixel to the right: with the motion vectors there is no change.
         let (w, h) = (8u32, 4u32);
         let ramp = |shift: i32| -> Vec<[f32; 4]> {
@@ -483,10 +483,51 @@ mod tests {
         let still = vec![[0.0; 4]; (w * h) as usize];
         let c = frame_change((&cur, &mask), (&prev, &mask), &still, None);
         assert_eq!((c.sum_sq, c.pixels), ((w * h) as f64, (w * h) as usize));
-        // Noise: σ = 0.5 per frame adds 0.5 per pixel, which the figure removes.
-        let s = vec![[0.5f32; 3]; (w * h) as usize];
-        let r = frame_change((&cur, &mask), (&prev, &mask), &still, Some((&s, &s)));
-        assert!((r.noise_sq - 0.5 * (w * h) as f64).abs() < 1e-9);
-        assert!((instability(c, r) - (1.0f64 / 0.5).sqrt()).abs() < 1e-9);
+        // Noise: two independent traces of the same frames, each frame ±0.5 off in a pattern
+        // that changes sign from frame to frame and that the two traces do not share (columns,
+        // rows). Each trace's change is the truth's 1 ± 1, its square 2 a pixel on average;
+        // their cross product reads the truth's 1.
+        let noisy = |base: &[[f32; 4]], sign: f32| -> Vec<[f32; 4]> {
+            base.iter()
+                .enumerate()
+                .map(|(i, v)| {
+                    let n = if i.is_multiple_of(2) { 0.5 } else { -0.5 } * sign;
+                    [v[0] + n, v[1] + n, v[2] + n, 1.0]
+                })
+                .collect()
+        };
+        let odd = |base: &[[f32; 4]], sign: f32| -> Vec<[f32; 4]> {
+            base.iter()
+                .enumerate()
+                .map(|(i, v)| {
+                    let n = if (i / w as usize).is_multiple_of(2) { 0.5 } else { -0.5 } * sign;
+                    [v[0] + n, v[1] + n, v[2] + n, 1.0]
+                })
+                .collect()
+        };
+        let (a_cur, a_prev) = (noisy(&cur, 1.0), noisy(&prev, -1.0));
+        let (b_cur, b_prev) = (odd(&cur, 1.0), odd(&prev, -1.0));
+        let r = frame_change(
+            (&a_cur, &mask),
+            (&a_prev, &mask),
+            &still,
+            Some((&b_cur, &b_prev)),
+        );
+        let px = (w * h) as f64;
+        assert!((r.sum_sq - 2.0 * px).abs() < 1e-6, "sum_sq {}", r.sum_sq);
+        assert!((r.cross - px).abs() < 1e-6, "cross {}", r.cross);
+        assert!((instability(c, r) - 1.0).abs() < 1e-9);
+        // One seed for both frames: noise that does not change from frame to frame cancels in
+        // each trace's change, and the figure is the truth's again.
+        let (s_cur, s_prev) = (noisy(&cur, 1.0), noisy(&prev, 1.0));
+        let (t_cur, t_prev) = (odd(&cur, 1.0), odd(&prev, 1.0));
+        let r = frame_change(
+            (&s_cur, &mask),
+            (&s_prev, &mask),
+            &still,
+            Some((&t_cur, &t_prev)),
+        );
+        assert!((r.sum_sq - px).abs() < 1e-6 && (r.cross - px).abs() < 1e-6);
+        assert!((instability(c, r) - 1.0).abs() < 1e-9);
     }
 }

@@ -34,7 +34,7 @@ pub struct MethodReport {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub path_still: Option<f64>,
     /// Along a path measured at consecutive frames: the motion-compensated frame-to-frame change
-    /// over the reference's own, its noise subtracted (`metrics::instability`).
+    /// over the reference's own, free of its noise (`metrics::instability`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub instability: Option<f64>,
     /// Along a path: ColorVideoVDP's JOD of the technique's frames against the reference's
@@ -381,7 +381,7 @@ fn path(h: &mut String, report: &Report) {
     }
     let _ = write!(
         h,
-        "<h2>Error along the camera path</h2><p>Relative error of each measured frame against the reference from that frame's camera, each technique's history carried from frame to frame. Still: the mean error a still camera reaches after 16 frames at up to eight of those views. Instability: the motion-compensated change from frame to frame over the reference's own (its noise subtracted; measured with <code>--every 1</code>). ColorVideoVDP: the perceptual quality of the frames as shown here against the reference's, played at the path's rate, in JOD (10: no visible difference; the reference's noise counts as a difference), over the longest run of consecutive measured frames.</p>{curve}<table><tr><th>method</th><th>frames measured</th><th>mean</th><th>95th percentile</th><th>largest</th><th>largest after frame 16</th><th>still</th><th>instability</th><th>ColorVideoVDP (JOD)</th><th>frames to settle after a cut</th><th>frames to settle after the objects stop</th></tr>"
+        "<h2>Error along the camera path</h2><p>Relative error of each measured frame against the reference from that frame's camera, each technique's history carried from frame to frame. Still: the mean error a still camera reaches after 16 frames at up to eight of those views. Instability: the motion-compensated change from frame to frame over the reference's own (free of its noise: the cross product of two traces with different seeds; measured with <code>--every 1</code>). ColorVideoVDP: the perceptual quality of the frames as shown here against the reference's, played at the path's rate, in JOD (10: no visible difference; the reference's noise counts as a difference), over the longest run of consecutive measured frames.</p>{curve}<table><tr><th>method</th><th>frames measured</th><th>mean</th><th>95th percentile</th><th>largest</th><th>largest after frame 16</th><th>still</th><th>instability</th><th>ColorVideoVDP (JOD)</th><th>frames to settle after a cut</th><th>frames to settle after the objects stop</th></tr>"
     );
     for m in report.methods.iter().filter(|m| !m.path.is_empty()) {
         let (mean, p95, max) = path_summary(&m.path);

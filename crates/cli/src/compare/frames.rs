@@ -23,8 +23,17 @@ pub(super) struct Run {
     animation: nearfield_scene::Animation,
 }
 
-/// The references of the measured frames of a path: (frame index, reference).
-pub(super) type Along = Vec<(u32, ReferenceImage)>;
+/// A measured frame of a path: its index, its reference, and (where the instability is measured,
+/// [`Run::changes`]) the reference traced again with another seed, whose noise is independent
+/// of the first's ([`metrics::FrameChange::cross`]).
+pub(super) struct Measured {
+    pub frame: u32,
+    pub truth: ReferenceImage,
+    pub twin: Option<ReferenceImage>,
+}
+
+/// The references of the measured frames of a path.
+pub(super) type Along = Vec<Measured>;
 
 /// A path's measured frames as the report shows them: (frame index, image).
 pub(super) type Shown = Vec<(u32, image::RgbImage)>;
@@ -115,6 +124,12 @@ impl Run {
         (b.eye - a.eye).length() + (b.target - a.target).length() > 1e-5 * scale
             || (b.yfov - a.yfov).abs() > 1e-6
             || self.animation.moved_between(self.time(i - 1), self.time(i))
+    }
+
+    /// Whether measured frames `prev` and `i` are consecutive and something moved between them:
+    /// the pairs whose change from frame to frame the instability figure sums.
+    fn changes(&self, prev: u32, i: u32) -> bool {
+        prev + 1 == i && self.moved(i)
     }
 
     /// The frames of a path whose camera jumps from the frame before's (a cut: the history is
@@ -210,7 +225,7 @@ impl Run {
                     relative_error: m.relative_error,
                 });
             }
-            if let Some((k, (_, truth))) = next.next_if(|(_, (j, _))| *j == i) {
+            if let Some((k, Measured { truth, .. })) = next.next_if(|(_, m)| m.frame == i) {
                 let value = r.read_aov(gpu_aov);
                 let m_now = judge.mask_against(r, &value, truth);
                 let m = metrics::metrics(&value.pixels, &truth.value, &m_now);
@@ -223,26 +238,25 @@ impl Run {
                     rmse: m.rmse,
                     relative_error: m.relative_error,
                 });
-                // Consecutive measured frames whose camera moved: a still camera's frames show
-                // no motion to compensate (and a reference that does not change).
+                // Consecutive measured frames whose camera or objects moved: a still scene's
+                // frames show no motion to compensate (and a reference that does not change).
                 if let Some((pk, pv, pm)) = &prev
-                    && along[*pk].0 + 1 == i
-                    && self.moved(i)
+                    && self.changes(along[*pk].frame, i)
                 {
                     let motion = r.read_aov(Aov::Motion).pixels;
-                    let before = &along[*pk].1;
+                    let before = &along[*pk];
                     let t = metrics::frame_change(
                         (&value.pixels, &m_now),
                         (&pv.pixels, pm),
                         &motion,
                         None,
                     );
-                    let stderr = (truth.stderr.as_slice(), before.stderr.as_slice());
+                    let twin = along[k].twin.as_ref().zip(before.twin.as_ref());
                     let rc = metrics::frame_change(
                         (&truth.value, &m_now),
-                        (&before.value, pm),
+                        (&before.truth.value, pm),
                         &motion,
-                        Some(stderr),
+                        twin.map(|(a, b)| (a.value.as_slice(), b.value.as_slice())),
                     );
                     let c = change.get_or_insert_default();
                     c.0 += t;
@@ -318,8 +332,8 @@ impl Run {
         let reference: Vec<image::RgbImage> = run
             .iter()
             .map(|(i, _)| {
-                let truth = along.iter().find(|(j, _)| j == i).map(|(_, t)| t);
-                judge.srgb(&truth.expect("a measured frame's reference").value)
+                let m = along.iter().find(|m| m.frame == *i);
+                judge.srgb(&m.expect("a measured frame's reference").truth.value)
             })
             .collect();
         match nearfield_eval::video::jod(&test, &reference, p.fps) {
@@ -348,7 +362,10 @@ impl Run {
         let step = along.len().div_ceil(8);
         let mut sum = 0.0;
         let mut n = 0;
-        for (j, truth) in along.iter().step_by(step) {
+        for Measured {
+            frame: j, truth, ..
+        } in along.iter().step_by(step)
+        {
             let mut r = make()?;
             r.set_camera(self.camera(*j));
             r.set_time(self.time(*j));
@@ -365,8 +382,9 @@ impl Run {
 }
 
 /// The references of a path's measured frames, each from its frame's camera (traced, or read from
-/// the cache); none for a still or turning camera. `loaded`'s camera is the last frame's again
-/// afterwards.
+/// the cache); none for a still or turning camera. A frame of a pair whose change the instability
+/// sums ([`Run::changes`]) is traced a second time with the next seed. `loaded`'s camera is the
+/// last frame's again afterwards.
 pub(super) fn path_truth(
     args: &CompareArgs,
     loaded: &mut Loaded,
@@ -374,19 +392,36 @@ pub(super) fn path_truth(
     settings: &ReferenceSettings,
 ) -> Result<Along> {
     let measured = run.measured(args.every);
+    let paired = |k: usize| {
+        let i = measured[k];
+        (k > 0 && run.changes(measured[k - 1], i))
+            || measured.get(k + 1).is_some_and(|&n| run.changes(i, n))
+    };
+    let twin_settings = ReferenceSettings {
+        seed: settings.seed.wrapping_add(1),
+        ..*settings
+    };
     let mut out = Vec::with_capacity(measured.len());
-    for (k, i) in measured.iter().enumerate() {
-        loaded.camera = run.camera(*i);
-        loaded.scene.pose(run.time(*i));
+    for (k, &i) in measured.iter().enumerate() {
+        loaded.camera = run.camera(i);
+        loaded.scene.pose(run.time(i));
+        let twin = paired(k);
         eprintln!(
-            "nearfield: reference of frame {} of {} ({} of {} measured)",
+            "nearfield: reference of frame {} of {} ({} of {} measured{})",
             i + 1,
             run.frames,
             k + 1,
-            measured.len()
+            measured.len(),
+            if twin { ", and with the next seed" } else { "" }
         );
-        let (img, _) = crate::reference::compute(&args.scene, &args.reference, loaded, settings)?;
-        out.push((*i, img));
+        let trace = |s: &ReferenceSettings| {
+            crate::reference::compute(&args.scene, &args.reference, loaded, s).map(|(img, _)| img)
+        };
+        out.push(Measured {
+            frame: i,
+            truth: trace(settings)?,
+            twin: twin.then(|| trace(&twin_settings)).transpose()?,
+        });
     }
     loaded.camera = run.camera(run.frames - 1);
     loaded.scene.pose(run.time(run.frames - 1));

@@ -291,8 +291,8 @@ pub fn run(args: CompareArgs) -> Result<()> {
         &progress,
         (mask_settings, region),
     )?;
-    for (i, truth) in &t.along {
-        judge.reference_png(i + 1, truth)?;
+    for m in &t.along {
+        judge.reference_png(m.frame + 1, &m.truth)?;
     }
     // One renderer of `method` over `scene`, with the far field every method shares.
     let renderer = |scene: &nearfield_scene::Scene, method: &str| -> Result<Renderer> {
