@@ -500,7 +500,11 @@ mod tests {
             base.iter()
                 .enumerate()
                 .map(|(i, v)| {
-                    let n = if (i / w as usize).is_multiple_of(2) { 0.5 } else { -0.5 } * sign;
+                    let n = if (i / w as usize).is_multiple_of(2) {
+                        0.5
+                    } else {
+                        -0.5
+                    } * sign;
                     [v[0] + n, v[1] + n, v[2] + n, 1.0]
                 })
                 .collect()
