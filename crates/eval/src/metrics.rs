@@ -487,28 +487,20 @@ mod tests {
         // that changes sign from frame to frame and that the two traces do not share (columns,
         // rows). Each trace's change is the truth's 1 ± 1, its square 2 a pixel on average;
         // their cross product reads the truth's 1.
-        let noisy = |base: &[[f32; 4]], sign: f32| -> Vec<[f32; 4]> {
+        // ±0.5 × `sign` by the parity of `key(i)`: the column (trace a) or the row (trace b).
+        let with_noise = |base: &[[f32; 4]], key: &dyn Fn(usize) -> usize, sign: f32| {
             base.iter()
                 .enumerate()
                 .map(|(i, v)| {
-                    let n = if i.is_multiple_of(2) { 0.5 } else { -0.5 } * sign;
+                    let n = if key(i).is_multiple_of(2) { 0.5 } else { -0.5 } * sign;
                     [v[0] + n, v[1] + n, v[2] + n, 1.0]
                 })
-                .collect()
+                .collect::<Vec<[f32; 4]>>()
         };
-        let odd = |base: &[[f32; 4]], sign: f32| -> Vec<[f32; 4]> {
-            base.iter()
-                .enumerate()
-                .map(|(i, v)| {
-                    let n = if (i / w as usize).is_multiple_of(2) {
-                        0.5
-                    } else {
-                        -0.5
-                    } * sign;
-                    [v[0] + n, v[1] + n, v[2] + n, 1.0]
-                })
-                .collect()
-        };
+        let column = |i: usize| i;
+        let row = |i: usize| i / w as usize;
+        let noisy = |base: &[[f32; 4]], sign: f32| with_noise(base, &column, sign);
+        let odd = |base: &[[f32; 4]], sign: f32| with_noise(base, &row, sign);
         let (a_cur, a_prev) = (noisy(&cur, 1.0), noisy(&prev, -1.0));
         let (b_cur, b_prev) = (odd(&cur, 1.0), odd(&prev, -1.0));
         let r = frame_change(
